@@ -1,0 +1,37 @@
+// Classification and overlap of two static bodies.
+//
+// Accuracy (tested against a 50-digit reference, tests/property/classify_test.cpp): the
+// relation is exact for every pair whose Perram-Wertheim contact scale factor mu (both
+// bodies scaled by mu about their centers just touch) and whose containment scale factors
+// differ from 1 by more than 2 * Options::tolerance (default 1e-12); a pair reported
+// `touching` has |mu - 1| <= 2 * tolerance. Swapping the arguments gives the mirrored
+// answer bit for bit (a_contains_b <-> b_contains_a).
+#pragma once
+
+#include <ellipsect/options.hpp>
+#include <ellipsect/shapes.hpp>
+
+#include <string_view>
+
+namespace ellipsect {
+
+enum class Relation {
+  separated,     // no common point
+  touching,      // boundaries meet, interiors disjoint (within the tolerance band)
+  overlapping,   // interiors intersect, neither contains the other
+  a_contains_b,  // b is inside a (boundaries may touch from inside)
+  b_contains_a,  // a is inside b
+  equal,         // same set (within the tolerance band)
+};
+
+std::string_view to_string(Relation r) noexcept;
+
+template <class T, int N>
+Relation classify(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b, const Options& options = {}) noexcept;
+
+// True when the closed bodies share a point: exactly classify(a, b) != separated, by a
+// faster route (no containment test; bounding-ball early outs).
+template <class T, int N>
+bool overlap(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b, const Options& options = {}) noexcept;
+
+}  // namespace ellipsect

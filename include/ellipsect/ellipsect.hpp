@@ -1,0 +1,9 @@
+// ellipsect: exact collision queries between ellipses and ellipsoids.
+#pragma once
+
+#include <ellipsect/classify.hpp>
+#include <ellipsect/contact.hpp>
+#include <ellipsect/options.hpp>
+#include <ellipsect/point.hpp>
+#include <ellipsect/shapes.hpp>
+#include <ellipsect/version.hpp>

@@ -1,0 +1,49 @@
+#!/usr/bin/env bash
+# ellipsect's one entry point for a fresh Debian 12 machine.
+#   bash scripts/run.sh example   install what is missing, build, run the bundled example
+#   bash scripts/run.sh test      install what is missing, build, run the whole test suite
+#                                 (Release build, then an ASan+UBSan build)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+packages=(g++ cmake ninja-build pkg-config libeigen3-dev libboost-dev libgtest-dev libgmock-dev libbenchmark-dev)
+
+install_missing() {
+  local missing=()
+  for p in "${packages[@]}"; do
+    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+  done
+  [ ${#missing[@]} -eq 0 ] && return 0
+  echo "==> installing: ${missing[*]}"
+  local sudo=""
+  [ "$(id -u)" -ne 0 ] && sudo="sudo"
+  $sudo apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq "${missing[@]}" >/dev/null
+}
+
+build() {  # build DIR [cmake args...]
+  local dir=$1
+  shift
+  cmake -S . -B "$dir" -G Ninja "$@" >/dev/null
+  cmake --build "$dir" -j "$(nproc)"
+}
+
+case "${1:-}" in
+  example)
+    install_missing
+    build build/release -DCMAKE_BUILD_TYPE=Release -DELLIPSECT_BUILD_TESTS=OFF -DELLIPSECT_BUILD_BENCH=OFF
+    ./build/release/examples/ellipsect_example
+    ;;
+  test)
+    install_missing
+    build build/release -DCMAKE_BUILD_TYPE=Release
+    (cd build/release && ctest --output-on-failure -j "$(nproc)")
+    # Sanitizer pass: same suite, fewer random cases per property test.
+    build build/sanitize -DCMAKE_BUILD_TYPE=RelWithDebInfo -DELLIPSECT_SANITIZE=ON -DELLIPSECT_BUILD_BENCH=OFF
+    (cd build/sanitize && ELLIPSECT_CASE_SCALE=0.05 ctest --output-on-failure -j "$(nproc)")
+    ;;
+  *)
+    echo "usage: bash scripts/run.sh example|test" >&2
+    exit 2
+    ;;
+esac

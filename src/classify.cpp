@@ -1,0 +1,61 @@
+#include <ellipsect/classify.hpp>
+
+#include "detail/classify_impl.hpp"
+
+namespace ellipsect {
+
+std::string_view to_string(Relation r) noexcept {
+  switch (r) {
+    case Relation::separated: return "separated";
+    case Relation::touching: return "touching";
+    case Relation::overlapping: return "overlapping";
+    case Relation::a_contains_b: return "a_contains_b";
+    case Relation::b_contains_a: return "b_contains_a";
+    case Relation::equal: return "equal";
+  }
+  return "unknown";
+}
+
+template <class T, int N>
+Relation classify(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b, const Options& options) noexcept {
+  using R = detail::Work<T>;
+  const bool a_is_s = detail::is_sphere_body(a, b);
+  const auto& s = a_is_s ? a : b;
+  const auto& o = a_is_s ? b : a;
+  const R tol = R(options.tolerance);
+  if (detail::bounding_balls_apart<R>(s, o, tol)) return Relation::separated;
+  const auto red = detail::reduce<R>(s, o);
+  const detail::ReducedRelation rel = detail::classify_reduced<R, N>(red.e, red.k, tol);
+  switch (rel) {
+    case detail::ReducedRelation::s_contains_o: return a_is_s ? Relation::a_contains_b : Relation::b_contains_a;
+    case detail::ReducedRelation::o_contains_s: return a_is_s ? Relation::b_contains_a : Relation::a_contains_b;
+    case detail::ReducedRelation::separated: return Relation::separated;
+    case detail::ReducedRelation::touching: return Relation::touching;
+    case detail::ReducedRelation::overlapping: return Relation::overlapping;
+    case detail::ReducedRelation::equal: return Relation::equal;
+  }
+  return Relation::overlapping;
+}
+
+template <class T, int N>
+bool overlap(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b, const Options& options) noexcept {
+  using R = detail::Work<T>;
+  const bool a_is_s = detail::is_sphere_body(a, b);
+  const auto& s = a_is_s ? a : b;
+  const auto& o = a_is_s ? b : a;
+  if (detail::bounding_balls_apart<R>(s, o, R(options.tolerance))) return false;
+  if (detail::inscribed_balls_meet<R>(s, o)) return true;
+  const auto red = detail::reduce<R>(s, o);
+  return detail::gap_reduced<R, N>(red.e, red.k) <= R(options.tolerance);
+}
+
+#define ELLIPSECT_INSTANTIATE(T, N)                                                                      \
+  template Relation classify<T, N>(const Ellipsoid<T, N>&, const Ellipsoid<T, N>&, const Options&) noexcept; \
+  template bool overlap<T, N>(const Ellipsoid<T, N>&, const Ellipsoid<T, N>&, const Options&) noexcept;
+ELLIPSECT_INSTANTIATE(float, 2)
+ELLIPSECT_INSTANTIATE(float, 3)
+ELLIPSECT_INSTANTIATE(double, 2)
+ELLIPSECT_INSTANTIATE(double, 3)
+#undef ELLIPSECT_INSTANTIATE
+
+}  // namespace ellipsect

@@ -1,0 +1,148 @@
+// First contact time (seed section 6), with the changes documented in docs/method.md:
+//
+// * Newton runs on delta(t) = |P(t)| - 1, the distance from the ball to the moving
+//   ellipsoid minus 1, instead of the seed's h(t) = |P(t)|^2 - 1. The distance from a
+//   point to a translating convex set is convex in t, so Newton from t = 0 (where
+//   delta > 0) never passes the first root, exactly as for h; but delta is nearly linear
+//   while the bodies are far apart, where Newton on the quadratic h only halves the
+//   distance per step. Its slope is W.P / |P| (envelope theorem); the seed's equation
+//   (29) and code use 4 W.P for h'(t) where the true value is 2 W.P, which halves every
+//   step and costs the quadratic convergence.
+// * Every exit is a status: overlapping and touching at start, no contact in [0, t_max]
+//   (slope >= 0: the seed's W.P >= 0 quick-out, applied at every iterate), converged hit,
+//   or did_not_converge at the iteration cap.
+// * Tolerances are relative (Options::tolerance for tangency, ulps for the time).
+#include <ellipsect/contact.hpp>
+
+#include "detail/classify_impl.hpp"
+
+#include <cmath>
+#include <limits>
+
+namespace ellipsect {
+
+std::string_view to_string(ContactStatus s) noexcept {
+  switch (s) {
+    case ContactStatus::hit: return "hit";
+    case ContactStatus::touching_at_start: return "touching_at_start";
+    case ContactStatus::overlapping_at_start: return "overlapping_at_start";
+    case ContactStatus::no_contact_in_window: return "no_contact_in_window";
+    case ContactStatus::did_not_converge: return "did_not_converge";
+    case ContactStatus::invalid_input: return "invalid_input";
+  }
+  return "unknown";
+}
+
+namespace {
+
+// Smallest distance between the centers over [0, t_max] exceeds the bounding radii.
+template <class R, int N>
+bool swept_balls_apart(const Vec<R, N>& c0, const Vec<R, N>& v, R t_max, R reach) noexcept {
+  const R vv = v.squaredNorm();
+  R t = vv > R(0) ? -c0.dot(v) / vv : R(0);
+  t = std::min(std::max(t, R(0)), t_max);
+  return (c0 + t * v).norm() > reach;
+}
+
+}  // namespace
+
+template <class T, int N>
+Contact<T, N> first_contact(const Ellipsoid<T, N>& a, const Vec<T, N>& velocity_a, const Ellipsoid<T, N>& b,
+                            const Vec<T, N>& velocity_b, T t_max, const Options& options) noexcept {
+  using R = detail::Work<T>;
+  constexpr R nan = std::numeric_limits<R>::quiet_NaN();
+  constexpr R eps = std::numeric_limits<R>::epsilon();
+  Contact<T, N> out;
+  out.time = T(nan);
+  out.point.setConstant(T(nan));
+  out.normal.setConstant(T(nan));
+  if (!velocity_a.allFinite() || !velocity_b.allFinite() || std::isnan(t_max) || t_max < T(0)) return out;
+
+  const bool a_is_s = detail::is_sphere_body(a, b);
+  const auto& s = a_is_s ? a : b;
+  const auto& o = a_is_s ? b : a;
+  const Vec<R, N> vs = (a_is_s ? velocity_a : velocity_b).template cast<R>();
+  const Vec<R, N> v = (a_is_s ? velocity_b : velocity_a).template cast<R>() - vs;
+  const R tol = R(options.tolerance);
+  const R tmax = R(t_max);
+  const R reach = (R(s.radii().maxCoeff()) + R(o.radii().maxCoeff())) * (R(1) + R(2) * tol + R(1e-9));
+  const Vec<R, N> c0 = o.center().template cast<R>() - s.center().template cast<R>();
+  if (swept_balls_apart<R, N>(c0, v, tmax, reach)) {
+    out.status = ContactStatus::no_contact_in_window;
+    return out;
+  }
+
+  const auto red = detail::reduce<R>(s, o);
+  const Vec<R, N> w = red.to_z * v;
+  auto finish = [&](ContactStatus status, R t, const detail::BranchPoint<R, N>* p) {
+    out.status = status;
+    out.time = T(t);
+    if (p != nullptr) {
+      const Vec<R, N> z = p->point / p->norm;  // on the unit ball, i.e. on S's boundary
+      out.point = (s.center().template cast<R>() + t * vs + red.to_world * z).template cast<T>();
+      const Vec<R, N> n = (red.normal_map * z).normalized();
+      out.normal = (a_is_s ? n : Vec<R, N>(-n)).template cast<T>();
+    }
+    return out;
+  };
+  // The closest point of O(t) to the origin, or nothing when the origin is inside O(t).
+  auto closest_at = [&](R t, detail::BranchPoint<R, N>& p) {
+    const Vec<R, N> k = red.k + t * w;
+    if (detail::level_at_origin<R, N>(red.e, k) <= R(0)) return false;
+    p = detail::closest_from_outside<R, N>(red.e, k);
+    return true;
+  };
+
+  detail::BranchPoint<R, N> p;
+  if (!closest_at(0, p)) return finish(ContactStatus::overlapping_at_start, 0, nullptr);
+  R delta = p.norm - R(1);
+  if (delta < -tol) return finish(ContactStatus::overlapping_at_start, 0, nullptr);
+  if (delta <= tol) return finish(ContactStatus::touching_at_start, 0, &p);
+
+  R t = 0;
+  for (int it = 1; it <= options.max_iterations; ++it) {
+    out.iterations = it;
+    const R slope = w.dot(p.point) / p.norm;
+    if (!(slope < R(0)))  // moving apart from here on: the minimum of delta is behind us
+      return delta <= tol ? finish(ContactStatus::hit, t, &p)
+                          : finish(ContactStatus::no_contact_in_window, nan, nullptr);
+    const R tn = t - delta / slope;
+    if (tn > tmax) return finish(ContactStatus::no_contact_in_window, nan, nullptr);
+    detail::BranchPoint<R, N> pn;
+    if (!closest_at(tn, pn) || pn.norm < R(1)) {
+      // Rounding put the step just past the root: bisect the bracket [t, tn] to adjacent
+      // floats and report its left end, the last time the bodies are apart.
+      R lo = t, hi = tn;
+      while (true) {
+        const R mid = lo + (hi - lo) / 2;
+        if (mid <= lo || mid >= hi) break;
+        detail::BranchPoint<R, N> pm;
+        if (closest_at(mid, pm) && pm.norm >= R(1)) {
+          lo = mid;
+          p = pm;
+        } else {
+          hi = mid;
+        }
+      }
+      return finish(ContactStatus::hit, lo, &p);
+    }
+    // A step of a few ulps of t: Newton from the left has reached the root.
+    const bool converged = tn - t <= 4 * eps * tn;
+    t = tn;
+    p = pn;
+    delta = p.norm - R(1);
+    if (converged) return finish(ContactStatus::hit, t, &p);
+  }
+  return delta <= tol ? finish(ContactStatus::hit, t, &p) : finish(ContactStatus::did_not_converge, t, nullptr);
+}
+
+#define ELLIPSECT_INSTANTIATE(T, N)                                                                            \
+  template Contact<T, N> first_contact<T, N>(const Ellipsoid<T, N>&, const Vec<T, N>&, const Ellipsoid<T, N>&, \
+                                             const Vec<T, N>&, T, const Options&) noexcept;
+ELLIPSECT_INSTANTIATE(float, 2)
+ELLIPSECT_INSTANTIATE(float, 3)
+ELLIPSECT_INSTANTIATE(double, 2)
+ELLIPSECT_INSTANTIATE(double, 3)
+#undef ELLIPSECT_INSTANTIATE
+
+}  // namespace ellipsect

@@ -1,0 +1,62 @@
+// Classification in the reduced frame: S is the unit ball at the origin, O the
+// axis-aligned ellipsoid (center k, semi-axes e).
+//
+//   origin outside O:  gap = |closest point of O| - 1 decides separated / touching;
+//                      a deeper pair is O-inside-S when O's farthest point has norm <= 1.
+//   origin inside O:   S is inside O when O's boundary is at least 1 away from the origin,
+//                      O is inside S when its farthest point is within 1; both: equal.
+//
+// Every comparison with 1 allows the relative band `tol` (Options::tolerance): scaling S
+// about its center by (1 + gap) makes it touch O, and the Perram-Wertheim factor mu of
+// the pair satisfies |mu - 1| <= |gap|, so the band bounds mu too.
+#pragma once
+
+#include "reduce.hpp"
+#include "secular.hpp"
+
+#include <limits>
+
+namespace ellipsect::detail {
+
+enum class ReducedRelation { separated, touching, overlapping, s_contains_o, o_contains_s, equal };
+
+template <class R, int N>
+R gap_reduced(const Vec<R, N>& e, const Vec<R, N>& k) noexcept {
+  if (level_at_origin(e, k) <= R(0)) return -std::numeric_limits<R>::infinity();
+  return closest_from_outside(e, k).norm - R(1);
+}
+
+template <class R, int N>
+ReducedRelation classify_reduced(const Vec<R, N>& e, const Vec<R, N>& k, R tol) noexcept {
+  if (level_at_origin(e, k) > R(0)) {
+    const R d = closest_from_outside(e, k).norm;
+    if (d > R(1) + tol) return ReducedRelation::separated;
+    if (d >= R(1) - tol) return ReducedRelation::touching;
+    return farthest(e, k).norm <= R(1) + tol ? ReducedRelation::s_contains_o : ReducedRelation::overlapping;
+  }
+  const bool s_in_o = closest_from_inside(e, k).norm >= R(1) - tol;
+  const bool o_in_s = farthest(e, k).norm <= R(1) + tol;
+  if (s_in_o && o_in_s) return ReducedRelation::equal;
+  if (s_in_o) return ReducedRelation::o_contains_s;
+  if (o_in_s) return ReducedRelation::s_contains_o;
+  return ReducedRelation::overlapping;
+}
+
+// Certain separation from the circumscribed balls: their distance exceeds the sum of the
+// radii by more than the band, so mu - 1 and hence the reduced gap exceed it too.
+template <class R, int N, class T>
+bool bounding_balls_apart(const Ellipsoid<T, N>& s, const Ellipsoid<T, N>& o, R tol) noexcept {
+  const R dist = (o.center().template cast<R>() - s.center().template cast<R>()).norm();
+  const R reach = R(s.radii().maxCoeff()) + R(o.radii().maxCoeff());
+  return dist > reach * (R(1) + R(2) * tol + R(1e-9));
+}
+
+// Certain overlap from the inscribed balls (margin 1e-9 for rounding).
+template <class R, int N, class T>
+bool inscribed_balls_meet(const Ellipsoid<T, N>& s, const Ellipsoid<T, N>& o) noexcept {
+  const R dist = (o.center().template cast<R>() - s.center().template cast<R>()).norm();
+  const R reach = R(s.radii().minCoeff()) + R(o.radii().minCoeff());
+  return dist < reach * (R(1) - R(1e-9));
+}
+
+}  // namespace ellipsect::detail
