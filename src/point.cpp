@@ -14,7 +14,7 @@ ClosestPoint<T, N> closest_point(const Ellipsoid<T, N>& body, const Vec<T, N>& x
   const Vec<R, N> k = axes.transpose() * (body.center().template cast<R>() - x.template cast<R>());
   const bool outside = detail::level_at_origin<R, N>(e, k) > R(0);
   const auto p = outside ? detail::closest_from_outside<R, N>(e, k) : detail::closest_from_inside<R, N>(e, k);
-  return {(x.template cast<R>() + axes * p.point).template cast<T>(), T(outside ? p.norm : -p.norm)};
+  return {(body.center().template cast<R>() + axes * p.offset).template cast<T>(), T(outside ? p.norm : -p.norm)};
 }
 
 #define ELLIPSECT_INSTANTIATE(T, N) \

@@ -100,28 +100,39 @@ SecularRoot<R> solve_secular(const Vec<R, N>& c_in, const Vec<R, N>& g) noexcept
   }
 }
 
-// Query results in the reduced frame: the point P of the other body's boundary and |P|.
+// Query results in the reduced frame: the boundary point P of the ellipsoid, the same
+// point relative to the ellipsoid's center (offset = P - k, computed without the
+// cancellation of P - k when the origin is far away), and |P|.
 template <class R, int N>
 struct BranchPoint {
   Vec<R, N> point;
+  Vec<R, N> offset;
   R norm;
 };
 
-template <class R, int N>
-BranchPoint<R, N> make_branch_point(const Vec<R, N>& p) noexcept {
-  return {p, p.norm()};
-}
-
-// Fills the hard-case point: components with g_i = 0 are zero in k (the solver checked),
-// and their total offset from k has length e_group * sqrt(1 - s_rest).
-template <class R, int N>
-void complete_hard_case(Vec<R, N>& p, const Vec<R, N>& e, const Vec<R, N>& g, R s_rest) noexcept {
+// The branch's point from its root x: with den_i = g_i + x,
+//   P_i = k_i * num / den_i  and  P_i - k_i = k_i * off / den_i,
+// where (num, off) = (u, -e_i^2) for the closest point (u = x outside, x - e_min^2
+// inside) and (x + e_max^2, e_i^2) for the farthest. In the hard case the terms with
+// den_i = 0 are replaced by the boundary completion along the group's first axis.
+template <class R, int N, class Num, class Off>
+BranchPoint<R, N> branch_point(const Vec<R, N>& e, const Vec<R, N>& k, const Vec<R, N>& g, const SecularRoot<R>& root,
+                               Num num, Off off) noexcept {
+  BranchPoint<R, N> b;
+  bool completed = false;
   for (int i = 0; i < N; ++i) {
-    if (g[i] == R(0)) {
-      p[i] = e[i] * std::sqrt(std::max(R(0), R(1) - s_rest));
-      return;
+    const R den = g[i] + root.x;
+    if (den == R(0)) {  // hard case: k_i = 0 here
+      b.offset[i] = completed ? R(0) : e[i] * std::sqrt(std::max(R(0), R(1) - root.s_rest));
+      b.point[i] = b.offset[i];
+      completed = true;
+    } else {
+      b.point[i] = k[i] * (num(i) / den);
+      b.offset[i] = k[i] * (off(i) / den);
     }
   }
+  b.norm = b.point.norm();
+  return b;
 }
 
 // Closest boundary point to the origin when the origin is outside (q(0) > 0).
@@ -129,10 +140,7 @@ template <class R, int N>
 BranchPoint<R, N> closest_from_outside(const Vec<R, N>& e, const Vec<R, N>& k) noexcept {
   const Vec<R, N> g = e.cwiseProduct(e);
   const SecularRoot<R> root = solve_secular<R, N>(e.cwiseProduct(k), g);
-  const R u = root.x;
-  Vec<R, N> p;
-  for (int i = 0; i < N; ++i) p[i] = k[i] * (u / (g[i] + u));
-  return make_branch_point(p);
+  return branch_point<R, N>(e, k, g, root, [&](int) { return root.x; }, [&](int i) { return -g[i]; });
 }
 
 // Closest boundary point to the origin when the origin is inside or on (q(0) <= 0).
@@ -143,10 +151,7 @@ BranchPoint<R, N> closest_from_inside(const Vec<R, N>& e, const Vec<R, N>& k) no
   for (int i = 0; i < N; ++i) g[i] = (e[i] - em) * (e[i] + em);
   const SecularRoot<R> root = solve_secular<R, N>(e.cwiseProduct(k), g);
   const R u = root.x - em * em;  // <= 0
-  Vec<R, N> p;
-  for (int i = 0; i < N; ++i) p[i] = (g[i] + root.x == R(0)) ? R(0) : k[i] * (u / (g[i] + root.x));
-  if (root.hard) complete_hard_case(p, e, g, root.s_rest);
-  return make_branch_point(p);
+  return branch_point<R, N>(e, k, g, root, [&](int) { return u; }, [&](int i) { return -e[i] * e[i]; });
 }
 
 // Farthest boundary point from the origin (any position of the origin).
@@ -156,11 +161,8 @@ BranchPoint<R, N> farthest(const Vec<R, N>& e, const Vec<R, N>& k) noexcept {
   Vec<R, N> g;
   for (int i = 0; i < N; ++i) g[i] = (eM - e[i]) * (eM + e[i]);
   const SecularRoot<R> root = solve_secular<R, N>(e.cwiseProduct(k), g);
-  const R v = root.x + eM * eM;  // = -u > 0
-  Vec<R, N> p;
-  for (int i = 0; i < N; ++i) p[i] = (g[i] + root.x == R(0)) ? R(0) : k[i] * (v / (g[i] + root.x));
-  if (root.hard) complete_hard_case(p, e, g, root.s_rest);
-  return make_branch_point(p);
+  const R v = root.x + eM * eM;
+  return branch_point<R, N>(e, k, g, root, [&](int) { return v; }, [&](int i) { return e[i] * e[i]; });
 }
 
 // q(0) = sum (k_i / e_i)^2 - 1: positive when the origin is outside the ellipsoid.

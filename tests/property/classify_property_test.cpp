@@ -1,0 +1,95 @@
+// classify and overlap against the 50-digit reference (Perram-Wertheim contact function
+// and the extrema of one body's quadric over the other's boundary, computed in the other
+// body's frame): a route independent of the library's reduction and secular solver.
+//
+// Claim under test (classify.hpp): the relation is exact whenever every tangency measure
+// of the reference (margin) is farther than 2 * tolerance from 1, and a pair reported
+// touching has |mu - 1| <= 2 * tolerance.
+#include "common.hpp"
+
+namespace {
+
+using namespace ellipsect;
+using namespace ellipsect::testing;
+
+constexpr double band = 2 * Options{}.tolerance;
+
+template <int N>
+void check_against_reference(int per_category) {
+  Tally tally;
+  int decided = 0;
+  for (const auto category : scenarios::all_categories) {
+    for (int i = 0; i < per_category; ++i) {
+      const auto c = scenarios::make_case<N>(category, static_cast<std::uint64_t>(i));
+      const Relation got = classify(c.a, c.b);
+      const auto r = ref::classify<N>(to_ref(c.a), to_ref(c.b), band);
+      const Relation want = from_ref(r.relation);
+      const bool decidable = r.margin > band;
+      tally.add(scenarios::name(category), decidable ? std::string(to_string(want)) : "in_band");
+      if (decidable) {
+        ++decided;
+        ASSERT_EQ(got, want) << describe(c) << "\n  mu=" << ref::to_double(r.mu) << " margin=" << ref::to_double(r.margin);
+      }
+      if (got == Relation::touching)
+        ASSERT_LE(ref::to_double(abs(r.mu - 1)), band) << describe(c);
+      ASSERT_EQ(overlap(c.a, c.b), got != Relation::separated) << describe(c);
+      ASSERT_EQ(classify(c.b, c.a), mirrored(got)) << describe(c);
+      ASSERT_EQ(overlap(c.b, c.a), got != Relation::separated) << describe(c);
+    }
+  }
+  tally.print("classify vs reference, N=" + std::to_string(N));
+  // The mix must exercise every relation, and near-tangent cases must mostly be decidable
+  // (their gaps, 1e-9 .. 1e-6, are far outside the band).
+  EXPECT_GT(decided, per_category * 9);
+  EXPECT_GT(tally.count("near_tangent", "separated"), per_category / 5);
+  EXPECT_GT(tally.count("near_tangent", "overlapping"), per_category / 5);
+  EXPECT_GT(tally.count("containment", "a_contains_b") + tally.count("containment", "b_contains_a"), per_category / 3);
+  EXPECT_GT(tally.count("spheres", "equal"), 0);
+}
+
+TEST(ClassifyProperty, MatchesReference2D) { check_against_reference<2>(cases(1000)); }
+TEST(ClassifyProperty, MatchesReference3D) { check_against_reference<3>(cases(1000)); }
+
+// Rigid motions and scaling by powers of two change no answer (the tolerance model is
+// relative; powers of two are exact, so the answer is identical, not just close).
+template <int N>
+void check_invariance(int n) {
+  for (int i = 0; i < n; ++i) {
+    for (const auto category : {scenarios::Category::random, scenarios::Category::high_aspect, scenarios::Category::containment}) {
+      const auto c = scenarios::make_case<N>(category, 100000 + i);
+      const Relation got = classify(c.a, c.b);
+      for (double s : {0x1p-40, 0x1p40}) {
+        const auto as = Ellipsoid<double, N>::from_axes(c.a.center() * s, c.a.axes(), c.a.radii() * s);
+        const auto bs = Ellipsoid<double, N>::from_axes(c.b.center() * s, c.b.axes(), c.b.radii() * s);
+        ASSERT_EQ(classify(as, bs), got) << describe(c);
+      }
+      // A rigid motion moves the bodies by rounding only: same answer unless in the band.
+      const auto r = ref::classify<N>(to_ref(c.a), to_ref(c.b), band);
+      if (r.margin < 1e-9) continue;
+      scenarios::detail::Rng rng(i);
+      const Mat<double, N> q = scenarios::detail::rotation<N>(rng);
+      const Vec<double, N> t = scenarios::detail::unit_vector<N>(rng) * 7.0;
+      const auto am = Ellipsoid<double, N>::from_axes(q * c.a.center() + t, q * c.a.axes(), c.a.radii());
+      const auto bm = Ellipsoid<double, N>::from_axes(q * c.b.center() + t, q * c.b.axes(), c.b.radii());
+      ASSERT_EQ(classify(am, bm), got) << describe(c);
+    }
+  }
+}
+
+TEST(ClassifyProperty, ScaleAndRigidMotionInvariance2D) { check_invariance<2>(cases(200)); }
+TEST(ClassifyProperty, ScaleAndRigidMotionInvariance3D) { check_invariance<3>(cases(200)); }
+
+// float instantiation: inputs rounded to float, computed in double, same relation as the
+// double computation on the rounded inputs.
+TEST(ClassifyProperty, FloatMatchesDoubleOnRoundedInputs) {
+  for (int i = 0; i < cases(500); ++i) {
+    const auto c = scenarios::make_case<3>(scenarios::Category::random, 200000 + i);
+    const auto af = Ellipsoid3<float>::from_axes(c.a.center().cast<float>(), c.a.axes().cast<float>(), c.a.radii().cast<float>());
+    const auto bf = Ellipsoid3<float>::from_axes(c.b.center().cast<float>(), c.b.axes().cast<float>(), c.b.radii().cast<float>());
+    const auto ad = Ellipsoid3<double>::from_axes(af.center().cast<double>(), af.axes().cast<double>(), af.radii().cast<double>());
+    const auto bd = Ellipsoid3<double>::from_axes(bf.center().cast<double>(), bf.axes().cast<double>(), bf.radii().cast<double>());
+    ASSERT_EQ(classify(af, bf), classify(ad, bd)) << describe(c);
+  }
+}
+
+}  // namespace
