@@ -25,7 +25,9 @@ void check_against_reference(int per_category) {
       const auto r = ref::classify<N>(to_ref(c.a), to_ref(c.b), band);
       const Relation want = from_ref(r.relation);
       const bool decidable = r.margin > band;
-      tally.add(scenarios::name(category), decidable ? std::string(to_string(want)) : "in_band");
+      // Equal bodies sit on every tangency at once (margin 0): the answer must be equal.
+      if (want == Relation::equal) ASSERT_EQ(got, Relation::equal) << describe(c);
+      tally.add(scenarios::name(category), decidable || want == Relation::equal ? std::string(to_string(want)) : "in_band");
       if (decidable) {
         ++decided;
         ASSERT_EQ(got, want) << describe(c) << "\n  mu=" << ref::to_double(r.mu) << " margin=" << ref::to_double(r.margin);
@@ -79,16 +81,19 @@ void check_invariance(int n) {
 TEST(ClassifyProperty, ScaleAndRigidMotionInvariance2D) { check_invariance<2>(cases(200)); }
 TEST(ClassifyProperty, ScaleAndRigidMotionInvariance3D) { check_invariance<3>(cases(200)); }
 
-// float instantiation: inputs rounded to float, computed in double, same relation as the
-// double computation on the rounded inputs.
-TEST(ClassifyProperty, FloatMatchesDoubleOnRoundedInputs) {
+// float instantiation: computed in double from the float data; the float rounding of the
+// inputs (axes orthonormal only to ~1e-7) moves the bodies by ~1e-7 relative, so the
+// answer is exact outside a 1e-5 band of the reference on those rounded bodies.
+TEST(ClassifyProperty, FloatMatchesReferenceOutsideFloatBand) {
   for (int i = 0; i < cases(500); ++i) {
     const auto c = scenarios::make_case<3>(scenarios::Category::random, 200000 + i);
     const auto af = Ellipsoid3<float>::from_axes(c.a.center().cast<float>(), c.a.axes().cast<float>(), c.a.radii().cast<float>());
     const auto bf = Ellipsoid3<float>::from_axes(c.b.center().cast<float>(), c.b.axes().cast<float>(), c.b.radii().cast<float>());
-    const auto ad = Ellipsoid3<double>::from_axes(af.center().cast<double>(), af.axes().cast<double>(), af.radii().cast<double>());
-    const auto bd = Ellipsoid3<double>::from_axes(bf.center().cast<double>(), bf.axes().cast<double>(), bf.radii().cast<double>());
-    ASSERT_EQ(classify(af, bf), classify(ad, bd)) << describe(c);
+    auto as_ref = [](const Ellipsoid3<float>& e) {
+      return ref::Body<3>{e.center().cast<double>(), e.axes().cast<double>(), e.radii().cast<double>()};
+    };
+    const auto r = ref::classify<3>(as_ref(af), as_ref(bf), band);
+    if (r.margin > 1e-5) ASSERT_EQ(classify(af, bf), from_ref(r.relation)) << describe(c);
   }
 }
 
