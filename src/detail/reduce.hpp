@@ -24,6 +24,8 @@ namespace ellipsect::detail {
 
 // Working precision: float inputs are computed in double, results rounded back.
 template <class T> using Work = std::conditional_t<(sizeof(T) < sizeof(double)), double, T>;
+// The wider type used to re-decide answers that rounding in Work<T> could flip.
+template <class R> using Wide = long double;
 
 template <class T, int N>
 bool is_sphere_body(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b) noexcept {
