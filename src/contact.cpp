@@ -54,10 +54,11 @@ inline constexpr int reduced_frame_ulps = 64;
 // One solve in working precision R. `doubt` is set to the estimated error of the
 // outcome relative to what the caller's accuracy claim allows: > 1 means the answer may be
 // wrong (a status within rounding of the tolerance band, or a time error above 1e-13 of
-// the time scale) and the caller repeats the solve in a wider type.
+// the time scale, or a normal error above 1e-10 rad) and the caller repeats the solve in
+// a wider type.
 template <class R, class T, int N>
-Contact<T, N> solve_contact(const Ellipsoid<T, N>& s, const Ellipsoid<T, N>& o, const Vec<R, N>& vs,
-                            const Vec<R, N>& v, R tmax, bool a_is_s, const Options& options, R& doubt) noexcept {
+Contact<T, N> solve_contact(const Ellipsoid<T, N>& s, const Ellipsoid<T, N>& o, const Vec<T, N>& vs_in,
+                            const Vec<T, N>& vo_in, R tmax, bool a_is_s, const Options& options, R& doubt) noexcept {
   constexpr R nan = std::numeric_limits<R>::quiet_NaN();
   constexpr R eps = std::numeric_limits<R>::epsilon();
   const R tol = R(options.tolerance);
@@ -68,9 +69,23 @@ Contact<T, N> solve_contact(const Ellipsoid<T, N>& s, const Ellipsoid<T, N>& o, 
   doubt = 0;
 
   const auto red = detail::reduce<R>(s, o);
-  const Vec<R, N> w = red.to_z * v;
+  const Vec<R, N> vs = vs_in.template cast<R>(), vo = vo_in.template cast<R>();
+  const Vec<R, N> ks = s.center().template cast<R>(), ko = o.center().template cast<R>();
+  const Vec<R, N> w = red.to_z * (vo - vs);
+  // O's center relative to S's at time t, in the reduced frame. Each body's position is
+  // formed with one rounding (fma) before the difference: a pair that starts far apart
+  // and meets near the origin keeps the digits that k(0) + t w would cancel away.
+  auto center_at = [&](R t) {
+    Vec<R, N> rel;
+    for (int i = 0; i < N; ++i) rel[i] = std::fma(t, vo[i], ko[i]) - std::fma(t, vs[i], ks[i]);
+    return Vec<R, N>(red.to_z * rel);
+  };
   const R e_max = red.e.maxCoeff();
-  auto rounding = [&](R t) { return R(reduced_frame_ulps) * eps * ((red.k + t * w).norm() + e_max); };
+  const R inv_a_min = R(1) / R(s.radii().minCoeff());
+  auto rounding = [&](R t) {
+    const R world = (ko + t * vo).norm() + (ks + t * vs).norm();
+    return R(reduced_frame_ulps) * eps * (center_at(t).norm() + e_max + world * inv_a_min);
+  };
   auto finish = [&](ContactStatus status, R t, const detail::BranchPoint<R, N>* p) {
     out.status = status;
     out.time = T(t);
@@ -89,7 +104,7 @@ Contact<T, N> solve_contact(const Ellipsoid<T, N>& s, const Ellipsoid<T, N>& o, 
   };
   // The closest point of O(t) to the origin, or nothing when the origin is inside O(t).
   auto closest_at = [&](R t, detail::BranchPoint<R, N>& p) {
-    const Vec<R, N> k = red.k + t * w;
+    const Vec<R, N> k = center_at(t);
     if (detail::level_at_origin<R, N>(red.e, k) <= R(0)) return false;
     p = detail::closest_from_outside<R, N>(red.e, k);
     return true;
@@ -102,11 +117,14 @@ Contact<T, N> solve_contact(const Ellipsoid<T, N>& s, const Ellipsoid<T, N>& o, 
   if (delta < -tol) return finish(ContactStatus::overlapping_at_start, 0, nullptr);
   if (delta <= tol) return finish(ContactStatus::touching_at_start, 0, &p);
 
-  // Time error of a converged hit: rounding of delta over the slope, against 1e-13 of
-  // max(t, the time to cross the sphere body's unit radius).
+  // Errors of a converged hit against 1e-13 of the claims: the time error is the rounding
+  // of delta over the slope, relative to max(t, the time to cross the unit ball); the
+  // normal turns by the point's rounding times the sphere body's aspect ratio (the map
+  // back to the world stretches directions by up to a_max / a_min).
+  const R aspect_s = R(s.radii().maxCoeff()) / R(s.radii().minCoeff());
   auto hit = [&](R t, const detail::BranchPoint<R, N>& q, R slope) {
     const R scale = std::max(t, R(1) / w.norm());
-    doubt = std::max(doubt, rounding(t) / (std::abs(slope) * scale) / R(1e-13));
+    doubt = std::max({doubt, rounding(t) / (std::abs(slope) * scale) / R(1e-13), rounding(t) * aspect_s / R(1e-10)});
     return finish(ContactStatus::hit, t, &q);
   };
 
@@ -173,12 +191,11 @@ Contact<T, N> first_contact(const Ellipsoid<T, N>& a, const Vec<T, N>& velocity_
     return out;
   }
   R doubt;
-  out = solve_contact<R, T, N>(s, o, vs.template cast<R>(), v, R(t_max), a_is_s, options, doubt);
+  out = solve_contact<R, T, N>(s, o, vs, vo, R(t_max), a_is_s, options, doubt);
   if (doubt > R(1)) {  // too close to call in R: certify in the wider type
     using W = detail::Wide<R>;
     W wide_doubt;
-    out = solve_contact<W, T, N>(s, o, vs.template cast<W>(), vo.template cast<W>() - vs.template cast<W>(), W(t_max),
-                                 a_is_s, options, wide_doubt);
+    out = solve_contact<W, T, N>(s, o, vs, vo, W(t_max), a_is_s, options, wide_doubt);
   }
   return out;
 }
