@@ -16,6 +16,24 @@ std::string_view to_string(Relation r) noexcept {
   return "unknown";
 }
 
+namespace {
+
+// The reduced-frame decision in working precision R, repeated in the wider type when
+// rounding could have flipped one of its comparisons.
+template <class R, class T, int N>
+detail::ReducedRelation decide(const Ellipsoid<T, N>& s, const Ellipsoid<T, N>& o, R tol) noexcept {
+  const auto red = detail::reduce<R>(s, o);
+  R margin;
+  const auto rel = detail::classify_reduced<R, N>(red.e, red.k, tol, margin);
+  if (margin > detail::reduced_rounding<R>(s, o, red.e, red.k)) return rel;
+  using W = detail::Wide<R>;
+  const auto wide = detail::reduce<W>(s, o);
+  W wide_margin;
+  return detail::classify_reduced<W, N>(wide.e, wide.k, W(tol), wide_margin);
+}
+
+}  // namespace
+
 template <class T, int N>
 Relation classify(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b, const Options& options) noexcept {
   using R = detail::Work<T>;
@@ -24,9 +42,7 @@ Relation classify(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b, const Opti
   const auto& o = a_is_s ? b : a;
   const R tol = R(options.tolerance);
   if (detail::bounding_balls_apart<R>(s, o, tol)) return Relation::separated;
-  const auto red = detail::reduce<R>(s, o);
-  const detail::ReducedRelation rel = detail::classify_reduced<R, N>(red.e, red.k, tol);
-  switch (rel) {
+  switch (decide<R>(s, o, tol)) {
     case detail::ReducedRelation::s_contains_o: return a_is_s ? Relation::a_contains_b : Relation::b_contains_a;
     case detail::ReducedRelation::o_contains_s: return a_is_s ? Relation::b_contains_a : Relation::a_contains_b;
     case detail::ReducedRelation::separated: return Relation::separated;
@@ -43,10 +59,15 @@ bool overlap(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b, const Options& 
   const bool a_is_s = detail::is_sphere_body(a, b);
   const auto& s = a_is_s ? a : b;
   const auto& o = a_is_s ? b : a;
-  if (detail::bounding_balls_apart<R>(s, o, R(options.tolerance))) return false;
+  const R tol = R(options.tolerance);
+  if (detail::bounding_balls_apart<R>(s, o, tol)) return false;
   if (detail::inscribed_balls_meet<R>(s, o)) return true;
   const auto red = detail::reduce<R>(s, o);
-  return detail::gap_reduced<R, N>(red.e, red.k) <= R(options.tolerance);
+  const R gap = detail::gap_reduced<R, N>(red.e, red.k);
+  // Outside the rounding of the band's outer edge the sign is certain; on it, classify's
+  // own decision (with its wide-type fallback) keeps overlap == (classify != separated).
+  if (std::abs(gap - tol) > detail::reduced_rounding<R>(s, o, red.e, red.k)) return gap <= tol;
+  return decide<R>(s, o, tol) != detail::ReducedRelation::separated;
 }
 
 #define ELLIPSECT_INSTANTIATE(T, N)                                                                      \

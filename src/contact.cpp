@@ -46,11 +46,6 @@ bool swept_balls_apart(const Vec<R, N>& c0, const Vec<R, N>& v, R t_max, R reach
 
 }  // namespace
 
-// Rounding model of the reduced frame: |k|, e and t |w| are carried with relative error
-// about `ulps` * eps (Jacobi SVD measured at up to ~30 ulps on 1e16-spread spectra), so
-// delta(t) is known to about ulps * eps * (|k(t)| + e_max).
-inline constexpr int reduced_frame_ulps = 64;
-
 // One solve in working precision R. `doubt` is set to the estimated error of the
 // outcome relative to what the caller's accuracy claim allows: > 1 means the answer may be
 // wrong (a status within rounding of the tolerance band, or a time error above 1e-13 of
@@ -84,7 +79,7 @@ Contact<T, N> solve_contact(const Ellipsoid<T, N>& s, const Ellipsoid<T, N>& o, 
   const R inv_a_min = R(1) / R(s.radii().minCoeff());
   auto rounding = [&](R t) {
     const R world = (ko + t * vo).norm() + (ks + t * vs).norm();
-    return R(reduced_frame_ulps) * eps * (center_at(t).norm() + e_max + world * inv_a_min);
+    return R(detail::reduced_frame_ulps) * eps * (center_at(t).norm() + e_max + world * inv_a_min);
   };
   auto finish = [&](ContactStatus status, R t, const detail::BranchPoint<R, N>* p) {
     out.status = status;

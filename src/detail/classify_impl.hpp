@@ -26,20 +26,44 @@ R gap_reduced(const Vec<R, N>& e, const Vec<R, N>& k) noexcept {
   return closest_from_outside(e, k).norm - R(1);
 }
 
+// `margin` receives the smallest distance of a compared quantity from its threshold: a
+// caller whose rounding error may exceed it re-decides in a wider type.
 template <class R, int N>
-ReducedRelation classify_reduced(const Vec<R, N>& e, const Vec<R, N>& k, R tol) noexcept {
-  if (level_at_origin(e, k) > R(0)) {
+ReducedRelation classify_reduced(const Vec<R, N>& e, const Vec<R, N>& k, R tol, R& margin) noexcept {
+  margin = std::numeric_limits<R>::infinity();
+  auto le = [&](R x, R threshold) {
+    margin = std::min(margin, std::abs(x - threshold));
+    return x <= threshold;
+  };
+  auto ge = [&](R x, R threshold) {
+    margin = std::min(margin, std::abs(x - threshold));
+    return x >= threshold;
+  };
+  const R q0 = level_at_origin(e, k);
+  margin = std::abs(q0);
+  if (q0 > R(0)) {
     const R d = closest_from_outside(e, k).norm;
-    if (d > R(1) + tol) return ReducedRelation::separated;
-    if (d >= R(1) - tol) return ReducedRelation::touching;
-    return farthest(e, k).norm <= R(1) + tol ? ReducedRelation::s_contains_o : ReducedRelation::overlapping;
+    if (!le(d, R(1) + tol)) return ReducedRelation::separated;
+    if (!le(d, R(1) - tol)) return ReducedRelation::touching;
+    return le(farthest(e, k).norm, R(1) + tol) ? ReducedRelation::s_contains_o : ReducedRelation::overlapping;
   }
-  const bool s_in_o = closest_from_inside(e, k).norm >= R(1) - tol;
-  const bool o_in_s = farthest(e, k).norm <= R(1) + tol;
+  const bool s_in_o = ge(closest_from_inside(e, k).norm, R(1) - tol);
+  const bool o_in_s = le(farthest(e, k).norm, R(1) + tol);
   if (s_in_o && o_in_s) return ReducedRelation::equal;
   if (s_in_o) return ReducedRelation::o_contains_s;
   if (o_in_s) return ReducedRelation::s_contains_o;
   return ReducedRelation::overlapping;
+}
+
+// Rounding of reduced-frame distances: the SVD and the frame change carry about `ulps`
+// ulps relative to |k|, O's largest semi-axis and the world positions in S units.
+inline constexpr int reduced_frame_ulps = 64;
+
+template <class R, int N, class T>
+R reduced_rounding(const Ellipsoid<T, N>& s, const Ellipsoid<T, N>& o, const Vec<R, N>& e, const Vec<R, N>& k) noexcept {
+  const R world = R(s.center().norm()) + R(o.center().norm());
+  return R(reduced_frame_ulps) * std::numeric_limits<R>::epsilon() *
+         (k.norm() + e.maxCoeff() + world / R(s.radii().minCoeff()));
 }
 
 // Certain separation from the circumscribed balls: their distance exceeds the sum of the
