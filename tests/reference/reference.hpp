@@ -7,10 +7,15 @@
 //   * relation / contact scale: the Perram-Wertheim (PW) function
 //         F(lambda) = lambda (1 - lambda) r^T C(lambda)^-1 r,
 //         C(lambda) = (1 - lambda) Ma^-1 + lambda Mb^-1,   r = cb - ca,
-//     maximised over lambda in [0, 1] (mu^2 = max F); F is evaluated directly from C (LDL^T
-//     of C at every step, no simultaneous diagonalisation), and the maximiser is the root of
-//     the strictly decreasing F' (F'' = -2 sum z_i^2 k_i / D_i^3 < 0), found by bracketed,
-//     safeguarded Newton.
+//     maximised over lambda in [0, 1] (mu^2 = max F); F, F', F'' are evaluated directly from
+//     C (LDL^T of C at every step, no simultaneous diagonalisation), and the maximiser is the
+//     root of the strictly decreasing F', found by bracketed, safeguarded Newton.  (F is
+//     strictly concave: in the eigenbasis of K = La^-1 Mb^-1 La^-T, La = Ax_a diag(r_a),
+//     F = sum z_i^2 lambda (1 - lambda) / D_i, D_i = 1 - lambda + lambda k_i, and
+//     F'' = -2 sum z_i^2 k_i / D_i^3 < 0; F'(0) = r^T Ma r > 0, F'(1) = -r^T Mb r < 0.)
+//     The PW point x = ca + (1 - lambda) Ma^-1 C^-1 r is the minimiser over x of
+//     lambda q_A(x) + (1 - lambda) q_B(x) (check: (lambda Ma + (1 - lambda) Mb)(x - ca) =
+//     (1 - lambda) Mb r); at the optimal lambda q_A(x) = q_B(x) = mu^2 (envelope theorem).
 //   * containment / boundary extrema: extrema of a quadratic on the unit sphere via a
 //     one-dimensional secular (trust-region) equation, after a cyclic Jacobi eigen-
 //     decomposition written here (not Eigen's solver).  The optimal value is computed from
@@ -28,7 +33,12 @@
 // Input bodies are double; they are converted EXACTLY to Real, and the axes are then
 // re-orthonormalised in Real (modified Gram-Schmidt, twice), which defines the exact body
 // used by every function.  Results are exact for that body to roughly 1e-45 relative (see
-// the notes at each function).
+// the notes at each function); more precisely about 1e-50 times the condition number of the
+// quadrics involved (e.g. ~1e-39 for axis ratios of 1e6 inside one body).
+//
+// `band` (classify, first_contact) only widens the tests `touching`, `equal` and
+// `touching_at_start`; exact tangencies computed here come out as 1 +- ~1e-50, so pass a
+// band > 0 (e.g. 1e-30) to recognise them; band = 0 makes the outcome rounding-dependent.
 #pragma once
 
 #include <Eigen/Core>
@@ -107,8 +117,30 @@ template <int N> struct Contact {
   Real time;  // hit: contact time; *_at_start: 0; none: +infinity
   Eigen::Matrix<Real, N, 1> point;   // PW point (world frame) at `time` (none: at argmin mu)
   Eigen::Matrix<Real, N, 1> normal;  // unit Ma (x - ca(t)), A -> B (zero if centres coincide)
-  Real min_mu;  // min of mu(t) over the window [0, min(t_max, horizon)] (start states: mu(0))
+  Real min_mu;  // min of mu(t) over the window [0, min(t_max, horizon)], in every case
+  Real t_min;   // where that minimum is reached (0 if mu is non-decreasing from the start)
 };
+
+inline const char* name(Relation r) {
+  switch (r) {
+    case Relation::separated: return "separated";
+    case Relation::touching: return "touching";
+    case Relation::overlapping: return "overlapping";
+    case Relation::a_contains_b: return "a_contains_b";
+    case Relation::b_contains_a: return "b_contains_a";
+    case Relation::equal: return "equal";
+  }
+  return "?";
+}
+inline const char* name(ContactKind k) {
+  switch (k) {
+    case ContactKind::hit: return "hit";
+    case ContactKind::touching_at_start: return "touching_at_start";
+    case ContactKind::overlapping_at_start: return "overlapping_at_start";
+    case ContactKind::none: return "none";
+  }
+  return "?";
+}
 
 namespace detail {
 
@@ -239,31 +271,48 @@ template <int N> struct Ldlt {
 };
 
 // Root of an INCREASING function on [lo, hi], f(lo) <= 0 <= f(hi) (endpoints are never
-// evaluated), by safeguarded Newton (rtsafe): Newton steps that leave the bracket or do not
-// shrink fast enough are replaced by bisection.  fdf(x, f, df) sets f(x) and f'(x).
+// evaluated unless x starts there), by safeguarded Newton (rtsafe): Newton steps that leave
+// the bracket or do not shrink fast enough are replaced by bisection.  fdf(x, f, df) sets
+// f(x) and f'(x).  `scale` is the absolute size of the interval (roots near 0 are resolved
+// to ~1e-52 * scale).  Termination: a step below ~1e-46 relative, or a Newton step below
+// 1e-24 relative followed by one more Newton step (quadratic convergence makes that final
+// step exact to rounding; waiting for a tiny step instead could loop on rounding noise).
 template <class FDF>
-Real newton_increasing(FDF&& fdf, Real lo, Real hi, Real x, const Real& abs_tol,
-                       const Real& rel_tol, int max_iter = 600) {
-  if (!(x > lo && x < hi)) x = lo + (hi - lo) / 2;
+Real newton_increasing(FDF&& fdf, Real lo, Real hi, Real x, const Real& scale,
+                       int* evaluations = nullptr, int max_iter = 1000) {
+  static const Real rel_strict = eps() * Real(1e4), abs_strict = eps() * Real(1e-2);
+  static const Real rel_loose("1e-24"), abs_loose("1e-34");
+  if (!(x >= lo && x <= hi)) x = lo + (hi - lo) / 2;
   Real dx_old = hi - lo, dx = dx_old;
   Real f, df;
-  for (int it = 0; it < max_iter; ++it) {
+  bool finishing = false;
+  int it = 0;
+  for (; it < max_iter; ++it) {
     fdf(x, f, df);
-    if (f == 0) return x;
+    if (f == 0) break;
     if (f < 0) lo = x; else hi = x;
     Real xn;
-    bool newton = df > 0;
-    if (newton) {
+    bool in_bracket = false, newton = false;
+    if (df > 0) {
       xn = x - f / df;
-      newton = xn > lo && xn < hi && abs(2 * f) <= abs(dx_old * df);
+      in_bracket = xn > lo && xn < hi;
+      newton = in_bracket && abs(2 * f) <= abs(dx_old * df);
+    }
+    if (finishing) {
+      if (in_bracket) x = xn;
+      break;
     }
     if (!newton) xn = lo + (hi - lo) / 2;
     dx_old = dx;
     dx = xn - x;
-    const Real tol = abs_tol + rel_tol * abs(xn);
-    if (abs(dx) <= tol || hi - lo <= tol) return xn;
     x = xn;
+    const Real ax = abs(xn);
+    if (abs(dx) <= abs_strict * scale + rel_strict * ax ||
+        hi - lo <= abs_strict * scale + rel_strict * ax)
+      break;
+    if (newton && abs(dx) <= abs_loose * scale + rel_loose * ax) finishing = true;
   }
+  if (evaluations) *evaluations += it + 1;
   return x;
 }
 
@@ -373,9 +422,7 @@ PwState<N> pw_solve(const RMat<N>& Pa, const RMat<N>& Pb, const RVec<N>& r, Real
     f = -Fp;  // increasing in lambda
     df = -s.Fpp;
   };
-  static const Real abs_tol = eps() * Real(1e-2);
-  static const Real rel_tol = eps() * Real(1e4);
-  const Real lam = newton_increasing(fdf, Real(0), Real(1), guess, abs_tol, rel_tol);
+  const Real lam = newton_increasing(fdf, Real(0), Real(1), guess, Real(1));
   Real Fp;
   pw_eval<N>(Pa, Pb, Delta, r, lam, s, Fp);
   s.iterations = count + 1;
@@ -444,7 +491,7 @@ template <int N> void secular(const RVec<N>& b, const RVec<N>& d, Real& s, Real&
     df = ip * ip * ip * psi3;
   };
   const Real scale = bn + dmax;
-  s = newton_increasing(fdf, lo, hi, hi, scale * eps() * Real(1e-2), eps() * Real(1e4));
+  s = newton_increasing(fdf, lo, hi, hi, scale);
   Real psi, psi3;
   terms(s, psi, psi3, T);
 }
@@ -627,6 +674,9 @@ Real horizon(const RBody<N>& a, const RBody<N>& b, const RVec<N>& r0, const RVec
 // kind: overlapping_at_start if mu(0) < 1 - band; touching_at_start if |mu(0) - 1| <= band;
 // otherwise hit at the first t in [0, t_max] with mu(t) = 1 when min mu <= 1, else none.
 // Zero relative velocity (exactly, vb == va) or t_max == 0: none (or a start state).
+// min_mu / t_min are the minimum of mu over the window and its location, filled for every
+// kind (for the start states too); with t_max = inf the window is [0, horizon], which
+// contains the global minimum over [0, inf).
 // Precision: time ~1e-45 relative for transversal contacts (a near-double root, grazing
 // paths with min_mu within ~1e-20 of 1, only gives ~sqrt of that); min_mu ~1e-48.
 template <int N>
@@ -660,20 +710,6 @@ Contact<N> first_contact(const Body<N>& a, const Eigen::Matrix<double, N, 1>& va
   Contact<N> c;
   const PwState<N> s0 = state_at(Real(0));
   const Real mu0 = sqrt(s0.F);
-  c.min_mu = mu0;
-  const Real bd(band);
-  if (mu0 < 1 - bd || abs(mu0 - 1) <= bd) {
-    c.kind = mu0 < 1 - bd ? ContactKind::overlapping_at_start : ContactKind::touching_at_start;
-    c.time = 0;
-    fill(c, Real(0), s0);
-    return c;
-  }
-  c.kind = ContactKind::none;
-  c.time = infinity();
-  if (is_zero<N>(v) || t_max == 0) {
-    fill(c, Real(0), s0);
-    return c;
-  }
 
   // m(t) = mu(t)^2 is convex; m'(t) = 2 lambda (1 - lambda) v . w,
   // m''(t) = 2 lambda (1 - lambda) v^T C^-1 v - G^2 / F'',
@@ -684,26 +720,23 @@ Contact<N> first_contact(const Body<N>& a, const Eigen::Matrix<double, N, 1>& va
     return 2 * ll * dot<N>(v, s.w);
   };
   auto d2m = [&](const PwState<N>& s) {
-    const Real ll = s.lambda * (1 - s.lambda);
-    const RVec<N> cv = s.chol.solve(v);
-    if (s.centres_coincide) {  // m(t) = t^2 gauge(v)^2 near the coincidence
+    if (s.centres_coincide) {  // m(t) = (t - t0)^2 gauge(v)^2 near the coincidence
       const PwState<N> sv = pw_solve<N>(ra.P, rb.P, v);
       return 2 * sv.F;
     }
+    const Real ll = s.lambda * (1 - s.lambda);
+    const RVec<N> cv = s.chol.solve(v);
     const Real G = 2 * (1 - 2 * s.lambda) * dot<N>(v, s.w) -
                    2 * ll * dot<N>(cv, matvec<N>(Delta, s.w));
     return 2 * ll * dot<N>(v, cv) - G * G / s.Fpp;
   };
 
-  Real T = horizon<N>(ra, rb, r0, v);
-  if (std::isfinite(t_max) && Real(t_max) < T) T = Real(t_max);
-
-  Real t_min;
-  PwState<N> smin;
-  if (dm(s0) >= 0) {
-    t_min = 0;
-    smin = s0;
-  } else {
+  // Minimum of mu over the window [0, T], T = min(t_max, horizon): root of the increasing m'.
+  Real t_min = 0;
+  PwState<N> smin = s0;
+  if (!is_zero<N>(v) && t_max > 0 && dm(s0) < 0) {
+    Real T = horizon<N>(ra, rb, r0, v);
+    if (std::isfinite(t_max) && Real(t_max) < T) T = Real(t_max);
     const PwState<N> sT = state_at(T);
     if (dm(sT) <= 0) {
       t_min = T;
@@ -715,12 +748,23 @@ Contact<N> first_contact(const Body<N>& a, const Eigen::Matrix<double, N, 1>& va
         f = dm(s);
         df = d2m(s);
       };
-      t_min = newton_increasing(fdf, Real(0), T, tc, T * eps() * Real(1e-2), eps() * Real(1e4));
+      t_min = newton_increasing(fdf, Real(0), T, tc, T);
       smin = state_at(t_min);
     }
   }
   c.min_mu = sqrt(smin.F);
+  c.t_min = t_min;
+
+  const Real bd(band);
+  if (mu0 < 1 - bd || abs(mu0 - 1) <= bd) {
+    c.kind = mu0 < 1 - bd ? ContactKind::overlapping_at_start : ContactKind::touching_at_start;
+    c.time = 0;
+    fill(c, Real(0), s0);
+    return c;
+  }
   if (c.min_mu > 1) {
+    c.kind = ContactKind::none;
+    c.time = infinity();
     fill(c, t_min, smin);
     return c;
   }
@@ -732,8 +776,7 @@ Contact<N> first_contact(const Body<N>& a, const Eigen::Matrix<double, N, 1>& va
       f = 1 - s.F;
       df = -dm(s);
     };
-    t_hit = newton_increasing(fdf, Real(0), t_min, Real(0),
-                              t_min * eps() * Real(1e-2), eps() * Real(1e4));
+    t_hit = newton_increasing(fdf, Real(0), t_min, Real(0), t_min);
   }
   c.kind = ContactKind::hit;
   c.time = t_hit;
