@@ -3,6 +3,7 @@
 #   bash scripts/run.sh example   install what is missing, build, run the bundled example
 #   bash scripts/run.sh test      install what is missing, build, run the whole test suite
 #                                 (Release build, then an ASan+UBSan build)
+#   bash scripts/run.sh bench     install what is missing, build, run the benchmarks
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -42,8 +43,13 @@ case "${1:-}" in
     build build/sanitize -DCMAKE_BUILD_TYPE=RelWithDebInfo -DELLIPSECT_SANITIZE=ON -DELLIPSECT_BUILD_BENCH=OFF
     (cd build/sanitize && ELLIPSECT_CASE_SCALE=0.05 ctest --output-on-failure -j "$(nproc)")
     ;;
+  bench)
+    install_missing
+    build build/release -DCMAKE_BUILD_TYPE=Release
+    ./build/release/bench/bench_queries --benchmark_repetitions=5 --benchmark_report_aggregates_only=true "${@:2}"
+    ;;
   *)
-    echo "usage: bash scripts/run.sh example|test" >&2
+    echo "usage: bash scripts/run.sh example|test|bench" >&2
     exit 2
     ;;
 esac

@@ -48,8 +48,8 @@ bool swept_balls_apart(const Vec<R, N>& c0, const Vec<R, N>& v, R t_max, R reach
 
 // One solve in working precision R. `doubt` is set to the estimated error of the
 // outcome relative to what the caller's accuracy claim allows: > 1 means the answer may be
-// wrong (a status within rounding of the tolerance band, or a time error above 1e-13 of
-// the time scale, or a normal error above 1e-10 rad) and the caller repeats the solve in
+// wrong (a status within rounding of the tolerance band, or a time error above 2.5e-13 of
+// the time scale, or a normal error above 2.5e-10 rad) and the caller repeats the solve in
 // a wider type.
 template <class R, class T, int N>
 Contact<T, N> solve_contact(const Ellipsoid<T, N>& s, const Ellipsoid<T, N>& o, const Vec<T, N>& vs_in,
@@ -112,14 +112,14 @@ Contact<T, N> solve_contact(const Ellipsoid<T, N>& s, const Ellipsoid<T, N>& o, 
   if (delta < -tol) return finish(ContactStatus::overlapping_at_start, 0, nullptr);
   if (delta <= tol) return finish(ContactStatus::touching_at_start, 0, &p);
 
-  // Errors of a converged hit against 1e-13 of the claims: the time error is the rounding
+  // Errors of a converged hit against a quarter of the claims: the time error is the rounding
   // of delta over the slope, relative to max(t, the time to cross the unit ball); the
   // normal turns by the point's rounding times the sphere body's aspect ratio (the map
   // back to the world stretches directions by up to a_max / a_min).
   const R aspect_s = R(s.radii().maxCoeff()) / R(s.radii().minCoeff());
   auto hit = [&](R t, const detail::BranchPoint<R, N>& q, R slope) {
     const R scale = std::max(t, R(1) / w.norm());
-    doubt = std::max({doubt, rounding(t) / (std::abs(slope) * scale) / R(1e-13), rounding(t) * aspect_s / R(1e-10)});
+    doubt = std::max({doubt, rounding(t) / (std::abs(slope) * scale) / R(2.5e-13), rounding(t) * aspect_s / R(2.5e-10)});
     return finish(ContactStatus::hit, t, &q);
   };
 
