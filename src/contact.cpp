@@ -68,11 +68,11 @@ Contact<T, N> solve_contact(const Ellipsoid<T, N>& s, const Ellipsoid<T, N>& o, 
   const Vec<R, N> ks = s.center().template cast<R>(), ko = o.center().template cast<R>();
   const Vec<R, N> w = red.to_z * (vo - vs);
   // O's center relative to S's at time t, in the reduced frame. Each body's position is
-  // formed with one rounding (fma) before the difference: a pair that starts far apart
+  // formed with about one rounding (mul_add) before the difference: a pair that starts far apart
   // and meets near the origin keeps the digits that k(0) + t w would cancel away.
   auto center_at = [&](R t) {
     Vec<R, N> rel;
-    for (int i = 0; i < N; ++i) rel[i] = std::fma(t, vo[i], ko[i]) - std::fma(t, vs[i], ks[i]);
+    for (int i = 0; i < N; ++i) rel[i] = detail::mul_add(t, vo[i], ko[i]) - detail::mul_add(t, vs[i], ks[i]);
     return Vec<R, N>(red.to_z * rel);
   };
   const R e_max = red.e.maxCoeff();
@@ -97,15 +97,17 @@ Contact<T, N> solve_contact(const Ellipsoid<T, N>& s, const Ellipsoid<T, N>& o, 
     const R r = rounding(t);
     return std::abs(delta - tol) <= r || std::abs(delta + tol) <= r;
   };
-  // The closest point of O(t) to the origin, or nothing when the origin is inside O(t).
+  // The closest point of O(t) to the origin, or false when the origin is inside O(t).
+  // `p` comes in holding a nearby solution whose multiplier warm-starts the solve.
   auto closest_at = [&](R t, detail::BranchPoint<R, N>& p) {
     const Vec<R, N> k = center_at(t);
     if (detail::level_at_origin<R, N>(red.e, k) <= R(0)) return false;
-    p = detail::closest_from_outside<R, N>(red.e, k);
+    p = detail::closest_from_outside<R, N>(red.e, k, p.root);
     return true;
   };
 
   detail::BranchPoint<R, N> p;
+  p.root = -1;
   if (!closest_at(0, p)) return finish(ContactStatus::overlapping_at_start, 0, nullptr);
   R delta = p.norm - R(1);
   if (near_band_edge(delta, 0)) doubt = 2;
@@ -134,15 +136,20 @@ Contact<T, N> solve_contact(const Ellipsoid<T, N>& s, const Ellipsoid<T, N>& o, 
     }
     const R tn = t - delta / slope;
     if (tn > tmax) return finish(ContactStatus::no_contact_in_window, nan, nullptr);
-    detail::BranchPoint<R, N> pn;
-    if (!closest_at(tn, pn) || pn.norm < R(1)) {
-      // Rounding put the step just past the root: bisect the bracket [t, tn] to adjacent
-      // floats and report its left end, the last time the bodies are apart.
+    detail::BranchPoint<R, N> pn = p;
+    const bool outside = closest_at(tn, pn);
+    if (!outside || pn.norm < R(1)) {
+      // Newton from the left cannot pass the root in exact arithmetic: landing inside
+      // means tn is within rounding of it. Report the end nearer to touching; if the depth
+      // exceeds the rounding model, bisect [t, tn] to adjacent floats instead and report
+      // its left end, the last time the bodies are apart.
+      const R depth = R(1) - pn.norm;
+      if (outside && depth <= rounding(tn)) return depth < delta ? hit(tn, pn, slope) : hit(t, p, slope);
       R lo = t, hi = tn;
       while (true) {
         const R mid = lo + (hi - lo) / 2;
         if (mid <= lo || mid >= hi) break;
-        detail::BranchPoint<R, N> pm;
+        detail::BranchPoint<R, N> pm = p;
         if (closest_at(mid, pm) && pm.norm >= R(1)) {
           lo = mid;
           p = pm;

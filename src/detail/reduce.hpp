@@ -19,6 +19,8 @@
 #include <Eigen/SVD>
 
 #include <algorithm>
+#include <cmath>
+#include <type_traits>
 
 namespace ellipsect::detail {
 
@@ -38,6 +40,28 @@ bool is_sphere_body(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b) noexcept
   if (a.radii() != b.radii()) return less(a.radii(), b.radii());
   if (a.center() != b.center()) return less(a.center(), b.center());
   return !less(b.axes(), a.axes());
+}
+
+// a * b + c with about one rounding: a hardware fma where the build has one, Dekker's exact
+// product otherwise (libm's software fma is ~50x slower). long double is only used where
+// its 11 extra bits already cover the second rounding.
+template <class R>
+R mul_add(R a, R b, R c) noexcept {
+  if constexpr (std::is_same_v<R, double>) {
+#ifdef FP_FAST_FMA
+    return std::fma(a, b, c);
+#else
+    constexpr double split = 134217729.0;  // 2^27 + 1
+    const double p = a * b;
+    const double as = a * split, bs = b * split;
+    const double ah = as - (as - a), bh = bs - (bs - b);
+    const double al = a - ah, bl = b - bh;
+    const double err = ((ah * bh - p) + ah * bl + al * bh) + al * bl;  // a * b = p + err exactly
+    return (p + c) + err;
+#endif
+  } else {
+    return a * b + c;
+  }
 }
 
 template <class R, int N>

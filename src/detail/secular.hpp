@@ -41,8 +41,10 @@ struct SecularRoot {
 // quadratically, so in practice it stops after a handful.
 inline constexpr int secular_newton_steps = 32;
 
+// `guess` (ignored unless inside the bracket) warm-starts Newton; from the right of the
+// root the first step lands left of it, after which convergence is monotone again.
 template <class R, int N>
-SecularRoot<R> solve_secular(const Vec<R, N>& c_in, const Vec<R, N>& g) noexcept {
+SecularRoot<R> solve_secular(const Vec<R, N>& c_in, const Vec<R, N>& g, R guess = R(-1)) noexcept {
   using std::abs;
   using std::sqrt;
   const Vec<R, N> c = c_in.cwiseAbs();
@@ -75,7 +77,7 @@ SecularRoot<R> solve_secular(const Vec<R, N>& c_in, const Vec<R, N>& g) noexcept
     }
   };
 
-  R x = lo;
+  R x = guess > lo && guess < hi ? guess : lo;
   for (int it = 0; it < secular_newton_steps; ++it) {
     R s, ds;
     eval(x, s, ds);
@@ -108,6 +110,7 @@ struct BranchPoint {
   Vec<R, N> point;
   Vec<R, N> offset;
   R norm;
+  R root;  // the secular root x, to warm-start a nearby solve
 };
 
 // The branch's point from its root x: with den_i = g_i + x,
@@ -132,14 +135,15 @@ BranchPoint<R, N> branch_point(const Vec<R, N>& e, const Vec<R, N>& k, const Vec
     }
   }
   b.norm = b.point.norm();
+  b.root = root.x;
   return b;
 }
 
 // Closest boundary point to the origin when the origin is outside (q(0) > 0).
 template <class R, int N>
-BranchPoint<R, N> closest_from_outside(const Vec<R, N>& e, const Vec<R, N>& k) noexcept {
+BranchPoint<R, N> closest_from_outside(const Vec<R, N>& e, const Vec<R, N>& k, R guess = R(-1)) noexcept {
   const Vec<R, N> g = e.cwiseProduct(e);
-  const SecularRoot<R> root = solve_secular<R, N>(e.cwiseProduct(k), g);
+  const SecularRoot<R> root = solve_secular<R, N>(e.cwiseProduct(k), g, guess);
   return branch_point<R, N>(e, k, g, root, [&](int) { return root.x; }, [&](int i) { return -g[i]; });
 }
 
