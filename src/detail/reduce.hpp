@@ -7,8 +7,8 @@
 //   Z = U^T Y                            makes O axis-aligned with center k = U^T K2.
 // The seed factors M2 = L^-T L^-1 with a symmetric eigensolver; its eigenvalues can spread
 // over (aspect_S * aspect_O)^2 (1e16 for two 1e4 needles), where a symmetric solver loses
-// the small ones entirely. The one-sided structure of L lets Jacobi SVD return every
-// semi-axis to high relative accuracy instead (measured: a few ulps at 1e16 spread).
+// the small ones entirely. The one-sided structure of L lets one-sided Jacobi return every
+// semi-axis to high relative accuracy instead (tests/regression/seed_bugs_test.cpp).
 //
 // Which body becomes the ball does not depend on argument order (rounder body first, ties
 // broken by the raw data), so every query is exactly symmetric under swapping a and b.
@@ -16,10 +16,10 @@
 
 #include <ellipsect/shapes.hpp>
 
-#include <Eigen/SVD>
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <type_traits>
 
 namespace ellipsect::detail {
@@ -64,6 +64,38 @@ R mul_add(R a, R b, R c) noexcept {
   }
 }
 
+// Singular values and left singular vectors of L by one-sided (Hestenes) Jacobi: plane
+// rotations from the right orthogonalize L's columns, which converge to sigma_i u_i.
+// For L = B diag(b) the relative error of every sigma_i is about eps * cond(B) (Demmel and
+// Veselic 1992); here B = diag(1/a) R0^T R1, so cond(B) is the sphere body's aspect ratio,
+// the smaller of the two by the choice of the sphere body. Sweeps stop when every column
+// pair is orthogonal to working precision (quadratic convergence: 2-4 sweeps in practice);
+// the cap only bounds the loop, as the columns are then orthogonal to rounding anyway.
+template <class R, int N>
+void left_singular(Mat<R, N> w, Vec<R, N>& sigma, Mat<R, N>& u) noexcept {
+  constexpr R eps = std::numeric_limits<R>::epsilon();
+  for (int sweep = 0; sweep < 16; ++sweep) {
+    bool rotated = false;
+    for (int p = 0; p < N - 1; ++p)
+      for (int q = p + 1; q < N; ++q) {
+        const R alpha = w.col(p).squaredNorm(), beta = w.col(q).squaredNorm(), gamma = w.col(p).dot(w.col(q));
+        if (std::abs(gamma) <= eps * std::sqrt(alpha * beta)) continue;
+        rotated = true;
+        const R zeta = (beta - alpha) / (2 * gamma);
+        const R t = (zeta >= 0 ? R(1) : R(-1)) / (std::abs(zeta) + std::sqrt(R(1) + zeta * zeta));
+        const R c = R(1) / std::sqrt(R(1) + t * t), s = c * t;
+        const Vec<R, N> wp = w.col(p);
+        w.col(p) = c * wp - s * w.col(q);
+        w.col(q) = s * wp + c * w.col(q);
+      }
+    if (!rotated) break;
+  }
+  for (int i = 0; i < N; ++i) {
+    sigma[i] = w.col(i).norm();
+    u.col(i) = w.col(i) / sigma[i];
+  }
+}
+
 template <class R, int N>
 struct Reduced {
   Vec<R, N> e;          // semi-axes of O in the Z frame
@@ -79,10 +111,9 @@ Reduced<R, N> reduce(const Ellipsoid<T, N>& s, const Ellipsoid<T, N>& o) noexcep
   const Vec<R, N> a = s.radii().template cast<R>();
   const Mat<R, N> sT = a.cwiseInverse().asDiagonal() * R0.transpose();  // diag(1/a) R0^T
   const Mat<R, N> L = sT * o.axes().template cast<R>() * o.radii().template cast<R>().asDiagonal();
-  const Eigen::JacobiSVD<Mat<R, N>> svd(L, Eigen::ComputeFullU);
   Reduced<R, N> r;
-  const Mat<R, N>& U = svd.matrixU();
-  r.e = svd.singularValues();
+  Mat<R, N> U;
+  left_singular(L, r.e, U);
   r.to_z = U.transpose() * sT;
   r.k = r.to_z * (o.center().template cast<R>() - s.center().template cast<R>());
   r.to_world = R0 * a.asDiagonal() * U;
