@@ -42,6 +42,7 @@ Relation classify(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b, const Opti
   const auto& o = a_is_s ? b : a;
   const R tol = R(options.tolerance);
   if (detail::bounding_balls_apart<R>(s, o, tol)) return Relation::separated;
+  if (detail::pw_certificate<R>(s, o) == detail::Certificate::separated) return Relation::separated;
   switch (decide<R>(s, o, tol)) {
     case detail::ReducedRelation::s_contains_o: return a_is_s ? Relation::a_contains_b : Relation::b_contains_a;
     case detail::ReducedRelation::o_contains_s: return a_is_s ? Relation::b_contains_a : Relation::a_contains_b;
@@ -62,6 +63,11 @@ bool overlap(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b, const Options& 
   const R tol = R(options.tolerance);
   if (detail::bounding_balls_apart<R>(s, o, tol)) return false;
   if (detail::inscribed_balls_meet<R>(s, o)) return true;
+  switch (detail::pw_certificate<R>(s, o)) {
+    case detail::Certificate::separated: return false;
+    case detail::Certificate::overlapping: return true;
+    case detail::Certificate::unknown: break;
+  }
   const auto red = detail::reduce<R>(s, o);
   const R gap = detail::gap_reduced<R, N>(red.e, red.k);
   // Outside the rounding of the band's outer edge the sign is certain; on it, classify's

@@ -74,21 +74,27 @@ R mul_add(R a, R b, R c) noexcept {
 template <class R, int N>
 void left_singular(Mat<R, N> w, Vec<R, N>& sigma, Mat<R, N>& u) noexcept {
   constexpr R eps = std::numeric_limits<R>::epsilon();
+  Vec<R, N> norm2 = w.colwise().squaredNorm().transpose();  // updated by each rotation
   for (int sweep = 0; sweep < 16; ++sweep) {
-    bool rotated = false;
+    R largest = 0;  // largest relative off-diagonal |gamma| / sqrt(alpha beta) this sweep
     for (int p = 0; p < N - 1; ++p)
       for (int q = p + 1; q < N; ++q) {
-        const R alpha = w.col(p).squaredNorm(), beta = w.col(q).squaredNorm(), gamma = w.col(p).dot(w.col(q));
-        if (std::abs(gamma) <= eps * std::sqrt(alpha * beta)) continue;
-        rotated = true;
-        const R zeta = (beta - alpha) / (2 * gamma);
+        const R gamma = w.col(p).dot(w.col(q));
+        const R relative = std::abs(gamma) / std::sqrt(norm2[p] * norm2[q]);
+        if (!(relative > eps)) continue;
+        largest = std::max(largest, relative);
+        const R zeta = (norm2[q] - norm2[p]) / (2 * gamma);
         const R t = (zeta >= 0 ? R(1) : R(-1)) / (std::abs(zeta) + std::sqrt(R(1) + zeta * zeta));
         const R c = R(1) / std::sqrt(R(1) + t * t), s = c * t;
         const Vec<R, N> wp = w.col(p);
         w.col(p) = c * wp - s * w.col(q);
         w.col(q) = s * wp + c * w.col(q);
+        norm2[p] -= t * gamma;
+        norm2[q] += t * gamma;
       }
-    if (!rotated) break;
+    // Quadratic convergence: a sweep that started within sqrt(eps) of orthogonality ends
+    // at eps, so the confirming sweep is skipped.
+    if (!(largest > std::sqrt(eps))) break;
   }
   for (int i = 0; i < N; ++i) {
     sigma[i] = w.col(i).norm();
