@@ -4,6 +4,7 @@
 #include <Eigen/QR>
 
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 namespace ellipsect {
@@ -67,7 +68,9 @@ Ellipsoid<T, N> Ellipsoid<T, N>::from_axes(const Vec<T, N>& center, const Mat<T,
                                  show(axes_tolerance) + ")");
   Ellipsoid e;
   e.center_ = center;
-  e.axes_ = orthonormalized<T, N>(axes);
+  // Axes orthonormal to working precision are kept bit for bit (so rebuilding a body from
+  // its own fields reproduces it exactly); others are orthonormalized.
+  e.axes_ = dev <= T(4 * N) * std::numeric_limits<T>::epsilon() ? axes : orthonormalized<T, N>(axes);
   e.radii_ = radii;
   return e;
 }

@@ -42,8 +42,9 @@ public:
   using Scalar = T;
   static constexpr int dim = N;
 
-  // Largest accepted deviation max|axes^T axes - I| (the axes are then re-orthonormalized
-  // to working precision, moving the shape by at most this relative amount).
+  // Largest accepted deviation max|axes^T axes - I|. Axes farther than 4 N eps from
+  // orthonormal are re-orthonormalized (moving the shape by at most this relative amount);
+  // closer ones are kept as given.
   static constexpr T axes_tolerance = sizeof(T) >= sizeof(double) ? T(1e-9) : T(1e-5);
 
   // center: finite; axes: finite, orthonormal columns (within axes_tolerance);

@@ -59,7 +59,7 @@ ReducedRelation classify_reduced(const Vec<R, N>& e, const Vec<R, N>& k, R tol, 
 
 // Rounding of reduced-frame distances: the SVD and the frame change carry about `ulps`
 // ulps relative to |k|, O's largest semi-axis and the world positions in S units.
-inline constexpr int reduced_frame_ulps = 16;
+inline constexpr int reduced_frame_ulps = 32;
 
 template <class R, int N, class T>
 R reduced_rounding(const Ellipsoid<T, N>& s, const Ellipsoid<T, N>& o, const Vec<R, N>& e, const Vec<R, N>& k) noexcept {

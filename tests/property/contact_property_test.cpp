@@ -113,10 +113,10 @@ void run_constructed(int per_category) {
   tally.print("first_contact vs reference (constructed contacts), N=" + std::to_string(N));
 }
 
-TEST(ContactProperty, ScenarioMix2D) { run<2>(cases(100)); }
-TEST(ContactProperty, ScenarioMix3D) { run<3>(cases(100)); }
-TEST(ContactProperty, ConstructedContacts2D) { run_constructed<2>(cases(60)); }
-TEST(ContactProperty, ConstructedContacts3D) { run_constructed<3>(cases(60)); }
+TEST(ContactProperty, ScenarioMix2D) { run<2>(cases(500)); }
+TEST(ContactProperty, ScenarioMix3D) { run<3>(cases(500)); }
+TEST(ContactProperty, ConstructedContacts2D) { run_constructed<2>(cases(200)); }
+TEST(ContactProperty, ConstructedContacts3D) { run_constructed<3>(cases(200)); }
 
 // Just before the reported time the bodies are apart, just after they overlap.
 template <int N>
@@ -137,5 +137,48 @@ void check_flip(int n) {
 
 TEST(ContactProperty, OverlapFlipsAtContactTime2D) { check_flip<2>(cases(300)); }
 TEST(ContactProperty, OverlapFlipsAtContactTime3D) { check_flip<3>(cases(300)); }
+
+// Scaling space by a power of two (positions, radii, velocities) leaves the time and
+// status identical and scales the point exactly; a rigid motion of the whole scene
+// moves the point and normal with it, the time unchanged (to the stated accuracy).
+template <int N>
+void check_invariance(int n) {
+  int hits = 0;
+  for (int i = 0; i < n; ++i) {
+    const auto c = scenarios::make_contact_case<N>(scenarios::Category::random, 600000 + i, 0.05);
+    const auto got = first_contact(c.a, c.va, c.b, c.vb, c.t_max);
+    ASSERT_NE(got.status, ContactStatus::did_not_converge) << describe(c);
+    for (double s : {0x1p-30, 0x1p30}) {
+      auto scale = [s](const Ellipsoid<double, N>& e) {
+        return Ellipsoid<double, N>::from_axes(e.center() * s, e.axes(), e.radii() * s);
+      };
+      const auto sc = first_contact(scale(c.a), Vec<double, N>(c.va * s), scale(c.b), Vec<double, N>(c.vb * s), c.t_max);
+      ASSERT_EQ(sc.status, got.status) << describe(c);
+      if (got.status != ContactStatus::hit) continue;
+      ASSERT_EQ(sc.time, got.time) << describe(c);
+      ASSERT_EQ(sc.point, (Vec<double, N>(got.point * s))) << describe(c);
+      ASSERT_EQ(sc.normal, got.normal) << describe(c);
+    }
+    if (got.status != ContactStatus::hit) continue;
+    ++hits;
+    scenarios::detail::Rng rng(i);
+    const Mat<double, N> q = scenarios::detail::rotation<N>(rng);
+    const Vec<double, N> t = scenarios::detail::unit_vector<N>(rng) * 3.0;
+    auto move = [&](const Ellipsoid<double, N>& e) {
+      return Ellipsoid<double, N>::from_axes(q * e.center() + t, q * e.axes(), e.radii());
+    };
+    const auto mv = first_contact(move(c.a), Vec<double, N>(q * c.va), move(c.b), Vec<double, N>(q * c.vb), c.t_max);
+    ASSERT_EQ(mv.status, ContactStatus::hit) << describe(c);
+    const double scale = std::max(c.a.radii().maxCoeff(), c.b.radii().maxCoeff());
+    const double speed = (c.vb - c.va).norm();
+    EXPECT_LE(std::abs(mv.time - got.time), 1e-12 * std::max(got.time, scale / speed)) << describe(c);
+    EXPECT_LE((mv.point - (q * got.point + t)).norm(), 1e-10 * (scale + got.point.norm())) << describe(c);
+    EXPECT_LE((mv.normal - q * got.normal).norm(), 1e-9) << describe(c);
+  }
+  EXPECT_GT(hits, n / 2);
+}
+
+TEST(ContactProperty, ScaleAndRigidMotionInvariance2D) { check_invariance<2>(cases(300)); }
+TEST(ContactProperty, ScaleAndRigidMotionInvariance3D) { check_invariance<3>(cases(300)); }
 
 }  // namespace

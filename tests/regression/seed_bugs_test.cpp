@@ -103,4 +103,28 @@ TEST(SeedBugs, SymmetricEigensolverLosesThinDirections) {
   EXPECT_GT(std::abs(seed_axis - largest_axis) / largest_axis, 1e-6);
 }
 
+// Nearly equal eigenvalues: two almost-spheres (radii differing by 1e-12) have M2 with a
+// cluster of eigenvalues, where eigenvectors are ill-determined but the ellipsoid is not:
+// the reduced body U diag(e)^2 U^T must reproduce L L^T to a few ulps.
+TEST(SeedBugs, NearlyEqualEigenvaluesKeepTheShape) {
+  using Real = boost::multiprecision::number<boost::multiprecision::cpp_bin_float<50>, boost::multiprecision::et_off>;
+  const Mat3<double> r0 = Eigen::AngleAxisd(0.9, Vec3<double>(1, -2, 1).normalized()).toRotationMatrix();
+  const Mat3<double> r1 = Eigen::AngleAxisd(2.1, Vec3<double>(0, 1, 3).normalized()).toRotationMatrix();
+  const auto s = make_ellipsoid<double>({0, 0, 0}, r0, {1, 1 + 1e-12, 1 - 1e-12});
+  const auto o = make_ellipsoid<double>({3, 0, 1}, r1, {2, 2 + 2e-12, 2});
+  const auto red = detail::reduce<double>(s, o);
+  const Mat3<Real> l = s.radii().cast<Real>().cwiseInverse().asDiagonal() * s.axes().cast<Real>().transpose() *
+                       o.axes().cast<Real>() * o.radii().cast<Real>().asDiagonal();
+  const Mat3<Real> exact = l * l.transpose();
+  const Mat3<double> u = (red.to_z * s.axes() * s.radii().asDiagonal()).transpose();  // to_z = U^T diag(1/a) R0^T
+  const Mat3<Real> got = u.cast<Real>() * red.e.cast<Real>().cwiseAbs2().asDiagonal() * u.cast<Real>().transpose();
+  EXPECT_LT(static_cast<double>((got - exact).cwiseAbs().maxCoeff()), 1e-14 * 4);
+  // The singular values themselves, within the 32 ulps the rounding model assumes.
+  const Eigen::JacobiSVD<Mat3<Real>> svd(l);
+  Vec3<double> e = red.e;
+  std::sort(e.data(), e.data() + 3, std::greater<>());
+  for (int i = 0; i < 3; ++i)
+    EXPECT_LT(static_cast<double>(abs(Real(e[i]) - svd.singularValues()[i]) / svd.singularValues()[i]), 32 * 2.3e-16);
+}
+
 }  // namespace
