@@ -1,6 +1,7 @@
 #include <ellipsect/classify.hpp>
 
 #include "detail/classify_impl.hpp"
+#include "detail/instantiate.hpp"
 
 namespace ellipsect {
 
@@ -37,9 +38,7 @@ detail::ReducedRelation decide(const Ellipsoid<T, N>& s, const Ellipsoid<T, N>& 
 template <class T, int N>
 Relation classify(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b, const Options& options) noexcept {
   using R = detail::Work<T>;
-  const bool a_is_s = detail::is_sphere_body(a, b);
-  const auto& s = a_is_s ? a : b;
-  const auto& o = a_is_s ? b : a;
+  const auto [s, o, a_is_s] = detail::order_pair(a, b);
   const R tol = R(options.tolerance);
   if (detail::bounding_balls_apart<R>(s, o, tol)) return Relation::separated;
   if (detail::pw_certificate<R>(s, o) == detail::Certificate::separated) return Relation::separated;
@@ -57,9 +56,7 @@ Relation classify(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b, const Opti
 template <class T, int N>
 bool overlap(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b, const Options& options) noexcept {
   using R = detail::Work<T>;
-  const bool a_is_s = detail::is_sphere_body(a, b);
-  const auto& s = a_is_s ? a : b;
-  const auto& o = a_is_s ? b : a;
+  const auto [s, o, a_is_s] = detail::order_pair(a, b);
   const R tol = R(options.tolerance);
   if (detail::bounding_balls_apart<R>(s, o, tol)) return false;
   if (detail::inscribed_balls_meet<R>(s, o)) return true;
@@ -76,13 +73,10 @@ bool overlap(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b, const Options& 
   return decide<R>(s, o, tol) != detail::ReducedRelation::separated;
 }
 
-#define ELLIPSECT_INSTANTIATE(T, N)                                                                      \
+#define ELLIPSECT_INSTANTIATE(T, N)                                                                          \
   template Relation classify<T, N>(const Ellipsoid<T, N>&, const Ellipsoid<T, N>&, const Options&) noexcept; \
   template bool overlap<T, N>(const Ellipsoid<T, N>&, const Ellipsoid<T, N>&, const Options&) noexcept;
-ELLIPSECT_INSTANTIATE(float, 2)
-ELLIPSECT_INSTANTIATE(float, 3)
-ELLIPSECT_INSTANTIATE(double, 2)
-ELLIPSECT_INSTANTIATE(double, 3)
+ELLIPSECT_FOR_EACH_TYPE_AND_DIM(ELLIPSECT_INSTANTIATE)
 #undef ELLIPSECT_INSTANTIATE
 
 }  // namespace ellipsect

@@ -15,6 +15,7 @@
 #include <ellipsect/contact.hpp>
 
 #include "detail/classify_impl.hpp"
+#include "detail/instantiate.hpp"
 
 #include <cmath>
 #include <limits>
@@ -179,9 +180,7 @@ Contact<T, N> first_contact(const Ellipsoid<T, N>& a, const Vec<T, N>& velocity_
   out.normal.setConstant(out.time);
   if (!velocity_a.allFinite() || !velocity_b.allFinite() || std::isnan(t_max) || t_max < T(0)) return out;
 
-  const bool a_is_s = detail::is_sphere_body(a, b);
-  const auto& s = a_is_s ? a : b;
-  const auto& o = a_is_s ? b : a;
+  const auto [s, o, a_is_s] = detail::order_pair(a, b);
   const Vec<T, N>& vs = a_is_s ? velocity_a : velocity_b;
   const Vec<T, N>& vo = a_is_s ? velocity_b : velocity_a;
   const R tol = R(options.tolerance);
@@ -205,10 +204,7 @@ Contact<T, N> first_contact(const Ellipsoid<T, N>& a, const Vec<T, N>& velocity_
 #define ELLIPSECT_INSTANTIATE(T, N)                                                                            \
   template Contact<T, N> first_contact<T, N>(const Ellipsoid<T, N>&, const Vec<T, N>&, const Ellipsoid<T, N>&, \
                                              const Vec<T, N>&, T, const Options&) noexcept;
-ELLIPSECT_INSTANTIATE(float, 2)
-ELLIPSECT_INSTANTIATE(float, 3)
-ELLIPSECT_INSTANTIATE(double, 2)
-ELLIPSECT_INSTANTIATE(double, 3)
+ELLIPSECT_FOR_EACH_TYPE_AND_DIM(ELLIPSECT_INSTANTIATE)
 #undef ELLIPSECT_INSTANTIATE
 
 }  // namespace ellipsect

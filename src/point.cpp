@@ -1,6 +1,7 @@
 #include <ellipsect/point.hpp>
 
 #include "detail/reduce.hpp"
+#include "detail/instantiate.hpp"
 #include "detail/secular.hpp"
 
 namespace ellipsect {
@@ -19,10 +20,7 @@ ClosestPoint<T, N> closest_point(const Ellipsoid<T, N>& body, const Vec<T, N>& x
 
 #define ELLIPSECT_INSTANTIATE(T, N) \
   template ClosestPoint<T, N> closest_point<T, N>(const Ellipsoid<T, N>&, const Vec<T, N>&) noexcept;
-ELLIPSECT_INSTANTIATE(float, 2)
-ELLIPSECT_INSTANTIATE(float, 3)
-ELLIPSECT_INSTANTIATE(double, 2)
-ELLIPSECT_INSTANTIATE(double, 3)
+ELLIPSECT_FOR_EACH_TYPE_AND_DIM(ELLIPSECT_INSTANTIATE)
 #undef ELLIPSECT_INSTANTIATE
 
 }  // namespace ellipsect

@@ -1,5 +1,7 @@
 #include <ellipsect/shapes.hpp>
 
+#include "detail/instantiate.hpp"
+
 #include <Eigen/Eigenvalues>
 #include <Eigen/QR>
 
@@ -142,13 +144,10 @@ Ellipsoid<T, N> make_ball(const Vec<T, N>& center, T radius) {
   return Ellipsoid<T, N>::from_axes(center, Mat<T, N>::Identity(), Vec<T, N>::Constant(radius));
 }
 
-#define ELLIPSECT_INSTANTIATE(T, N)    \
-  template class Ellipsoid<T, N>;      \
+#define ELLIPSECT_INSTANTIATE(T, N) \
+  template class Ellipsoid<T, N>;   \
   template Ellipsoid<T, N> make_ball<T, N>(const Vec<T, N>&, T);
-ELLIPSECT_INSTANTIATE(float, 2)
-ELLIPSECT_INSTANTIATE(float, 3)
-ELLIPSECT_INSTANTIATE(double, 2)
-ELLIPSECT_INSTANTIATE(double, 3)
+ELLIPSECT_FOR_EACH_TYPE_AND_DIM(ELLIPSECT_INSTANTIATE)
 #undef ELLIPSECT_INSTANTIATE
 template Ellipse2<float> make_ellipse<float>(const Vec2<float>&, float, const Vec2<float>&);
 template Ellipse2<double> make_ellipse<double>(const Vec2<double>&, double, const Vec2<double>&);

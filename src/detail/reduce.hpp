@@ -102,6 +102,20 @@ void left_singular(Mat<R, N> w, Vec<R, N>& sigma, Mat<R, N>& u) noexcept {
   }
 }
 
+// A pair in query order: the sphere body s, the other body o, and whether s is argument a.
+template <class T, int N>
+struct OrderedPair {
+  const Ellipsoid<T, N>& s;
+  const Ellipsoid<T, N>& o;
+  bool a_is_s;
+};
+
+template <class T, int N>
+OrderedPair<T, N> order_pair(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b) noexcept {
+  const bool a_is_s = is_sphere_body(a, b);
+  return {a_is_s ? a : b, a_is_s ? b : a, a_is_s};
+}
+
 template <class R, int N>
 struct Reduced {
   Vec<R, N> e;          // semi-axes of O in the Z frame
