@@ -5,5 +5,7 @@
 #include <ellipsect/contact.hpp>
 #include <ellipsect/options.hpp>
 #include <ellipsect/point.hpp>
+#include <ellipsect/polygonal2.hpp>
+#include <ellipsect/quartic2.hpp>
 #include <ellipsect/shapes.hpp>
 #include <ellipsect/version.hpp>

@@ -1,0 +1,119 @@
+// ns per query of Niemitalo's 2D methods next to the exact overlap, on the same pairs: the
+// seeded scenario mix (scenarios/scenarios.hpp, 256 pairs per category, 2560 in all), with
+// b replaced by the circle at its center with the geometric mean of its radii for the
+// ellipse-circle queries. /n is max_iterations. Timing and the per-query median: see
+// bench/bench_support.hpp.
+#include <ellipsect/classify.hpp>
+#include <ellipsect/polygonal2.hpp>
+#include <ellipsect/quartic2.hpp>
+
+#include "bench/bench_support.hpp"
+#include "scenarios/scenarios.hpp"
+
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+#include <vector>
+
+namespace {
+
+using namespace ellipsect;
+constexpr int cases_per_category = 256;
+
+template <class T>
+struct Pair {
+  Ellipse2<T> a, b;   // the scenario pair
+  Ellipse2<T> ball;   // the circle standing in for b
+  Vec2<T> center;
+  T radius;
+};
+
+template <class T>
+Ellipse2<T> as(const Ellipse2<double>& e) {
+  return Ellipse2<T>::from_axes(e.center().cast<T>(), e.axes().cast<T>(), e.radii().cast<T>());
+}
+
+template <class T>
+const std::vector<Pair<T>>& pairs() {
+  static const auto all = [] {
+    std::vector<Pair<T>> v;
+    for (const auto c : scenarios::all_categories)
+      for (int i = 0; i < cases_per_category; ++i) {
+        const auto s = scenarios::make_case<2>(c, 900000 + i);
+        const T r = T(std::sqrt(s.b.radii().prod()));
+        const Vec2<T> center = s.b.center().cast<T>();
+        v.push_back({as<T>(s.a), as<T>(s.b), make_ball<T, 2>(center, r), center, r});
+      }
+    return v;
+  }();
+  return all;
+}
+
+template <class T, class Query>
+void cycle(benchmark::State& state, Query query) {
+  ellipsect::bench::time_cases(state, pairs<T>(), query);
+}
+
+template <class T>
+void BM_polygonal_circle(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  cycle<T>(state, [n](const Pair<T>& p) { return polygonal_overlap(p.a, p.center, p.radius, n).verdict; });
+}
+
+template <class T>
+void BM_circle_cover(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  cycle<T>(state, [n](const Pair<T>& p) { return circle_cover_overlap(p.a, p.center, p.radius, n).verdict; });
+}
+
+template <class T>
+void BM_polygonal_ellipses(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  cycle<T>(state, [n](const Pair<T>& p) { return polygonal_overlap(p.a, p.b, n).verdict; });
+}
+
+// The closed forms answer the same ellipse-circle question: collision when the center is
+// inside or the closest point is within the radius.
+template <class T>
+void BM_closed_form_circle(benchmark::State& state) {
+  cycle<T>(state, [](const Pair<T>& p) {
+    const auto q = closest_point_closed_form(p.a, p.center);
+    return q.status == QuarticStatus::inside || q.distance <= p.radius;
+  });
+}
+
+template <class T>
+void BM_quartic_circle(benchmark::State& state) {
+  cycle<T>(state, [](const Pair<T>& p) {
+    const auto q = closest_point_quartic(p.a, p.center);
+    return q.status == QuarticStatus::inside || q.distance <= p.radius;
+  });
+}
+
+template <class T>
+void BM_overlap_circle(benchmark::State& state) {
+  cycle<T>(state, [](const Pair<T>& p) { return overlap(p.a, p.ball); });
+}
+
+template <class T>
+void BM_overlap_ellipses(benchmark::State& state) {
+  cycle<T>(state, [](const Pair<T>& p) { return overlap(p.a, p.b); });
+}
+
+BENCHMARK(BM_polygonal_circle<double>)->DenseRange(1, 10);
+BENCHMARK(BM_polygonal_circle<float>)->DenseRange(1, 10);
+BENCHMARK(BM_circle_cover<double>)->DenseRange(1, 10);
+BENCHMARK(BM_closed_form_circle<double>);
+BENCHMARK(BM_closed_form_circle<float>);
+BENCHMARK(BM_quartic_circle<double>);
+BENCHMARK(BM_quartic_circle<float>);
+BENCHMARK(BM_overlap_circle<double>);
+BENCHMARK(BM_overlap_circle<float>);
+BENCHMARK(BM_polygonal_ellipses<double>)->DenseRange(1, 10);
+BENCHMARK(BM_polygonal_ellipses<float>)->DenseRange(1, 10);
+BENCHMARK(BM_overlap_ellipses<double>);
+BENCHMARK(BM_overlap_ellipses<float>);
+
+}  // namespace
+
+BENCHMARK_MAIN();

@@ -1,0 +1,341 @@
+// Niemitalo's polygon bisection (docs/niemitalo.md). Differences from the document's code:
+//
+// * Out of iterations is `undecided`, never `false`.
+// * The choice between the two sub-triangles tests each one exactly (center inside, or an
+//   outer edge within reach). The document's shortcuts (a center on the inner side of a
+//   new chord counts as a collision; a sub-triangle is chosen by projections onto the
+//   tangent at the new vertex) hold in the circle's frame but not after the stretch of
+//   the non-parallel ellipse-ellipse test, where they report collisions between separated
+//   ellipses (tests/unit/polygonal2_test.cpp has one).
+// * Level 0 of the non-parallel test checks all four edges: the document checks the two
+//   on the circle's side of the first semi-diameter, but the nearest edge can be one of
+//   the other two when the stretched semi-diameters are far from perpendicular.
+// * Everything runs in T (the document mixes float into the double non-parallel test,
+//   which overflows for scenes of size 1e6), on inputs scaled by a power of two.
+// * The non-parallel stretch omits the document's final rotation back (an isometry, so
+//   the circle stays a circle): A = diag(h_b, w_b) Q_b^T instead of Q_b diag(h_b, w_b) Q_b^T.
+#include <ellipsect/polygonal2.hpp>
+
+#include "detail/niemitalo_polygon.hpp"
+
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <type_traits>
+
+namespace ellipsect {
+
+std::string_view to_string(Verdict v) noexcept {
+  switch (v) {
+    case Verdict::collision: return "collision";
+    case Verdict::no_collision: return "no_collision";
+    case Verdict::undecided: return "undecided";
+    case Verdict::invalid_input: return "invalid_input";
+  }
+  return "unknown";
+}
+
+std::string_view to_string(Side s) noexcept {
+  switch (s) {
+    case Side::left: return "left";
+    case Side::on_line: return "on_line";
+    case Side::right: return "right";
+  }
+  return "unknown";
+}
+
+namespace {
+
+// Points of the test's frame (plain scalars: this is the inner loop).
+template <class T>
+struct Pt {
+  T x, y;
+  friend Pt operator+(Pt a, Pt b) noexcept { return {a.x + b.x, a.y + b.y}; }
+  friend Pt operator-(Pt a, Pt b) noexcept { return {a.x - b.x, a.y - b.y}; }
+  friend Pt operator-(Pt a) noexcept { return {-a.x, -a.y}; }
+  friend Pt operator*(T k, Pt a) noexcept { return {k * a.x, k * a.y}; }
+};
+
+template <class T>
+T dot(Pt<T> u, Pt<T> v) noexcept {
+  return u.x * v.x + u.y * v.y;
+}
+
+template <class T>
+T cross(Pt<T> u, Pt<T> v) noexcept {
+  return u.x * v.y - u.y * v.x;
+}
+
+// The query disk in the frame of the test: center p, squared radius rr.
+template <class T>
+struct Disk {
+  Pt<T> p;
+  T rr;
+};
+
+// The document's segment test. Moving a to the origin and multiplying by conj(b - a)
+// puts the segment on [0, |b - a|^2] of the x axis and the center at (proj, cross); the
+// radius becomes r |b - a|. `side` > 0: the center is left of a -> b.
+template <class T>
+bool meets_segment(const Disk<T>& d, Pt<T> a, Pt<T> b, T& side) noexcept {
+  const Pt<T> e = b - a, q = d.p - a;
+  const T len2 = dot(e, e);
+  side = cross(e, q);
+  if (side * side > d.rr * len2) return false;  // farther from the line than r
+  const Pt<T> qb = d.p - b;
+  if (dot(q, q) <= d.rr || dot(qb, qb) <= d.rr) return true;
+  const T proj = dot(e, q);
+  return len2 > T(0) && proj >= T(0) && proj <= len2;
+}
+
+template <class T>
+bool meets_segment(const Disk<T>& d, Pt<T> a, Pt<T> b) noexcept {
+  T side;
+  return meets_segment(d, a, b, side);
+}
+
+// p in the closed counter-clockwise triangle (a, b, c).
+template <class T>
+bool inside(Pt<T> p, Pt<T> a, Pt<T> b, Pt<T> c) noexcept {
+  return cross(b - a, p - a) >= T(0) && cross(c - b, p - b) >= T(0) && cross(a - c, p - c) >= T(0);
+}
+
+// The disk meets the counter-clockwise triangle (a, corner, c) whose edge (c, a), a chord
+// of the inscribed polygon, it is known to miss.
+template <class T>
+bool meets_outer(const Disk<T>& d, Pt<T> a, Pt<T> corner, Pt<T> c) noexcept {
+  return inside(d.p, a, corner, c) || meets_segment(d, a, corner) || meets_segment(d, corner, c);
+}
+
+// Bisection of the enclosing triangle of the arc (c0, c2), which the disk meets while
+// missing its chord. The disk meets at most one of the two sub-triangles: the inscribed
+// polygon plus the two is convex, so a disk meeting both would cross a chord or contain c1.
+template <class T>
+PolygonalOverlap bisect(const Disk<T>& d, Pt<T> c0, Pt<T> c2, int max_iterations) noexcept {
+  const auto& k = detail::niemitalo_coefficients<T>();
+  for (int t = 1; t <= max_iterations; ++t) {
+    const Pt<T> c1 = k.inner[t] * (c0 + c2);
+    if (meets_segment(d, c0, c1) || meets_segment(d, c1, c2) || inside(d.p, c0, c1, c2))
+      return {Verdict::collision, t};
+    const Pt<T> c3 = k.outer[t] * (c0 + c1);  // tangents at c0 and c1 meet here
+    const Pt<T> c4 = (c1 - c3) + c1;          // tangents at c1 and c2 (c1 is the midpoint)
+    if (meets_outer(d, c0, c3, c1))
+      c2 = c1;
+    else if (meets_outer(d, c1, c4, c2))
+      c0 = c1;
+    else
+      return {Verdict::no_collision, t};
+  }
+  return {Verdict::undecided, max_iterations};
+}
+
+// Axis-aligned ellipse (w, h) with the center folded into the first quadrant (the ellipse
+// is symmetric about both axes, so its point nearest to the center stays there): level 0
+// is the edge (w, 0) -> (0, h) of the inscribed rhombus and the box [0, w] x [0, h].
+template <class T>
+bool level_zero_collides(const Disk<T>& d, T w, T h) noexcept {
+  T side;
+  return meets_segment(d, {w, 0}, {0, h}, side) || side >= T(0);  // an edge, or the center inside
+}
+
+template <class T>
+PolygonalOverlap quadrant_test(const Disk<T>& d, T w, T h, int max_iterations) noexcept {
+  if (level_zero_collides(d, w, h)) return {Verdict::collision, 0};
+  // Missing the rhombus, the disk meets the enclosing triangle iff it meets the box.
+  const T dx = std::max(d.p.x - w, T(0)), dy = std::max(d.p.y - h, T(0));
+  if (dx * dx + dy * dy > d.rr) return {Verdict::no_collision, 0};
+  return bisect(d, {w, 0}, {0, h}, max_iterations);
+}
+
+// General position: conjugate semi-diameters u, v (counter-clockwise); level 0 is the
+// quadrilateral u, v, -u, -v and four triangles with corners +-u +-v. First the disk
+// against the enclosing parallelogram's two slabs (the counterpart of the axis-aligned
+// box): the slab along v has its edges det(u, v) / |v| from the center, so the disk misses
+// it when |cross(p, v)| - det > r |v|. Then the disk meets the quadrilateral when it meets
+// an edge or its center is on the inner side of all four.
+template <class T>
+bool misses_slab(const Disk<T>& d, T cross_p, T det, Pt<T> along) noexcept {
+  const T excess = std::abs(cross_p) - det;
+  return excess > T(0) && excess * excess > d.rr * dot(along, along);
+}
+
+template <class T>
+PolygonalOverlap general_test(const Disk<T>& d, Pt<T> u, Pt<T> v, int max_iterations) noexcept {
+  const T det = cross(u, v);
+  if (misses_slab(d, cross(d.p, v), det, v) || misses_slab(d, cross(u, d.p), det, u)) return {Verdict::no_collision, 0};
+  const std::array<std::array<Pt<T>, 2>, 4> arcs{{{u, v}, {v, -u}, {-u, -v}, {-v, u}}};
+  bool in = true;
+  for (const auto& [c0, c2] : arcs) {
+    T side;
+    if (meets_segment(d, c0, c2, side)) return {Verdict::collision, 0};
+    in = in && side >= T(0);
+  }
+  if (in) return {Verdict::collision, 0};
+  for (const auto& [c0, c2] : arcs)  // at most one is met: the argument of bisect
+    if (meets_outer(d, c0, c0 + c2, c2)) return bisect(d, c0, c2, max_iterations);
+  return {Verdict::no_collision, 0};
+}
+
+// The disk around the arc (c0, c2) of level t: center the chord's midpoint m, radius^2 the
+// larger distance^2 from m to the enclosing triangle's vertices. It meets the query disk
+// when |p - m| <= r + rho, i.e. (with g = |p - m|^2 - r^2 - rho^2) g <= 0 or g^2 <= 4 r^2 rho^2.
+template <class T>
+bool meets_cover(const Disk<T>& d, Pt<T> c0, Pt<T> c2, int t) noexcept {
+  const Pt<T> sum = c0 + c2, chord = c2 - c0;
+  const Pt<T> m = T(0.5) * sum;
+  const Pt<T> to_corner = detail::niemitalo_coefficients<T>().outer[t] * sum - m;
+  const Pt<T> pm = d.p - m;
+  const T rho2 = std::max(T(0.25) * dot(chord, chord), dot(to_corner, to_corner));
+  const T g = dot(pm, pm) - d.rr - rho2;
+  return g <= T(0) || g * g <= T(4) * d.rr * rho2;
+}
+
+template <class T>
+PolygonalOverlap cover_test(const Disk<T>& d, T w, T h, int max_iterations) noexcept {
+  if (level_zero_collides(d, w, h)) return {Verdict::collision, 0};
+  struct Node {
+    Pt<T> c0, c2;
+    int level;  // the arc joins neighbours of level - 1
+  };
+  // Depth first: each pop pushes at most two children, one of which is popped next, so
+  // the stack holds at most one waiting sibling per level.
+  std::array<Node, detail::niemitalo_levels + 2> stack;
+  int size = 0;
+  if (meets_cover(d, {w, 0}, {0, h}, 0)) stack[size++] = {{w, 0}, {0, h}, 1};
+  const auto& k = detail::niemitalo_coefficients<T>();
+  int deepest = 0;
+  bool undecided = false;
+  while (size > 0) {
+    const Node n = stack[--size];
+    if (n.level > max_iterations) {
+      undecided = true;
+      continue;
+    }
+    deepest = std::max(deepest, n.level);
+    const Pt<T> c1 = k.inner[n.level] * (n.c0 + n.c2);
+    if (meets_segment(d, n.c0, c1) || meets_segment(d, c1, n.c2) || inside(d.p, n.c0, c1, n.c2))
+      return {Verdict::collision, n.level};
+    if (meets_cover(d, c1, n.c2, n.level)) stack[size++] = {c1, n.c2, n.level + 1};
+    if (meets_cover(d, n.c0, c1, n.level)) stack[size++] = {n.c0, c1, n.level + 1};
+  }
+  return undecided ? PolygonalOverlap{Verdict::undecided, max_iterations} : PolygonalOverlap{Verdict::no_collision, deepest};
+}
+
+template <class T>
+bool valid_circle(const Vec2<T>& center, T radius, int max_iterations) noexcept {
+  return center.allFinite() && std::isfinite(radius) && radius >= T(0) && max_iterations >= 0 &&
+         max_iterations <= niemitalo_max_iterations;
+}
+
+// 2^-e for the binary exponent e of `size` (finite, > 0): multiplying by it is exact and
+// brings `size` into [1, 2), so squared quantities of the test stay in range. Read off the
+// exponent field (libm's frexp and ldexp would cost more than a level of the test).
+template <class T>
+T unit_scale(T size) noexcept {
+  using U = std::conditional_t<sizeof(T) == sizeof(std::uint64_t), std::uint64_t, std::uint32_t>;
+  static_assert(std::numeric_limits<T>::is_iec559 && sizeof(T) == sizeof(U));
+  constexpr int mantissa = std::numeric_limits<T>::digits - 1;
+  constexpr U bias = std::numeric_limits<T>::max_exponent - 1;
+  const U field = (std::bit_cast<U>(size) >> mantissa) & (2 * bias + 1);
+  if (field == 0 || field >= 2 * bias) {  // size subnormal, or 2^-e would be: the nearest finite power
+    int e;
+    (void)std::frexp(size, &e);
+    return std::ldexp(T(1), std::min(1 - e, std::numeric_limits<T>::max_exponent - 1));
+  }
+  return std::bit_cast<T>(static_cast<U>((2 * bias - field) << mantissa));
+}
+
+// The disk's center in the ellipse's axes, folded into the first quadrant; all scaled by s.
+template <class T>
+Disk<T> folded_disk(const Ellipse2<T>& e, const Vec2<T>& center, T radius, T s) noexcept {
+  const Mat2<T>& q = e.axes();
+  const T dx = s * (center.x() - e.center().x()), dy = s * (center.y() - e.center().y());
+  const T r = s * radius;
+  return {{std::abs(q(0, 0) * dx + q(1, 0) * dy), std::abs(q(0, 1) * dx + q(1, 1) * dy)}, r * r};
+}
+
+template <class T>
+bool same_direction(const Vec2<T>& u, const Vec2<T>& v) noexcept {
+  return u == v || u == Vec2<T>(-v);
+}
+
+}  // namespace
+
+template <class T>
+SegmentCircle segment_circle(const Vec2<T>& a, const Vec2<T>& b, const Vec2<T>& center, T radius) noexcept {
+  if (!a.allFinite() || !b.allFinite() || !center.allFinite() || !std::isfinite(radius) || radius < T(0))
+    return {Verdict::invalid_input, Side::on_line};
+  T side;
+  const bool hit = meets_segment(Disk<T>{{center.x(), center.y()}, radius * radius}, {a.x(), a.y()}, {b.x(), b.y()}, side);
+  return {hit ? Verdict::collision : Verdict::no_collision,
+          side > T(0) ? Side::left : side < T(0) ? Side::right : Side::on_line};
+}
+
+template <class T>
+PolygonalOverlap polygonal_overlap(const Ellipse2<T>& ellipse, const Vec2<T>& center, T radius,
+                                   int max_iterations) noexcept {
+  if (!valid_circle(center, radius, max_iterations)) return {Verdict::invalid_input, 0};
+  const T s = unit_scale(ellipse.radii().maxCoeff());
+  return quadrant_test(folded_disk(ellipse, center, radius, s), s * ellipse.radii()[0], s * ellipse.radii()[1],
+                       max_iterations);
+}
+
+template <class T>
+PolygonalOverlap polygonal_overlap(const Ellipse2<T>& a, const Ellipse2<T>& b, int max_iterations) noexcept {
+  if (max_iterations < 0 || max_iterations > niemitalo_max_iterations) return {Verdict::invalid_input, 0};
+  const T s = unit_scale(b.radii().maxCoeff());
+  const Mat2<T>& qa = a.axes();
+  const Mat2<T>& qb = b.axes();
+  const Vec2<T> ra = s * a.radii(), rb = s * b.radii();
+  const Vec2<T> offset = s * (b.center() - a.center());
+  const bool same = same_direction<T>(qa.col(0), qb.col(0)) && same_direction<T>(qa.col(1), qb.col(1));
+  const bool swapped = same_direction<T>(qa.col(0), qb.col(1)) && same_direction<T>(qa.col(1), qb.col(0));
+  if (same || swapped) {
+    // Parallel axes (the document's route): in a's axes, multiply x by b's extent along y
+    // and y by b's extent along x; b becomes the circle of radius w_b h_b.
+    const T wb = same ? rb[0] : rb[1], hb = same ? rb[1] : rb[0];
+    const Vec2<T> local = (qa.transpose() * offset).cwiseAbs();
+    const T r = wb * hb;
+    return quadrant_test(Disk<T>{{local.x() * hb, local.y() * wb}, r * r}, ra[0] * hb, ra[1] * wb, max_iterations);
+  }
+  // Rotation-stretch: A = diag(h_b, w_b) Q_b^T makes b the circle of radius w_b h_b; a's
+  // semi-axes become two conjugate semi-diameters u, v (ordered counter-clockwise).
+  const Vec2<T> stretch(rb[1], rb[0]);
+  const Mat2<T> to_b = qb.transpose();
+  const Vec2<T> p = stretch.cwiseProduct(to_b * offset);
+  const Vec2<T> u = stretch.cwiseProduct(to_b * (ra[0] * qa.col(0)));
+  const Vec2<T> v = stretch.cwiseProduct(to_b * (ra[1] * qa.col(1)));
+  const Pt<T> pu{u.x(), u.y()}, pv{v.x(), v.y()};
+  const T r = rb[0] * rb[1];
+  const Disk<T> d{{p.x(), p.y()}, r * r};
+  return cross(pu, pv) >= T(0) ? general_test(d, pu, pv, max_iterations) : general_test(d, pv, pu, max_iterations);
+}
+
+template <class T>
+PolygonalOverlap circle_cover_overlap(const Ellipse2<T>& ellipse, const Vec2<T>& center, T radius,
+                                      int max_iterations) noexcept {
+  if (!valid_circle(center, radius, max_iterations)) return {Verdict::invalid_input, 0};
+  const T s = unit_scale(ellipse.radii().maxCoeff());
+  return cover_test(folded_disk(ellipse, center, radius, s), s * ellipse.radii()[0], s * ellipse.radii()[1],
+                    max_iterations);
+}
+
+template <class T>
+T niemitalo_error_bound(T major_radius, int iterations) noexcept {
+  return T(std::exp2(0.303 - 2.0 * iterations)) * major_radius;
+}
+
+#define ELLIPSECT_INSTANTIATE(T)                                                                                   \
+  template SegmentCircle segment_circle<T>(const Vec2<T>&, const Vec2<T>&, const Vec2<T>&, T) noexcept;           \
+  template PolygonalOverlap polygonal_overlap<T>(const Ellipse2<T>&, const Vec2<T>&, T, int) noexcept;            \
+  template PolygonalOverlap polygonal_overlap<T>(const Ellipse2<T>&, const Ellipse2<T>&, int) noexcept;           \
+  template PolygonalOverlap circle_cover_overlap<T>(const Ellipse2<T>&, const Vec2<T>&, T, int) noexcept;         \
+  template T niemitalo_error_bound<T>(T, int) noexcept;
+ELLIPSECT_INSTANTIATE(float)
+ELLIPSECT_INSTANTIATE(double)
+#undef ELLIPSECT_INSTANTIATE
+
+}  // namespace ellipsect

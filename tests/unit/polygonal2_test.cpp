@@ -1,0 +1,276 @@
+// Niemitalo's polygonal tests on configurations whose answer follows from elementary
+// geometry: segment-circle, the document's two worked examples, every status, and the
+// document's error bound itself.
+#include <ellipsect/classify.hpp>
+#include <ellipsect/point.hpp>
+#include <ellipsect/polygonal2.hpp>
+
+#include "detail/niemitalo_polygon.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+namespace {
+
+using namespace ellipsect;
+constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+
+// Center of a circle of radius r on the outward normal at the boundary point with
+// parameter theta, r + g from it: the nearest point of the convex ellipse to the center
+// is that boundary point, so the signed gap between the bodies is g.
+Vec2<double> center_at_gap(const Ellipse2<double>& e, double theta, double r, double g) {
+  const Vec2<double> on(e.radii()[0] * std::cos(theta), e.radii()[1] * std::sin(theta));
+  const Vec2<double> normal = on.cwiseQuotient(e.radii().cwiseAbs2()).normalized();
+  return e.center() + e.axes() * (on + (r + g) * normal);
+}
+
+TEST(SegmentCircle, MiddleEndpointsAndSide) {
+  const Vec2<double> a(0, 0), b(4, 0);
+  auto test = [&](Vec2<double> c, double r) { return segment_circle<double>(a, b, c, r); };
+  EXPECT_EQ(test({2, 1.5}, 1).verdict, Verdict::no_collision);  // beside the middle, too far
+  EXPECT_EQ(test({2, 1.5}, 1).side, Side::left);
+  EXPECT_EQ(test({2, -0.5}, 1).verdict, Verdict::collision);    // crosses the middle
+  EXPECT_EQ(test({2, -0.5}, 1).side, Side::right);
+  EXPECT_EQ(test({2, 0}, 0.1).side, Side::on_line);
+  EXPECT_EQ(test({5, 0.5}, 1.2).verdict, Verdict::collision);   // end point inside: 1.118 < 1.2
+  EXPECT_EQ(test({5.5, 0}, 1).verdict, Verdict::no_collision);  // on the line, beyond the end
+  EXPECT_EQ(test({-3, 4}, 5).verdict, Verdict::collision);  // start point on the circle
+  EXPECT_EQ(test({-3, 4}, 4.999).verdict, Verdict::no_collision);
+  // Swapping the end points mirrors the side.
+  EXPECT_EQ(segment_circle<double>(b, a, {2, 1.5}, 1).side, Side::right);
+}
+
+// Small integers are exact in float: a tangent circle (distance == radius) touches.
+TEST(SegmentCircle, ExactTangencyInFloat) {
+  EXPECT_EQ(segment_circle<float>({1, 1}, {7, 1}, {4, 4}, 3).verdict, Verdict::collision);
+  EXPECT_EQ(segment_circle<float>({1, 1}, {7, 1}, {4, 4}, 2.9999998f).verdict, Verdict::no_collision);
+  // Along a slanted segment (3, 4) with the center 5 to its left.
+  EXPECT_EQ(segment_circle<float>({0, 0}, {6, 8}, {-1, 7}, 5).verdict, Verdict::collision);
+  EXPECT_EQ(segment_circle<float>({0, 0}, {6, 8}, {-1, 7}, 5).side, Side::left);
+}
+
+TEST(SegmentCircle, DegenerateSegmentIsAPoint) {
+  EXPECT_EQ(segment_circle<double>({1, 1}, {1, 1}, {1.5, 1}, 1).verdict, Verdict::collision);
+  EXPECT_EQ(segment_circle<double>({1, 1}, {1, 1}, {3, 1}, 1).verdict, Verdict::no_collision);
+  EXPECT_EQ(segment_circle<double>({1, 1}, {1, 1}, {1, 1}, 0).verdict, Verdict::collision);
+}
+
+TEST(SegmentCircle, InvalidInput) {
+  EXPECT_EQ(segment_circle<double>({0, 0}, {1, 0}, {nan, 0}, 1).verdict, Verdict::invalid_input);
+  EXPECT_EQ(segment_circle<double>({0, 0}, {1, 0}, {0, 0}, -1).verdict, Verdict::invalid_input);
+  EXPECT_EQ(segment_circle<double>({0, 0}, {1, 0}, {0, 0}, std::numeric_limits<double>::infinity()).verdict,
+            Verdict::invalid_input);
+  EXPECT_EQ(to_string(Verdict::undecided), "undecided");
+  EXPECT_EQ(to_string(Side::on_line), "on_line");
+}
+
+// The document's first example: ellipse at (-1, 5) with horizontal radius 10 and vertical
+// radius 20, circle at (25, 7) of radius 15. Independently: the ellipse lies in x <= 9, the
+// circle in x >= 10, so the line x = 9.5 separates them with a gap of at least 1. No
+// iteration count may report a collision, and once the error bound 2^(0.303 - 2n) * 20 is
+// below 1 (n >= 3) the answer must be no_collision.
+TEST(PolygonalOverlap, DocumentExampleEllipseCircle) {
+  const auto e = make_ellipse<double>({-1, 5}, 0, {10, 20});
+  const Vec2<double> c(25, 7);
+  for (int n = 0; n <= 20; ++n) {
+    const auto r = polygonal_overlap(e, c, 15.0, n);
+    EXPECT_NE(r.verdict, Verdict::collision) << n;
+    if (niemitalo_error_bound(20.0, n) < 1) {
+      EXPECT_EQ(r.verdict, Verdict::no_collision) << n;
+    }
+    // The same pair as two ellipses (parallel axes), and in float.
+    const auto rr = polygonal_overlap(e, make_ball<double, 2>(c, 15), n);
+    EXPECT_NE(rr.verdict, Verdict::collision) << n;
+    if (niemitalo_error_bound(20.0, n) < 1) {
+      EXPECT_EQ(rr.verdict, Verdict::no_collision) << n;
+    }
+    const auto rf = polygonal_overlap(make_ellipse<float>({-1, 5}, 0, {10, 20}), Vec2<float>(25, 7), 15.0f, n);
+    if (niemitalo_error_bound(20.0, n) < 1) {
+      EXPECT_EQ(rf.verdict, Verdict::no_collision) << n;
+    }
+  }
+  EXPECT_EQ(polygonal_overlap(e, c, 15.0, 10).verdict, Verdict::no_collision);
+  // Moving the circle 2 to the left makes x = 8..9 shared on the line y = 7 (the ellipse
+  // reaches x = -1 + 10 sqrt(1 - (2/20)^2) = 8.95 there): a collision.
+  EXPECT_EQ(polygonal_overlap(e, Vec2<double>(23, 7), 15.0, 10).verdict, Verdict::collision);
+}
+
+// The document's second example: ellipse 0 at (-10, 5) with radius vector (10, 20) and the
+// perpendicular radius 3 times as long; ellipse 1 at (3, 4) with radius vector (5, -4) and
+// the other radius 0.75 times as long. By hand: ellipse 1's center, seen from ellipse 0's
+// center, is (13, -1); along the unit axes (1, 2) / sqrt(5) and (-2, 1) / sqrt(5) that is
+// 11 / sqrt(5) and -27 / sqrt(5), and with radii sqrt(500) and 3 sqrt(500) the quadric is
+// (11 / 50)^2 + (27 / 150)^2 = 0.0808 < 1: the center of ellipse 1 is inside ellipse 0,
+// a common point, so they collide.
+TEST(PolygonalOverlap, DocumentExampleTwoRotatedEllipses) {
+  const auto e0 = make_ellipse<double>({-10, 5}, std::atan2(20.0, 10.0), {std::sqrt(500.0), 3 * std::sqrt(500.0)});
+  const auto e1 = make_ellipse<double>({3, 4}, std::atan2(-4.0, 5.0), {std::sqrt(41.0), 0.75 * std::sqrt(41.0)});
+  for (int n = 0; n <= 20; ++n) EXPECT_NE(polygonal_overlap(e0, e1, n).verdict, Verdict::no_collision) << n;
+  EXPECT_EQ(polygonal_overlap(e0, e1, 10).verdict, Verdict::collision);
+  EXPECT_EQ(polygonal_overlap(e1, e0, 10).verdict, Verdict::collision);
+  const auto f0 = make_ellipse<float>({-10, 5}, std::atan2(20.0f, 10.0f), {std::sqrt(500.0f), 3 * std::sqrt(500.0f)});
+  const auto f1 = make_ellipse<float>({3, 4}, std::atan2(-4.0f, 5.0f), {std::sqrt(41.0f), 0.75f * std::sqrt(41.0f)});
+  EXPECT_EQ(polygonal_overlap(f0, f1, 10).verdict, Verdict::collision);
+}
+
+// The document's code answers `true` here (its bisection treats a circle center on the
+// inner side of a new chord, within the chord's extent, as a collision; after the
+// non-parallel stretch that region reaches outside the ellipse). The pair is separated:
+// the Perram-Wertheim factor is 1.003 (classify, exact outside a 2e-12 band).
+TEST(PolygonalOverlap, DocumentShortcutSeparatedPair) {
+  const auto a = make_ellipse<double>({0, 0}, 0.086, {0.83, 0.74});
+  const auto b = make_ellipse<double>({5.39, -2.45}, -0.53, {5.31, 0.188});
+  ASSERT_EQ(classify(a, b), Relation::separated);
+  EXPECT_EQ(polygonal_overlap(a, b, 10).verdict, Verdict::no_collision);
+  EXPECT_EQ(polygonal_overlap(b, a, 10).verdict, Verdict::no_collision);
+}
+
+// Ellipse (2, 1) and a unit circle at signed gap g from a boundary point that is not a
+// vertex of any level (parameter 0.3): decided once the bound is below |g|, undecided
+// (carrying the count) before.
+TEST(PolygonalOverlap, GapAtABoundaryPoint) {
+  const auto e = make_ellipse<double>({1, -2}, 0.7, {2, 1});
+  for (double g : {0.5, 1e-3, -1e-3, -0.5}) {
+    const Vec2<double> c = center_at_gap(e, 0.3, 1.0, g);
+    for (int n = 0; n <= 12; ++n) {
+      const auto r = polygonal_overlap(e, c, 1.0, n);
+      const Verdict want = g > 0 ? Verdict::no_collision : Verdict::collision;
+      if (niemitalo_error_bound(2.0, n) < std::abs(g)) {
+        EXPECT_EQ(r.verdict, want) << g << " " << n;
+      } else {
+        EXPECT_TRUE(r.verdict == want || r.verdict == Verdict::undecided) << g << " " << n;
+      }
+      if (r.verdict == Verdict::undecided) {
+        EXPECT_EQ(r.iterations, n);
+      }
+      EXPECT_LE(r.iterations, n);
+    }
+  }
+  // A gap of 1e-9 needs about 15 iterations (the exact band is a quarter of the bound).
+  const Vec2<double> c = center_at_gap(e, 0.3, 1.0, 1e-9);
+  EXPECT_EQ(polygonal_overlap(e, c, 1.0, 5).verdict, Verdict::undecided);
+  EXPECT_EQ(polygonal_overlap(e, c, 1.0, 5).iterations, 5);
+  EXPECT_EQ(polygonal_overlap(e, c, 1.0, 25).verdict, Verdict::no_collision);
+  // Where the contact is a vertex of the level-0 polygon, level 0 decides at once.
+  const auto at_vertex = polygonal_overlap(e, center_at_gap(e, 0.0, 1.0, 1e-9), 1.0, 5);
+  EXPECT_EQ(at_vertex.verdict, Verdict::no_collision);
+  EXPECT_EQ(at_vertex.iterations, 0);
+}
+
+// Containment either way is a collision, decided at level 0 (the center is inside the
+// inscribed polygon, or the circle covers its edges).
+TEST(PolygonalOverlap, ContainmentAndFarApart) {
+  const auto e = make_ellipse<double>({0, 0}, 0.3, {5, 1});
+  EXPECT_EQ(polygonal_overlap(e, Vec2<double>(0.5, 0.1), 0.1, 0).verdict, Verdict::collision);
+  EXPECT_EQ(polygonal_overlap(e, Vec2<double>(0, 0), 100.0, 0).verdict, Verdict::collision);
+  EXPECT_EQ(polygonal_overlap(e, Vec2<double>(1e4, 1e4), 1.0, 0).verdict, Verdict::no_collision);
+  EXPECT_EQ(polygonal_overlap(e, Vec2<double>(0, 0), 0.0, 0).verdict, Verdict::collision);  // a point
+}
+
+// Two ellipses with the same axes (up to order and sign) take the scaling route, others
+// the rotation-stretch route; both give the same answers away from the band.
+TEST(PolygonalOverlap, ParallelAndStretchRoutesAgree) {
+  const auto a = make_ellipse<double>({0, 0}, 0, {3, 1});
+  Mat2<double> quarter;
+  quarter << 0, -1, 1, 0;
+  for (double x : {3.5, 4.5}) {  // b reaches x - 1: overlapping, then at least 0.5 apart
+    const auto b = make_ellipse<double>({x, 0.2}, 0, {1, 2});
+    const Verdict want = x < 4 ? Verdict::collision : Verdict::no_collision;
+    EXPECT_EQ(polygonal_overlap(a, b, 10).verdict, want);
+    const auto swapped = Ellipse2<double>::from_axes({x, 0.2}, quarter, {2, 1});  // same set
+    ASSERT_EQ(swapped.axes(), quarter);
+    EXPECT_EQ(polygonal_overlap(a, swapped, 10).verdict, want);
+    // The scene rotated by 0.9, b's axes off by an ulp: parallel, but not bit for bit.
+    const Mat2<double> q = make_ellipse<double>({0, 0}, 0.9, {1, 1}).axes();
+    Mat2<double> q_off = q;
+    q_off(0, 0) = std::nextafter(q(0, 0), 2.0);
+    const auto ar = Ellipse2<double>::from_axes(q * a.center(), q, a.radii());
+    const auto br = Ellipse2<double>::from_axes(q * b.center(), q_off, b.radii());
+    ASSERT_NE(ar.axes(), br.axes());
+    EXPECT_EQ(polygonal_overlap(ar, br, 10).verdict, want);
+  }
+}
+
+TEST(PolygonalOverlap, InvalidInput) {
+  const auto e = make_ellipse<double>({0, 0}, 0, {2, 1});
+  EXPECT_EQ(polygonal_overlap(e, Vec2<double>(nan, 0), 1.0).verdict, Verdict::invalid_input);
+  EXPECT_EQ(polygonal_overlap(e, Vec2<double>(0, 0), -1.0).verdict, Verdict::invalid_input);
+  EXPECT_EQ(polygonal_overlap(e, Vec2<double>(0, 0), nan).verdict, Verdict::invalid_input);
+  EXPECT_EQ(polygonal_overlap(e, Vec2<double>(0, 0), 1.0, -1).verdict, Verdict::invalid_input);
+  EXPECT_EQ(polygonal_overlap(e, Vec2<double>(0, 0), 1.0, niemitalo_max_iterations + 1).verdict, Verdict::invalid_input);
+  EXPECT_EQ(polygonal_overlap(e, e, -1).verdict, Verdict::invalid_input);
+  EXPECT_EQ(circle_cover_overlap(e, Vec2<double>(0, 0), -1.0).verdict, Verdict::invalid_input);
+  EXPECT_EQ(polygonal_overlap(e, Vec2<double>(9, 0), 1.0, niemitalo_max_iterations).verdict, Verdict::no_collision);
+}
+
+// The circle cover: same answers away from its (wider) band, undecided inside it.
+TEST(CircleCoverOverlap, GapAtABoundaryPoint) {
+  const auto e = make_ellipse<double>({0, 0}, 0, {2, 1});
+  for (double g : {0.5, 1e-2, -1e-2, -0.5}) {
+    const Vec2<double> c = center_at_gap(e, 0.3, 1.0, g);
+    for (int n = 0; n <= 12; ++n) {
+      const auto r = circle_cover_overlap(e, c, 1.0, n);
+      const Verdict want = g > 0 ? Verdict::no_collision : Verdict::collision;
+      const double band = g > 0 ? 2 * std::sin(M_PI / std::ldexp(1.0, n + 2)) : niemitalo_error_bound(2.0, n);
+      if (band < std::abs(g)) {
+        EXPECT_EQ(r.verdict, want) << g << " " << n;
+      } else {
+        EXPECT_TRUE(r.verdict == want || r.verdict == Verdict::undecided) << g << " " << n;
+      }
+    }
+  }
+  EXPECT_EQ(circle_cover_overlap(e, Vec2<double>(0.5, 0.2), 0.1).verdict, Verdict::collision);
+  EXPECT_EQ(circle_cover_overlap(make_ellipse<float>({0, 0}, 0, {2, 1}), Vec2<float>(3.5f, 0), 1.0f).verdict,
+            Verdict::no_collision);
+}
+
+// The document's bound, checked on the polygons themselves: after n bisections every
+// corner of the circumscribed polygon, and every point of the inscribed polygon's edges,
+// lies within 2^(0.303 - 2n) * major of the ellipse. The polygons are built with the
+// coefficients the tests run with; distances come from closest_point. The worst case
+// found is also checked against the exact circle-frame value
+// (1 / cos(pi / 2^(n+2)) - 1) * major, which is about a quarter of the document's bound.
+TEST(NiemitaloErrorBound, PolygonWithinTheBound) {
+  const auto& k = detail::niemitalo_coefficients<double>();
+  for (double aspect : {1.0, 1.5, 4.0, 30.0, 1e3, 1e4}) {
+    for (double angle : {0.0, 0.4}) {
+      const auto e = make_ellipse<double>({0.3, -0.2}, angle, {1.0, 1.0 / aspect});
+      const Vec2<double> w = e.axes().col(0) * e.radii()[0], h = e.axes().col(1) * e.radii()[1];
+      std::vector<Vec2<double>> level{w, h};  // first quadrant of level 0; the rest is symmetric
+      for (int n = 0; n <= 12; ++n) {
+        if (n > 0) {
+          std::vector<Vec2<double>> next;
+          for (std::size_t i = 0; i + 1 < level.size(); ++i) {
+            next.push_back(level[i]);
+            next.push_back(k.inner[n] * (level[i] + level[i + 1]));
+          }
+          next.push_back(level.back());
+          level = next;
+        }
+        double worst = 0;
+        for (std::size_t i = 0; i + 1 < level.size(); ++i) {
+          const Vec2<double> corner = e.center() + k.outer[n] * (level[i] + level[i + 1]);
+          worst = std::max(worst, closest_point(e, corner).signed_distance);
+          for (int j = 1; j < 8; ++j) {
+            const Vec2<double> on_chord = e.center() + level[i] + (j / 8.0) * (level[i + 1] - level[i]);
+            worst = std::max(worst, -closest_point(e, on_chord).signed_distance);
+          }
+        }
+        const double exact = (1 / std::cos(M_PI / std::ldexp(1.0, n + 2)) - 1) * 1.0;
+        EXPECT_LE(worst, niemitalo_error_bound(1.0, n)) << aspect << " " << n;
+        EXPECT_LE(worst, exact + 1e-14) << aspect << " " << n;
+        if (aspect == 1.0) {
+          EXPECT_GT(worst, 0.99 * exact) << n;  // attained by a circle
+        }
+      }
+    }
+  }
+  EXPECT_NEAR(niemitalo_error_bound(1.0, 0), std::exp2(0.303), 1e-15);
+  EXPECT_NEAR(niemitalo_error_bound(1.0, 3) / niemitalo_error_bound(1.0, 2), 0.25, 1e-15);
+}
+
+}  // namespace
