@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # ellipsect's one entry point for a fresh Debian 12 machine.
-#   bash scripts/run.sh example   install what is missing, build, run the bundled example
+#   bash scripts/run.sh example   install what is missing, build, run `ellipsect check` and
+#                                 `ellipsect render` on a bundled scene
 #   bash scripts/run.sh test      install what is missing, build, run the whole test suite
 #                                 (Release build, then an ASan+UBSan build)
 #   bash scripts/run.sh bench     install what is missing, build, run the benchmarks
@@ -34,7 +35,10 @@ case "${1:-}" in
   example)
     install_missing
     build build/release -DCMAKE_BUILD_TYPE=Release -DELLIPSECT_BUILD_TESTS=OFF -DELLIPSECT_BUILD_BENCH=OFF
-    ./build/release/examples/ellipsect_example
+    ./build/release/tools/ellipsect check examples/scenes/swept_2d.json
+    ./build/release/tools/ellipsect render examples/scenes/swept_2d.json -o build/release/swept_2d.svg
+    ./build/release/tools/ellipsect render examples/scenes/swept_2d.json -o build/release/swept_2d.png
+    echo "==> picture of the first contact: build/release/swept_2d.svg (and swept_2d.png)"
     ;;
   test)
     install_missing

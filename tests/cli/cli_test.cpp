@@ -1,0 +1,987 @@
+// End-to-end tests of the `ellipsect` program: each test runs the built binary, captures
+// its exit code, stdout and stderr, and checks them.
+//
+// Expected answers come from outside the program: closed forms for circles and spheres,
+// and the 50-digit reference (tests/reference/reference.hpp) for the bundled scenes, with
+// the bodies built here from the scene files by the test's own code.
+//
+// The million-pair test streams a generated pairs CSV and measures the child's peak
+// resident set size with wait4(); the pair count is scaled by ELLIPSECT_CASE_SCALE (the
+// sanitizer pass uses 0.05).
+#include "tests/reference/reference.hpp"
+
+#include <ellipsect/version.hpp>
+
+#include <Eigen/Geometry>
+
+#include <boost/property_tree/ptree.hpp>
+#include <boost/property_tree/xml_parser.hpp>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/resource.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+extern char** environ;
+
+namespace {
+
+namespace fs = std::filesystem;
+namespace ref = ellipsect::reference;
+using json = nlohmann::json;
+
+const std::string cli = ELLIPSECT_CLI;
+const std::string make_scene = ELLIPSECT_MAKE_SCENE;
+const fs::path source_dir = ELLIPSECT_SOURCE_DIR;
+const fs::path scenes = source_dir / "examples" / "scenes";
+
+double case_scale() {
+  const char* s = std::getenv("ELLIPSECT_CASE_SCALE");
+  return s != nullptr ? std::atof(s) : 1.0;
+}
+
+struct Outcome {
+  int code = -1;
+  std::string out, err;
+  long max_rss_kb = 0;  // peak resident set size of the child
+  double seconds = 0;
+};
+
+std::string slurp(const fs::path& p) {
+  std::ifstream f(p, std::ios::binary);
+  std::ostringstream ss;
+  ss << f.rdbuf();
+  return ss.str();
+}
+
+void write_file(const fs::path& p, const std::string& text) {
+  std::ofstream f(p, std::ios::binary);
+  f << text;
+}
+
+// A fresh directory for the running test.
+fs::path work_dir() {
+  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+  const fs::path d = fs::path(ELLIPSECT_CLI_WORK) / (std::string(info->test_suite_name()) + "." + info->name());
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
+}
+
+// Runs a program with stdout and stderr captured in files of `dir`.
+Outcome run_program(const std::string& program, const std::vector<std::string>& args, const fs::path& dir) {
+  const fs::path out_path = dir / "stdout.txt", err_path = dir / "stderr.txt";
+  std::vector<std::string> storage;
+  storage.push_back(program);
+  for (const auto& a : args) storage.push_back(a);
+  std::vector<char*> argv;
+  for (auto& s : storage) argv.push_back(s.data());
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, 1, out_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_addopen(&actions, 2, err_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
+  pid_t pid = 0;
+  const auto start = std::chrono::steady_clock::now();
+  const int rc = posix_spawn(&pid, program.c_str(), &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  Outcome r;
+  if (rc != 0) {
+    r.err = "cannot start " + program;
+    return r;
+  }
+  int status = 0;
+  struct rusage usage {};
+  while (::wait4(pid, &status, 0, &usage) < 0) {
+  }
+  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  r.max_rss_kb = usage.ru_maxrss;
+  r.out = slurp(out_path);
+  r.err = slurp(err_path);
+  return r;
+}
+
+Outcome run_cli(const std::vector<std::string>& args, const fs::path& dir) { return run_program(cli, args, dir); }
+
+std::string describe(const Outcome& r) {
+  return "exit " + std::to_string(r.code) + "\n--- stderr:\n" + r.err + "\n--- stdout (first 2000 chars):\n" +
+         r.out.substr(0, 2000);
+}
+
+json parse_json(const std::string& text) {
+  try {
+    return json::parse(text);
+  } catch (const std::exception& e) {
+    ADD_FAILURE() << "output is not JSON: " << e.what() << "\n" << text.substr(0, 2000);
+    return json();
+  }
+}
+
+// No output file and no temporary file next to it.
+void expect_no_output(const fs::path& dir, const std::string& name) {
+  EXPECT_FALSE(fs::exists(dir / name)) << name << " was left behind";
+  for (const auto& e : fs::directory_iterator(dir))
+    EXPECT_EQ(e.path().filename().string().rfind(name + ".tmp", 0), std::string::npos)
+        << "temporary file left behind: " << e.path();
+}
+
+std::vector<std::string> split_lines(const std::string& text) {
+  std::vector<std::string> lines;
+  std::istringstream ss(text);
+  std::string line;
+  while (std::getline(ss, line)) lines.push_back(line);
+  return lines;
+}
+
+std::vector<std::string> split_csv_line(const std::string& line) {
+  std::vector<std::string> f;
+  std::string cur;
+  for (const char c : line) {
+    if (c == ',') {
+      f.push_back(cur);
+      cur.clear();
+    } else {
+      cur += c;
+    }
+  }
+  f.push_back(cur);
+  return f;
+}
+
+// ------------------------------------------------------------------------------------------
+// Reference bodies built from a scene file (the test's own reading of the format).
+// ------------------------------------------------------------------------------------------
+
+template <int N>
+struct RefBody {
+  std::string id;
+  ref::Body<N> body;
+  Eigen::Matrix<double, N, 1> velocity;
+};
+
+template <int N>
+std::vector<RefBody<N>> reference_bodies(const json& scene) {
+  std::vector<RefBody<N>> out;
+  for (const auto& b : scene["bodies"]) {
+    RefBody<N> r;
+    r.id = b["id"].get<std::string>();
+    for (int i = 0; i < N; ++i) r.body.center[i] = b["center"][static_cast<std::size_t>(i)].get<double>();
+    if (b.contains("radius")) {
+      r.body.radii.setConstant(b["radius"].get<double>());
+    } else {
+      for (int i = 0; i < N; ++i) r.body.radii[i] = b["radii"][static_cast<std::size_t>(i)].get<double>();
+    }
+    r.body.axes.setIdentity();
+    if constexpr (N == 2) {
+      double angle = 0;
+      if (b.contains("angle")) angle = b["angle"].get<double>();
+      if (b.contains("direction")) angle = std::atan2(b["direction"][1].get<double>(), b["direction"][0].get<double>());
+      r.body.axes << std::cos(angle), -std::sin(angle), std::sin(angle), std::cos(angle);
+    } else {
+      if (b.contains("quaternion")) {
+        const auto& q = b["quaternion"];
+        r.body.axes = Eigen::Quaterniond(q[0].get<double>(), q[1].get<double>(), q[2].get<double>(), q[3].get<double>())
+                          .normalized()
+                          .toRotationMatrix();
+      }
+    }
+    r.velocity.setZero();
+    if (b.contains("velocity"))
+      for (int i = 0; i < N; ++i) r.velocity[i] = b["velocity"][static_cast<std::size_t>(i)].get<double>();
+    out.push_back(r);
+  }
+  return out;
+}
+
+std::string ref_contact_name(ref::ContactKind k) {
+  switch (k) {
+    case ref::ContactKind::hit: return "hit";
+    case ref::ContactKind::touching_at_start: return "touching_at_start";
+    case ref::ContactKind::overlapping_at_start: return "overlapping_at_start";
+    case ref::ContactKind::none: return "no_contact_in_window";
+  }
+  return "?";
+}
+
+// Checks every record of `check` output for a scene against the reference.
+template <int N>
+void expect_matches_reference(const fs::path& scene_path, const json& out, double time_rel_tol, double point_tol) {
+  const json scene = json::parse(slurp(scene_path));
+  const auto bodies = reference_bodies<N>(scene);
+  auto find = [&](const std::string& id) -> const RefBody<N>& {
+    for (const auto& b : bodies)
+      if (b.id == id) return b;
+    throw std::runtime_error("no body " + id);
+  };
+  double t_max = std::numeric_limits<double>::infinity();
+  if (scene.contains("time_window") && !scene["time_window"][1].is_null()) t_max = scene["time_window"][1].get<double>();
+  ASSERT_FALSE(out["results"].empty());
+  for (const auto& rec : out["results"]) {
+    SCOPED_TRACE(scene_path.filename().string() + " pair " + rec.dump());
+    const auto& a = find(rec["a"].get<std::string>());
+    const auto& b = find(rec["b"].get<std::string>());
+    const auto cls = ref::classify<N>(a.body, b.body, 1e-30);
+    EXPECT_EQ(rec["relation"].get<std::string>(), ref::name(cls.relation));
+    if (!rec.contains("contact")) continue;
+    const auto c = ref::first_contact<N>(a.body, a.velocity, b.body, b.velocity, t_max, 1e-30);
+    const json& rc = rec["contact"];
+    EXPECT_EQ(rc["status"].get<std::string>(), ref_contact_name(c.kind));
+    if (c.kind == ref::ContactKind::hit) {
+      const double t = ref::to_double(c.time);
+      EXPECT_NEAR(rc["time"].get<double>(), t, time_rel_tol * std::abs(t));
+      for (int i = 0; i < N; ++i) {
+        EXPECT_NEAR(rc["point"][static_cast<std::size_t>(i)].get<double>(), ref::to_double(c.point[i]), point_tol);
+        EXPECT_NEAR(rc["normal"][static_cast<std::size_t>(i)].get<double>(), ref::to_double(c.normal[i]), point_tol);
+      }
+    }
+  }
+}
+
+// ------------------------------------------------------------------------------------------
+// Basics
+// ------------------------------------------------------------------------------------------
+
+TEST(Cli, VersionPrintsTheLibraryVersion) {
+  const auto dir = work_dir();
+  const Outcome r = run_cli({"--version"}, dir);
+  EXPECT_EQ(r.code, 0) << describe(r);
+  EXPECT_EQ(r.out, std::string("ellipsect ") + ellipsect::version + "\n");
+}
+
+TEST(Cli, EveryCommandHasHelpWithAnExample) {
+  const auto dir = work_dir();
+  for (const std::string cmd : {"check", "render", "bench"}) {
+    const Outcome r = run_cli({cmd, "--help"}, dir);
+    EXPECT_EQ(r.code, 0) << describe(r);
+    EXPECT_NE(r.out.find("Examples:"), std::string::npos) << cmd;
+    EXPECT_NE(r.out.find("ellipsect " + cmd + " examples/scenes/"), std::string::npos) << cmd;
+  }
+  const Outcome top = run_cli({"--help"}, dir);
+  EXPECT_EQ(top.code, 0);
+  EXPECT_NE(top.out.find("Exit codes"), std::string::npos);
+}
+
+TEST(Cli, UsageErrorsExitWithOne) {
+  const auto dir = work_dir();
+  const std::string scene = (scenes / "swept_2d.json").string();
+  const std::vector<std::vector<std::string>> cases = {
+      {},                                                      // no command
+      {"frobnicate"},                                          // unknown command
+      {"check"},                                               // no scene
+      {"check", scene, "--bogus"},                             // unknown option
+      {"check", scene, "--format", "xml"},                     // bad value
+      {"check", scene, "--query", "volume"},                   // unknown query
+      {"check", scene, "--window", "5", "1"},                  // end before start
+      {"render", scene},                                       // no -o
+      {"render", scene, "-o", (dir / "x.txt").string()},       // unknown picture type
+      {"render", scene, "--plane", "xz", "-o", (dir / "x.svg").string()},  // 2D scene
+  };
+  for (const auto& args : cases) {
+    const Outcome r = run_cli(args, dir);
+    std::string joined;
+    for (const auto& a : args) joined += a + " ";
+    EXPECT_EQ(r.code, 1) << joined << "\n" << describe(r);
+    EXPECT_FALSE(r.err.empty()) << joined;
+  }
+  expect_no_output(dir, "x.svg");
+}
+
+// ------------------------------------------------------------------------------------------
+// Answers
+// ------------------------------------------------------------------------------------------
+
+// Circles, so every answer has a closed form. A (r 2) at the origin; B (r 3) at (10, 3)
+// moving (-2, 0): |c_B(t)|^2 = (10 - 2t)^2 + 9 = 25 at t = 3, where the centers are
+// (0, 0) and (4, 3): contact point 2 (4, 3) / 5 = (1.6, 1.2), normal (0.8, 0.6).
+// C (r 1) at (0, 10): B's top is at y = 6, C's bottom at 9: no contact.
+// D (r 1) at (0.5, 0) lies inside A (1.5 < 2); E (r 1) at (2.5, 0) overlaps A;
+// F (r 3) at (5, 0) touches A at (2, 0) exactly.
+const char* circles_scene = R"({
+  "time_window": [0, 10],
+  "bodies": [
+    {"id": "A", "center": [0, 0], "radius": 2},
+    {"id": "B", "center": [10, 3], "radius": 3, "velocity": [-2, 0]},
+    {"id": "C", "center": [0, 10], "radius": 1},
+    {"id": "D", "center": [0.5, 0], "radius": 1},
+    {"id": "E", "center": [2.5, 0], "radius": 1},
+    {"id": "F", "center": [5, 0], "radius": 3}
+  ],
+  "pairs": [["A", "B"], ["B", "C"], ["A", "D"], ["D", "A"], ["A", "E"], ["A", "F"]]
+})";
+
+TEST(CliAnswers, CirclesMatchClosedForms) {
+  const auto dir = work_dir();
+  write_file(dir / "circles.json", circles_scene);
+  const Outcome r = run_cli({"check", (dir / "circles.json").string()}, dir);
+  ASSERT_EQ(r.code, 0) << describe(r);
+  const json out = parse_json(r.out);
+  const json& res = out["results"];
+  ASSERT_EQ(res.size(), 6u);
+  const char* relations[] = {"separated", "separated", "a_contains_b", "b_contains_a", "overlapping", "touching"};
+  const char* statuses[] = {"hit", "no_contact_in_window", "overlapping_at_start", "overlapping_at_start",
+                            "overlapping_at_start", "touching_at_start"};
+  for (std::size_t k = 0; k < 6; ++k) {
+    EXPECT_EQ(res[k]["index"].get<int>(), static_cast<int>(k));
+    EXPECT_EQ(res[k]["relation"], relations[k]) << k;
+    EXPECT_EQ(res[k]["contact"]["status"], statuses[k]) << k;
+  }
+  const json& hit = res[0]["contact"];
+  EXPECT_NEAR(hit["time"].get<double>(), 3.0, 1e-13);
+  EXPECT_NEAR(hit["point"][0].get<double>(), 1.6, 1e-12);
+  EXPECT_NEAR(hit["point"][1].get<double>(), 1.2, 1e-12);
+  EXPECT_NEAR(hit["normal"][0].get<double>(), 0.8, 1e-12);
+  EXPECT_NEAR(hit["normal"][1].get<double>(), 0.6, 1e-12);
+  EXPECT_TRUE(res[1]["contact"]["time"].is_null());
+  EXPECT_TRUE(res[1]["contact"]["point"].is_null());
+  const json& touch = res[5]["contact"];
+  EXPECT_EQ(touch["time"].get<double>(), 0.0);
+  EXPECT_NEAR(touch["point"][0].get<double>(), 2.0, 1e-12);
+  EXPECT_NEAR(touch["point"][1].get<double>(), 0.0, 1e-12);
+  EXPECT_NEAR(touch["normal"][0].get<double>(), 1.0, 1e-12);
+  // Summary.
+  EXPECT_EQ(out["summary"]["pairs"], 6);
+  EXPECT_EQ(out["summary"]["relation"]["separated"], 2);
+  EXPECT_EQ(out["summary"]["contact"]["overlapping_at_start"], 3);
+  EXPECT_EQ(out["dimension"], 2);
+  EXPECT_EQ(out["time_window"], json::parse("[0, 10]"));
+}
+
+// Spheres: A (r 1) at the origin, B (r 2) at (7, 2, 2) moving (-1, 0, 0):
+// (7 - t)^2 + 8 = 9 at t = 6; contact point (1, 2, 2) / 3, normal the same.
+const char* spheres_scene = R"({
+  "bodies": [
+    {"id": "A", "center": [0, 0, 0], "radius": 1},
+    {"id": "B", "center": [7, 2, 2], "radius": 2, "velocity": [-1, 0, 0]}
+  ]
+})";
+
+TEST(CliAnswers, SpheresMatchClosedFormsInEveryWindow) {
+  const auto dir = work_dir();
+  write_file(dir / "spheres.json", spheres_scene);
+  const std::string scene = (dir / "spheres.json").string();
+  struct Case {
+    std::vector<std::string> window;
+    const char* relation;
+    const char* status;
+  };
+  const std::vector<Case> cases = {
+      {{}, "separated", "hit"},                              // [0, inf)
+      {{"--window", "2", "10"}, "separated", "hit"},         // time stays absolute
+      {{"--window", "0", "5"}, "separated", "no_contact_in_window"},
+      {{"--window", "0", "inf"}, "separated", "hit"},
+      {{"--window", "7", "10"}, "overlapping", "overlapping_at_start"},  // at t0 = 7 |c| = sqrt(8) < 3
+  };
+  for (const auto& c : cases) {
+    std::vector<std::string> args = {"check", scene};
+    args.insert(args.end(), c.window.begin(), c.window.end());
+    const Outcome r = run_cli(args, dir);
+    ASSERT_EQ(r.code, 0) << describe(r);
+    const json out = parse_json(r.out);
+    ASSERT_EQ(out["results"].size(), 1u);
+    const json& rec = out["results"][0];
+    EXPECT_EQ(rec["relation"], c.relation) << r.out;
+    EXPECT_EQ(rec["contact"]["status"], c.status) << r.out;
+    if (std::string(c.status) == "hit") {
+      EXPECT_NEAR(rec["contact"]["time"].get<double>(), 6.0, 6e-13);
+      for (int i = 0; i < 3; ++i) {
+        const double expected = i == 0 ? 1.0 / 3 : 2.0 / 3;
+        EXPECT_NEAR(rec["contact"]["point"][i].get<double>(), expected, 1e-12);
+        EXPECT_NEAR(rec["contact"]["normal"][i].get<double>(), expected, 1e-12);
+      }
+    }
+    if (std::string(c.status) == "overlapping_at_start") {
+      EXPECT_EQ(rec["contact"]["time"].get<double>(), 7.0);  // the window start
+    }
+  }
+}
+
+TEST(CliAnswers, BundledScenesMatchTheReference) {
+  const auto dir = work_dir();
+  struct Case {
+    const char* file;
+    int dim;
+    double time_tol, point_tol;
+  };
+  // Grazing contact times are conditioned like sqrt(rounding) (docs/method.md).
+  const std::vector<Case> cases = {{"niemitalo_ellipse_circle.json", 2, 0, 0},
+                                   {"niemitalo_two_ellipses.json", 2, 0, 0},
+                                   {"swept_2d.json", 2, 1e-10, 1e-9},
+                                   {"swept_3d.json", 3, 1e-10, 1e-9},
+                                   {"grazing_2d.json", 2, 1e-5, 1e-3}};
+  for (const auto& c : cases) {
+    const fs::path scene = scenes / c.file;
+    const Outcome r = run_cli({"check", scene.string()}, dir);
+    ASSERT_EQ(r.code, 0) << c.file << describe(r);
+    const json out = parse_json(r.out);
+    if (c.dim == 2) {
+      expect_matches_reference<2>(scene, out, c.time_tol, c.point_tol);
+    } else {
+      expect_matches_reference<3>(scene, out, c.time_tol, c.point_tol);
+    }
+  }
+}
+
+TEST(CliAnswers, NiemitaloWorkedExamples) {
+  const auto dir = work_dir();
+  // Example 1: the ellipse lies in x <= 9 and the circle in x >= 10.
+  const Outcome r1 = run_cli({"check", (scenes / "niemitalo_ellipse_circle.json").string()}, dir);
+  ASSERT_EQ(r1.code, 0) << describe(r1);
+  EXPECT_EQ(parse_json(r1.out)["results"][0]["relation"], "separated");
+  // Example 2: the small ellipse (radii 6.4, 4.8 at (3, 4)) lies inside the big one.
+  const Outcome r2 = run_cli({"check", (scenes / "niemitalo_two_ellipses.json").string()}, dir);
+  ASSERT_EQ(r2.code, 0) << describe(r2);
+  EXPECT_EQ(parse_json(r2.out)["results"][0]["relation"], "a_contains_b");
+}
+
+TEST(CliAnswers, CsvOutputCarriesTheSameNumbersAsJson) {
+  const auto dir = work_dir();
+  const std::string scene = (scenes / "swept_3d.json").string();
+  const Outcome rj = run_cli({"check", scene}, dir);
+  const Outcome rc = run_cli({"check", scene, "--format", "csv"}, dir);
+  ASSERT_EQ(rj.code, 0) << describe(rj);
+  ASSERT_EQ(rc.code, 0) << describe(rc);
+  const json out = parse_json(rj.out);
+  const auto lines = split_lines(rc.out);
+  ASSERT_EQ(lines.size(), 2u) << rc.out;
+  EXPECT_EQ(lines[0],
+            "index,a,b,relation,contact_status,contact_time,contact_x,contact_y,contact_z,normal_x,normal_y,normal_z,"
+            "contact_iterations");
+  const auto f = split_csv_line(lines[1]);
+  ASSERT_EQ(f.size(), 13u);
+  const json& rec = out["results"][0];
+  EXPECT_EQ(f[1], "A");
+  EXPECT_EQ(f[2], "B");
+  EXPECT_EQ(f[3], rec["relation"]);
+  EXPECT_EQ(f[4], rec["contact"]["status"]);
+  EXPECT_EQ(std::stod(f[5]), rec["contact"]["time"].get<double>());  // shortest round-trip decimals
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_EQ(std::stod(f[6 + static_cast<std::size_t>(i)]), rec["contact"]["point"][i].get<double>());
+    EXPECT_EQ(std::stod(f[9 + static_cast<std::size_t>(i)]), rec["contact"]["normal"][i].get<double>());
+  }
+}
+
+TEST(CliAnswers, AllThreeInputFormsGiveTheSameAnswers) {
+  const auto dir = work_dir();
+  // swept_2d.json as a bodies CSV with a pairs file, and as a pairs CSV.
+  write_file(dir / "bodies.csv",
+             "id,x,y,rx,ry,angle,vx,vy\n"
+             "A,0,0,3,1,0.5,0,0\n"
+             "B,8,1.5,1.5,0.5,-0.3,-2,-0.25\n"
+             "C,-6,-3,1,1,,,\n");
+  write_file(dir / "pairs.csv", "a,b\nA,B\nA,C\nB,C\n");
+  write_file(dir / "inline.csv",
+             "a_id,a_x,a_y,a_rx,a_ry,a_angle,a_vx,a_vy,b_id,b_x,b_y,b_rx,b_ry,b_angle,b_vx,b_vy\n"
+             "A,0,0,3,1,0.5,0,0,B,8,1.5,1.5,0.5,-0.3,-2,-0.25\n"
+             "A,0,0,3,1,0.5,0,0,C,-6,-3,1,1,0,0,0\n"
+             "B,8,1.5,1.5,0.5,-0.3,-2,-0.25,C,-6,-3,1,1,0,0,0\n");
+  const Outcome rj = run_cli({"check", (scenes / "swept_2d.json").string()}, dir);
+  const Outcome rb = run_cli({"check", (dir / "bodies.csv").string(), "--pairs", (dir / "pairs.csv").string(),
+                            "--window", "0", "10"}, dir);
+  const Outcome rp = run_cli({"check", (dir / "inline.csv").string(), "--window", "0", "10"}, dir);
+  ASSERT_EQ(rj.code, 0) << describe(rj);
+  ASSERT_EQ(rb.code, 0) << describe(rb);
+  ASSERT_EQ(rp.code, 0) << describe(rp);
+  const json oj = parse_json(rj.out), ob = parse_json(rb.out), op = parse_json(rp.out);
+  ASSERT_EQ(oj["results"].size(), 3u);
+  ASSERT_EQ(ob["results"].size(), 3u);
+  ASSERT_EQ(op["results"].size(), 3u);
+  for (std::size_t k = 0; k < 3; ++k) {
+    SCOPED_TRACE(k);
+    for (const json* o : {&ob, &op}) {
+      const json& x = (*o)["results"][k];
+      EXPECT_EQ(x["a"], oj["results"][k]["a"]);
+      EXPECT_EQ(x["b"], oj["results"][k]["b"]);
+      EXPECT_EQ(x["relation"], oj["results"][k]["relation"]);
+      EXPECT_EQ(x["contact"], oj["results"][k]["contact"]);  // bit for bit
+    }
+    EXPECT_EQ(op["results"][k]["line"], k + 2);  // the pairs CSV records its source line
+  }
+}
+
+TEST(CliAnswers, OutputIsTheSameForEveryThreadCount) {
+  const auto dir = work_dir();
+  const std::string bodies = (scenes / "bodies_10k.csv").string();
+  const Outcome r1 = run_cli({"check", bodies, "-j", "1"}, dir);
+  const Outcome r2 = run_cli({"check", bodies, "-j", "2"}, dir);
+  const Outcome r5 = run_cli({"check", bodies, "-j", "5"}, dir);
+  ASSERT_EQ(r1.code, 0) << describe(r1);
+  EXPECT_EQ(r1.out, r2.out);
+  EXPECT_EQ(r1.out, r5.out);
+  // A streamed pairs CSV (several chunks) with velocities.
+  const long rows = std::max(20000L, static_cast<long>(60000 * case_scale()));
+  const Outcome gen = run_program(make_scene, {"pairs", "--count", std::to_string(rows), "--seed", "3", "--velocity",
+                                           "-o", (dir / "pairs.csv").string()}, dir);
+  ASSERT_EQ(gen.code, 0) << describe(gen);
+  const Outcome p1 = run_cli({"check", (dir / "pairs.csv").string(), "--format", "csv", "-j", "1", "--window", "0",
+                            "50"}, dir);
+  const Outcome p3 = run_cli({"check", (dir / "pairs.csv").string(), "--format", "csv", "-j", "3", "--window", "0",
+                            "50"}, dir);
+  ASSERT_EQ(p1.code, 0) << describe(p1);
+  EXPECT_EQ(split_lines(p1.out).size(), static_cast<std::size_t>(rows + 1));
+  EXPECT_TRUE(p1.out == p3.out) << "outputs differ between -j 1 and -j 3";
+}
+
+TEST(CliAnswers, BroadPhaseAgreesWithCheckingEveryPair) {
+  const auto dir = work_dir();
+  // 300 moving bodies packed so that many boxes meet: 44,850 pairs.
+  const Outcome gen = run_program(make_scene, {"bodies", "--count", "300", "--seed", "5", "--extent", "120", "--velocity",
+                                           "-o", (dir / "bodies.csv").string()}, dir);
+  ASSERT_EQ(gen.code, 0) << describe(gen);
+  const std::string scene = (dir / "bodies.csv").string();
+  const Outcome with = run_cli({"check", scene, "--window", "0", "4", "--format", "csv"}, dir);
+  const Outcome without = run_cli({"check", scene, "--window", "0", "4", "--format", "csv", "--no-broad-phase"}, dir);
+  ASSERT_EQ(with.code, 0) << describe(with);
+  ASSERT_EQ(without.code, 0) << describe(without);
+  const auto a = split_lines(with.out), b = split_lines(without.out);
+  ASSERT_EQ(a.size(), 300u * 299u / 2u + 1u);
+  ASSERT_EQ(a.size(), b.size());
+  std::size_t hits = 0, overlaps = 0;
+  for (std::size_t k = 1; k < a.size(); ++k) {
+    const auto fa = split_csv_line(a[k]), fb = split_csv_line(b[k]);
+    // index, a, b, relation, status, time: the same; iterations may differ for pairs the
+    // broad phase decided without iterating.
+    for (std::size_t i = 0; i <= 5; ++i) ASSERT_EQ(fa[i], fb[i]) << "line " << k + 1 << ": " << a[k] << " vs " << b[k];
+    hits += fa[4] == "hit";
+    overlaps += fa[3] != "separated";
+  }
+  EXPECT_GT(hits, 10u);  // the sample exercises the swept boxes
+  EXPECT_GT(overlaps, 5u);
+}
+
+TEST(CliAnswers, LargeBodyFilesReportBroadPhaseCandidates) {
+  const auto dir = work_dir();
+  const Outcome r = run_cli({"check", (scenes / "bodies_10k.csv").string()}, dir);
+  ASSERT_EQ(r.code, 0) << describe(r);
+  const json out = parse_json(r.out);
+  EXPECT_EQ(out["bodies"], 10000);
+  EXPECT_EQ(out["pair_source"], "broad-phase candidates");
+  const json& s = out["summary"];
+  EXPECT_EQ(s["pairs"], 10000LL * 9999 / 2);
+  EXPECT_EQ(s["listed"].get<std::size_t>(), out["results"].size());
+  long long total = 0;
+  for (const auto& [k, v] : s["relation"].items()) total += v.get<long long>();
+  EXPECT_EQ(total, 10000LL * 9999 / 2);
+  // Every listed candidate is a distinct pair in increasing order.
+  std::string prev_a, prev_b;
+  for (const auto& rec : out["results"]) {
+    const std::string a = rec["a"], b = rec["b"];
+    EXPECT_LT(a, b);
+    EXPECT_TRUE(prev_a < a || (prev_a == a && prev_b < b));
+    prev_a = a;
+    prev_b = b;
+  }
+  EXPECT_GT(s["relation"]["overlapping"].get<int>(), 100);
+}
+
+TEST(CliAnswers, BundledTenThousandBodyFileIsReproducible) {
+  const auto dir = work_dir();
+  const Outcome gen = run_program(make_scene, {"bodies", "--count", "10000", "--seed", "1", "-o",
+                                               (dir / "bodies.csv").string()}, dir);
+  ASSERT_EQ(gen.code, 0) << describe(gen);
+  EXPECT_TRUE(slurp(dir / "bodies.csv") == slurp(scenes / "bodies_10k.csv"))
+      << "examples/scenes/bodies_10k.csv differs from `ellipsect_make_scene bodies --count 10000 --seed 1`";
+}
+
+// ------------------------------------------------------------------------------------------
+// Bad input: message (file, line or JSON path, field), exit code 2, no output file.
+// ------------------------------------------------------------------------------------------
+
+struct BadCase {
+  std::string name;     // file name (its extension picks the format)
+  std::string content;
+  std::vector<std::string> expected;  // substrings of the message
+  std::vector<std::string> extra_args = {};
+  std::string named_file = {};  // the file the message must name (default: this one)
+};
+
+void expect_bad_input(const BadCase& c, const fs::path& dir, int expected_code = 2) {
+  SCOPED_TRACE(c.name);
+  write_file(dir / c.name, c.content);
+  std::vector<std::string> args = {"check", (dir / c.name).string(), "-o", (dir / "out.json").string()};
+  args.insert(args.end(), c.extra_args.begin(), c.extra_args.end());
+  const Outcome r = run_cli(args, dir);
+  EXPECT_EQ(r.code, expected_code) << describe(r);
+  const std::string named = (dir / (c.named_file.empty() ? c.name : c.named_file)).string();
+  EXPECT_NE(r.err.find(named + ":"), std::string::npos) << "message does not name " << named << ": " << r.err;
+  for (const auto& s : c.expected) EXPECT_NE(r.err.find(s), std::string::npos) << "expected \"" << s << "\" in: " << r.err;
+  EXPECT_TRUE(r.out.empty()) << r.out;
+  expect_no_output(dir, "out.json");
+}
+
+TEST(CliBadInput, MalformedFiles) {
+  const auto dir = work_dir();
+  expect_bad_input({"malformed.json", "{\n  \"bodies\": [\n    {\"id\": \"a\", \"center\": [0, 0], \"radius\": 1},\n  ]\n}\n",
+                    {"malformed.json:4:3: malformed JSON"}}, dir);
+  expect_bad_input({"not_object.json", "[1, 2]", {"$: expected a JSON object"}}, dir);
+  expect_bad_input({"short.csv", "id,x,y,rx,ry\na,0,0,1,1\nb,1,2,1\n", {"short.csv:3: malformed CSV: 4 fields, the header has 5"}}, dir);
+  expect_bad_input({"quote.csv", "id,x,y,rx,ry\na,0,0,1,1\nb,1,\"2,1,1\n", {"quote.csv:3: malformed CSV: unterminated quoted field"}}, dir);
+  expect_bad_input({"header.csv", "id,x,y,rx,ry,colour\na,0,0,1,1,red\n", {"header.csv:1: header: unknown column \"colour\""}}, dir);
+  expect_bad_input({"neither.csv", "p,q\n1,2\n", {"neither.csv:1: header: neither a bodies CSV"}}, dir);
+}
+
+TEST(CliBadInput, MissingFields) {
+  const auto dir = work_dir();
+  expect_bad_input({"noradii.json", R"({"bodies": [{"id": "a", "center": [0, 0]}]})", {"$.bodies[0].radii: missing"}}, dir);
+  expect_bad_input({"noid.json", R"({"bodies": [{"center": [0, 0], "radius": 1}]})", {"$.bodies[0].id: missing"}}, dir);
+  expect_bad_input({"nobodies.json", R"({"pairs": []})", {"$.bodies: missing"}}, dir);
+  expect_bad_input({"nocol.csv", "id,x,y,rx\na,0,0,1\n", {"nocol.csv:1: header: missing column ry"}}, dir);
+  expect_bad_input({"novalue.csv", "id,x,y,rx,ry\na,0,,1,1\n", {"novalue.csv:2: column y: missing value"}}, dir);
+  expect_bad_input({"typo.json", R"({"bodies": [{"id": "a", "center": [0, 0], "radii": [1, 1], "velocty": [1, 0]}]})",
+                    {"$.bodies[0].velocty: unknown key"}}, dir);
+}
+
+TEST(CliBadInput, WrongTypes) {
+  const auto dir = work_dir();
+  expect_bad_input({"type.json", R"({"bodies": [{"id": "a", "center": [0, "zero"], "radius": 1}]})",
+                    {"$.bodies[0].center[1]: expected a number, got a string"}}, dir);
+  expect_bad_input({"type2.json", R"({"bodies": [{"id": "a", "center": [0, 0], "radii": 1}]})",
+                    {"$.bodies[0].radii: expected an array of 2 numbers, got a number"}}, dir);
+  expect_bad_input({"type3.json", R"({"bodies": [{"id": true, "center": [0, 0], "radius": 1}]})",
+                    {"$.bodies[0].id: expected a string"}}, dir);
+  expect_bad_input({"type.csv", "id,x,y,rx,ry\na,0,0,1,1\nb,1,2,1,x1\n", {"type.csv:3: column ry: not a number: \"x1\""}}, dir);
+}
+
+TEST(CliBadInput, NonFiniteNumbers) {
+  const auto dir = work_dir();
+  expect_bad_input({"nan.csv", "id,x,y,rx,ry\na,0,0,1,1\nb,1,nan,1,1\n", {"nan.csv:3: column y: must be finite, got nan"}}, dir);
+  expect_bad_input({"inf.csv", "id,x,y,rx,ry,vx,vy\na,0,0,1,1,inf,0\n", {"inf.csv:2: column vx: must be finite, got inf"}}, dir);
+  expect_bad_input({"big.csv", "id,x,y,rx,ry\na,1e999,0,1,1\n", {"big.csv:2: column x: must be finite"}}, dir);
+  expect_bad_input({"inf.json", R"({"bodies": [{"id": "a", "center": [0, 1e999], "radius": 1}]})",
+                    {"inf.json:1:39: number 1e999 is out of range"}}, dir);
+  expect_bad_input({"nan.json", R"({"bodies": [{"id": "a", "center": [0, NaN], "radius": 1}]})",
+                    {"nan.json:1:", "malformed JSON"}}, dir);
+}
+
+TEST(CliBadInput, NonPositiveRadii) {
+  const auto dir = work_dir();
+  expect_bad_input({"neg.json", R"({"bodies": [{"id": "a", "center": [0, 0], "radii": [1, -2]}]})",
+                    {"$.bodies[0].radii[1]: must be > 0, got -2"}}, dir);
+  expect_bad_input({"zero.json", R"({"bodies": [{"id": "a", "center": [0, 0, 0], "radius": 0}]})",
+                    {"$.bodies[0].radius: must be > 0, got 0"}}, dir);
+  expect_bad_input({"zero.csv", "id,x,y,rx,ry\na,0,0,1,1\nb,1,2,1,0\n", {"zero.csv:3: column ry: must be > 0, got 0"}}, dir);
+  expect_bad_input({"pairs.csv", "a_x,a_y,a_rx,a_ry,b_x,b_y,b_rx,b_ry\n0,0,1,1,3,0,1,1\n0,0,1,1,3,0,-1,1\n",
+                    {"pairs.csv:3: column b_rx: must be > 0, got -1"}}, dir);
+}
+
+TEST(CliBadInput, NonUnitQuaternionsAreRejected) {
+  const auto dir = work_dir();
+  expect_bad_input({"quat.json",
+                    R"({"bodies": [{"id": "a", "center": [0, 0, 0], "radii": [1, 2, 3], "quaternion": [1, 0.1, 0, 0]}]})",
+                    {"$.bodies[0].quaternion: not a unit quaternion: |q| = 1.00498"}}, dir);
+  // 0.7071 written with four digits is 1e-5 off: rejected, not silently normalized.
+  expect_bad_input({"quat.csv", "id,x,y,z,rx,ry,rz,qw,qx,qy,qz\na,0,0,0,1,1,1,0.7071,0.7071,0,0\n",
+                    {"quat.csv:2: columns qw,qx,qy,qz: not a unit quaternion"}}, dir);
+  expect_bad_input({"rot.json",
+                    R"({"bodies": [{"id": "a", "center": [0, 0, 0], "radius": 1, "rotation": [[1, 0, 0], [0, 1, 0], [0, 0, -1]]}]})",
+                    {"$.bodies[0].rotation: is a reflection"}}, dir);
+  // Within 1e-6 of unit length: accepted (and normalized).
+  const auto ok = dir / "ok.json";
+  write_file(ok, R"({"bodies": [{"id": "a", "center": [0, 0, 0], "radii": [1, 2, 3], "quaternion": [0.70710678, 0.70710678, 0, 0]},
+                                {"id": "b", "center": [5, 0, 0], "radius": 1}]})");
+  const Outcome r = run_cli({"check", ok.string()}, dir);
+  EXPECT_EQ(r.code, 0) << describe(r);
+}
+
+TEST(CliBadInput, MixedDimensions) {
+  const auto dir = work_dir();
+  expect_bad_input({"mixed.json",
+                    R"({"bodies": [{"id": "a", "center": [0, 0], "radius": 1}, {"id": "b", "center": [0, 0, 1], "radius": 1}]})",
+                    {"$.bodies[1].center: has 3 components, but the scene is 2D", "cannot be mixed"}}, dir);
+  expect_bad_input({"mixed2.json",
+                    R"({"dimension": 3, "bodies": [{"id": "a", "center": [0, 0, 0], "radius": 1, "angle": 0.5}]})",
+                    {"$.bodies[0].angle: an angle orients a 2D body"}}, dir);
+  expect_bad_input({"mixed.csv", "a_x,a_y,a_z,a_rx,a_ry,a_rz,b_x,b_y,b_rx,b_ry\n0,0,0,1,1,1,2,2,1,1\n",
+                    {"mixed.csv:1: header: column a_z", "cannot be mixed"}}, dir);
+}
+
+TEST(CliBadInput, UnknownPairIds) {
+  const auto dir = work_dir();
+  expect_bad_input({"unknown.json",
+                    R"({"bodies": [{"id": "a", "center": [0, 0], "radius": 1}, {"id": "b", "center": [3, 0], "radius": 1}],
+                        "pairs": [["a", "b"], ["a", "c"]]})",
+                    {"$.pairs[1][1]: unknown body id \"c\""}}, dir);
+  expect_bad_input({"dup.json",
+                    R"({"bodies": [{"id": "a", "center": [0, 0], "radius": 1}, {"id": "a", "center": [3, 0], "radius": 1}]})",
+                    {"$.bodies[1].id: duplicate id \"a\""}}, dir);
+  write_file(dir / "pairs.csv", "a,b\na,b\nb,zz\n");
+  expect_bad_input({"bodies.csv", "id,x,y,rx,ry\na,0,0,1,1\nb,3,0,1,1\n",
+                    {"pairs.csv:3: column b: unknown body id \"zz\""},
+                    {"--pairs", (dir / "pairs.csv").string()},
+                    "pairs.csv"}, dir);
+}
+
+TEST(CliBadInput, EmptyFiles) {
+  const auto dir = work_dir();
+  expect_bad_input({"empty.json", "", {"empty.json: empty file"}}, dir);
+  expect_bad_input({"blank.json", "  \n\n", {"blank.json: empty file"}}, dir);
+  expect_bad_input({"empty.csv", "", {"empty.csv: empty file"}}, dir);
+  expect_bad_input({"header_only.csv", "id,x,y,rx,ry\n", {"header_only.csv: no bodies"}}, dir);
+  expect_bad_input({"pairs_header_only.csv", "a_x,a_y,a_rx,a_ry,b_x,b_y,b_rx,b_ry\n", {"pairs_header_only.csv: no pairs"}}, dir);
+  expect_bad_input({"no_bodies.json", R"({"bodies": []})", {"$.bodies: empty"}}, dir);
+}
+
+TEST(CliBadInput, AnErrorDeepInAStreamLeavesNoOutputFile) {
+  const auto dir = work_dir();
+  const long rows = 50000;
+  const Outcome gen = run_program(make_scene, {"pairs", "--count", std::to_string(rows), "--seed", "9", "-o",
+                                           (dir / "pairs.csv").string()}, dir);
+  ASSERT_EQ(gen.code, 0) << describe(gen);
+  // Break the radius of row 40,000 (line 40,001): several chunks have been written by then.
+  std::string text = slurp(dir / "pairs.csv");
+  std::size_t pos = 0;
+  for (int line = 1; line < 40001; ++line) pos = text.find('\n', pos) + 1;
+  const std::size_t comma = text.find(',', text.find(',', pos) + 1);  // after a_x, a_y
+  ASSERT_NE(comma, std::string::npos);
+  text = text.substr(0, comma + 1) + "-" + text.substr(comma + 1);
+  write_file(dir / "pairs.csv", text);
+  for (const std::string format : {"json", "csv"}) {
+    const Outcome r = run_cli({"check", (dir / "pairs.csv").string(), "--format", format, "-o",
+                             (dir / "out.json").string()}, dir);
+    EXPECT_EQ(r.code, 2) << describe(r);
+    EXPECT_NE(r.err.find("pairs.csv:40001: column a_rx: must be > 0"), std::string::npos) << r.err;
+    expect_no_output(dir, "out.json");
+  }
+}
+
+TEST(CliBadInput, IoErrorsExitWithThree) {
+  const auto dir = work_dir();
+  const Outcome missing = run_cli({"check", (dir / "nowhere.json").string()}, dir);
+  EXPECT_EQ(missing.code, 3) << describe(missing);
+  EXPECT_NE(missing.err.find("nowhere.json: cannot open"), std::string::npos);
+  const Outcome unwritable = run_cli({"check", (scenes / "swept_2d.json").string(), "-o",
+                                    (dir / "no" / "such" / "dir.json").string()}, dir);
+  EXPECT_EQ(unwritable.code, 3) << describe(unwritable);
+  EXPECT_NE(unwritable.err.find("dir.json"), std::string::npos);
+}
+
+// ------------------------------------------------------------------------------------------
+// Render
+// ------------------------------------------------------------------------------------------
+
+namespace pt = boost::property_tree;
+
+struct SvgSummary {
+  pt::ptree root;
+  int bodies = 0, overlapping = 0, contacts = 0, contact_points = 0, normals = 0, starts = 0, paths = 0;
+  bool legend = false;
+  std::string attr(const char* name) const { return root.get<std::string>(std::string("svg.<xmlattr>.") + name, ""); }
+};
+
+void walk(const pt::ptree& node, const std::string& tag, SvgSummary& s) {
+  const std::string cls = node.get<std::string>("<xmlattr>.class", "");
+  const std::string id = node.get<std::string>("<xmlattr>.id", "");
+  if (tag == "ellipse" && (cls == "body" || cls == "body overlapping")) ++s.bodies;
+  if (tag == "ellipse" && cls == "body overlapping") ++s.overlapping;
+  if (tag == "ellipse" && cls == "start") ++s.starts;
+  if (tag == "line" && cls == "path") ++s.paths;
+  if (tag == "g" && cls == "contact") ++s.contacts;
+  if (tag == "circle" && cls == "contact-point") ++s.contact_points;
+  if (tag == "line" && cls == "contact-normal") ++s.normals;
+  if (tag == "g" && id == "legend") s.legend = true;
+  for (const auto& [child_tag, child] : node) walk(child, child_tag, s);
+}
+
+SvgSummary read_svg(const fs::path& p) {
+  SvgSummary s;
+  std::ifstream f(p);
+  pt::read_xml(f, s.root);  // throws on malformed XML
+  for (const auto& [tag, child] : s.root) walk(child, tag, s);
+  return s;
+}
+
+TEST(CliRender, SweptSceneAtFirstContact) {
+  const auto dir = work_dir();
+  const std::string scene = (scenes / "swept_2d.json").string();
+  const Outcome r = run_cli({"render", scene, "-o", (dir / "swept.svg").string()}, dir);
+  ASSERT_EQ(r.code, 0) << describe(r);
+  const SvgSummary s = read_svg(dir / "swept.svg");
+  EXPECT_EQ(s.bodies, 3);  // A, B, C
+  EXPECT_EQ(s.contacts, 1);
+  EXPECT_EQ(s.contact_points, 1);
+  EXPECT_EQ(s.normals, 1);
+  EXPECT_EQ(s.overlapping, 0);  // touching at the contact time is not overlap
+  EXPECT_EQ(s.starts, 1);       // B moves: its start position is drawn
+  EXPECT_EQ(s.paths, 1);
+  EXPECT_TRUE(s.legend);
+  // The default time is the first contact reported by `check`.
+  const Outcome c = run_cli({"check", scene}, dir);
+  const json out = parse_json(c.out);
+  EXPECT_EQ(std::stod(s.attr("data-time")), out["results"][0]["contact"]["time"].get<double>());
+  EXPECT_EQ(s.attr("data-bodies"), "3");
+}
+
+TEST(CliRender, OverlappingBodiesAreRedAtTheChosenTime) {
+  const auto dir = work_dir();
+  // Niemitalo example 2: one ellipse inside the other (containment counts as overlap).
+  const Outcome r = run_cli({"render", (scenes / "niemitalo_two_ellipses.json").string(), "-o", (dir / "n.svg").string()}, dir);
+  ASSERT_EQ(r.code, 0) << describe(r);
+  const SvgSummary s = read_svg(dir / "n.svg");
+  EXPECT_EQ(s.bodies, 2);
+  EXPECT_EQ(s.overlapping, 2);
+  EXPECT_EQ(s.contacts, 0);
+  // Circles scene at t = 4: B (center (2, 3), r 3) overlaps A; D, E, F overlap or touch A.
+  write_file(dir / "circles.json", circles_scene);
+  const Outcome r4 = run_cli({"render", (dir / "circles.json").string(), "--time", "4", "-o", (dir / "c.svg").string()}, dir);
+  ASSERT_EQ(r4.code, 0) << describe(r4);
+  const SvgSummary s4 = read_svg(dir / "c.svg");
+  EXPECT_EQ(s4.bodies, 6);
+  EXPECT_EQ(s4.attr("data-time"), "4");
+  EXPECT_EQ(s4.overlapping, 4);  // A, B, D, E (F only touches A; C is apart)
+}
+
+TEST(CliRender, ThreeDimensionalSceneProjectedOntoEachPlane) {
+  const auto dir = work_dir();
+  for (const std::string plane : {"xy", "yz", "xz"}) {
+    const fs::path out = dir / ("swept3d_" + plane + ".svg");
+    const Outcome r = run_cli({"render", (scenes / "swept_3d.json").string(), "--plane", plane, "-o", out.string()}, dir);
+    ASSERT_EQ(r.code, 0) << describe(r);
+    const SvgSummary s = read_svg(out);
+    EXPECT_EQ(s.bodies, 2) << plane;
+    EXPECT_EQ(s.contact_points, 1) << plane;
+    EXPECT_EQ(s.attr("data-plane"), plane);
+    EXPECT_EQ(s.attr("data-dimension"), "3");
+  }
+}
+
+TEST(CliRender, OneRowOfAPairsCsv) {
+  const auto dir = work_dir();
+  write_file(dir / "inline.csv",
+             "a_id,a_x,a_y,a_rx,a_ry,a_angle,a_vx,a_vy,b_id,b_x,b_y,b_rx,b_ry,b_angle,b_vx,b_vy\n"
+             "A,0,0,3,1,0.5,0,0,C,-6,-3,1,1,0,0,0\n"
+             "A,0,0,3,1,0.5,0,0,B,8,1.5,1.5,0.5,-0.3,-2,-0.25\n");
+  const Outcome r = run_cli({"render", (dir / "inline.csv").string(), "--row", "2", "--window", "0", "10", "-o",
+                             (dir / "row2.svg").string()}, dir);
+  ASSERT_EQ(r.code, 0) << describe(r);
+  const SvgSummary s = read_svg(dir / "row2.svg");
+  EXPECT_EQ(s.bodies, 2);
+  EXPECT_EQ(s.contact_points, 1);
+  const Outcome bad = run_cli({"render", (dir / "inline.csv").string(), "--row", "3", "-o", (dir / "row3.svg").string()}, dir);
+  EXPECT_EQ(bad.code, 2) << describe(bad);
+  EXPECT_NE(bad.err.find("row 3 does not exist"), std::string::npos) << bad.err;
+  expect_no_output(dir, "row3.svg");
+}
+
+TEST(CliRender, TenThousandBodies) {
+  const auto dir = work_dir();
+  const Outcome r = run_cli({"render", (scenes / "bodies_10k.csv").string(), "-o", (dir / "b.svg").string()}, dir);
+  ASSERT_EQ(r.code, 0) << describe(r);
+  const SvgSummary s = read_svg(dir / "b.svg");
+  EXPECT_EQ(s.bodies, 10000);
+  EXPECT_GT(s.overlapping, 100);
+  // The same overlapping bodies as `check` finds.
+  const Outcome c = run_cli({"check", (scenes / "bodies_10k.csv").string()}, dir);
+  ASSERT_EQ(c.code, 0) << describe(c);
+  const json out = parse_json(c.out);
+  std::set<std::string> red;
+  for (const auto& rec : out["results"])
+    if (rec["relation"] != "separated" && rec["relation"] != "touching") {
+      red.insert(rec["a"].get<std::string>());
+      red.insert(rec["b"].get<std::string>());
+    }
+  EXPECT_EQ(static_cast<std::size_t>(s.overlapping), red.size());
+}
+
+TEST(CliRender, PngThroughRsvgConvert) {
+  if (std::system("command -v rsvg-convert >/dev/null 2>&1") != 0) GTEST_SKIP() << "rsvg-convert not installed";
+  const auto dir = work_dir();
+  const Outcome r = run_cli({"render", (scenes / "swept_2d.json").string(), "-o", (dir / "swept.png").string()}, dir);
+  ASSERT_EQ(r.code, 0) << describe(r);
+  const std::string png = slurp(dir / "swept.png");
+  ASSERT_GT(png.size(), 1000u);
+  EXPECT_EQ(png.substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8));
+  // No temporary file is left.
+  for (const auto& e : fs::directory_iterator(dir))
+    EXPECT_EQ(e.path().filename().string().find(".tmp"), std::string::npos) << e.path();
+}
+
+// ------------------------------------------------------------------------------------------
+// Bench
+// ------------------------------------------------------------------------------------------
+
+TEST(CliBench, PrintsQueriesPerSecond) {
+  const auto dir = work_dir();
+  const Outcome r = run_cli({"bench", (scenes / "swept_3d.json").string(), "--min-time", "0.02"}, dir);
+  ASSERT_EQ(r.code, 0) << describe(r);
+  EXPECT_NE(r.out.find("queries/s"), std::string::npos) << r.out;
+  for (const char* q : {"overlap", "classify", "contact"}) EXPECT_NE(r.out.find(q), std::string::npos) << q;
+  const Outcome j = run_cli({"bench", (scenes / "bodies_10k.csv").string(), "--min-time", "0.02", "--query", "overlap",
+                           "--format", "json", "-j", "1"}, dir);
+  ASSERT_EQ(j.code, 0) << describe(j);
+  const json out = parse_json(j.out);
+  ASSERT_EQ(out["results"].size(), 1u);
+  EXPECT_EQ(out["results"][0]["query"], "overlap");
+  EXPECT_GT(out["results"][0]["queries_per_second"].get<double>(), 0);
+  EXPECT_EQ(out["bodies"], 10000);
+}
+
+// ------------------------------------------------------------------------------------------
+// A million pairs in bounded memory
+// ------------------------------------------------------------------------------------------
+
+// Peak RSS measured on the development machine (Release build, 2 threads): about 20 MB for
+// 1,000,000 pairs with velocities (118 MB of CSV in, 109 MB out) and 18 MB for 100,000:
+// memory holds two chunks of 16,384 pairs, not the file. The bound leaves room for
+// allocator and thread-stack slack; AddressSanitizer's quarantine and shadow memory need
+// more (56 MB measured for 1,000,000 pairs).
+#if defined(__SANITIZE_ADDRESS__)
+constexpr long rss_bound_kb = 256 * 1024;
+#else
+constexpr long rss_bound_kb = 64 * 1024;
+#endif
+
+TEST(CliLarge, MillionPairsStreamInBoundedMemory) {
+  const auto dir = work_dir();
+  const long rows = std::max(20000L, static_cast<long>(1000000 * case_scale()));
+  const fs::path in = dir / "pairs.csv", out = dir / "results.csv";
+  const Outcome gen = run_program(make_scene, {"pairs", "--count", std::to_string(rows), "--seed", "11", "--velocity",
+                                           "-o", in.string()}, dir);
+  ASSERT_EQ(gen.code, 0) << describe(gen);
+  const Outcome r = run_cli({"check", in.string(), "--format", "csv", "--window", "0", "20", "-o", out.string(),
+                           "--progress", "always", "--stats"}, dir);
+  ASSERT_EQ(r.code, 0) << describe(r);
+  std::printf("[ measured ] %ld pairs: peak RSS %.1f MB, %.2f s wall, %.3g pairs/s (input %.0f MB)\n", rows,
+              static_cast<double>(r.max_rss_kb) / 1024.0, r.seconds, static_cast<double>(rows) / r.seconds,
+              static_cast<double>(fs::file_size(in)) / 1e6);
+  ::testing::Test::RecordProperty("peak_rss_kb", std::to_string(r.max_rss_kb));
+  EXPECT_LT(r.max_rss_kb, rss_bound_kb) << "peak RSS " << r.max_rss_kb << " kB";
+  // Every pair answered, in input order.
+  std::ifstream f(out);
+  std::string line;
+  long n = 0, last_index = -1;
+  bool ordered = true;
+  std::getline(f, line);  // header
+  while (std::getline(f, line)) {
+    const long index = std::stol(line.substr(0, line.find(',')));
+    ordered = ordered && index == last_index + 1;
+    last_index = index;
+    ++n;
+  }
+  EXPECT_EQ(n, rows);
+  EXPECT_TRUE(ordered);
+  EXPECT_NE(r.err.find("pairs in"), std::string::npos) << r.err;  // --stats
+  if (r.seconds > 1.5) {
+    EXPECT_NE(r.err.find("ellipsect: ["), std::string::npos) << "no progress bar: " << r.err;
+  }
+  fs::remove(in);
+  fs::remove(out);
+}
+
+}  // namespace

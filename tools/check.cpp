@@ -1,0 +1,608 @@
+// `ellipsect check`: the relation (and first contact) of every pair, streamed in input
+// order, computed on all cores.
+#include "broad_phase.hpp"
+#include "commands.hpp"
+#include "common.hpp"
+
+#include <ellipsect/version.hpp>
+
+#include <array>
+#include <chrono>
+#include <cstdio>
+#include <future>
+#include <limits>
+
+namespace ellipsect::cli {
+
+namespace {
+
+constexpr std::size_t chunk_size = 16384;  // pairs read, evaluated and written together
+constexpr std::size_t block_size = 256;    // pairs per unit of parallel work
+constexpr std::size_t report_all_limit = 1000;  // bodies: up to this many, --report auto lists every pair
+
+constexpr int n_relations = 6;
+constexpr int n_statuses = 6;
+
+struct Counters {
+  std::uint64_t pairs = 0;
+  std::array<std::uint64_t, n_relations> relation{};
+  std::array<std::uint64_t, n_statuses> contact{};
+  void add(const Counters& o) {
+    pairs += o.pairs;
+    for (int i = 0; i < n_relations; ++i) relation[static_cast<std::size_t>(i)] += o.relation[static_cast<std::size_t>(i)];
+    for (int i = 0; i < n_statuses; ++i) contact[static_cast<std::size_t>(i)] += o.contact[static_cast<std::size_t>(i)];
+  }
+};
+
+struct BlockOut {
+  std::string text;
+  Counters counts;
+  std::string error;
+};
+
+enum class Format { json, csv };
+
+void append_vec(std::string& out, const double* v, int n) {
+  out += '[';
+  for (int i = 0; i < n; ++i) {
+    if (i) out += ", ";
+    append_number(out, v[i]);
+  }
+  out += ']';
+}
+
+template <int N>
+void append_record(std::string& out, Format format, std::uint64_t index, std::uint64_t line, const std::string* a,
+                   const std::string* b, const PairResult<N>& r, const Queries& q) {
+  const Contact<double, N>& c = r.contact;
+  // Only read when the contact was computed (the fields are set then).
+  const bool has_point = q.contact && std::isfinite(c.point[0]);
+  const bool has_time = q.contact && std::isfinite(c.time);
+  if (format == Format::json) {
+    out += "    {\"index\": ";
+    out += std::to_string(index);
+    if (line != 0) {
+      out += ", \"line\": ";
+      out += std::to_string(line);
+    }
+    out += ", \"a\": ";
+    if (a != nullptr) append_json_string(out, *a); else out += "null";
+    out += ", \"b\": ";
+    if (b != nullptr) append_json_string(out, *b); else out += "null";
+    if (q.relation) {
+      out += ", \"relation\": \"";
+      out += to_string(r.relation);
+      out += '"';
+    }
+    if (q.contact) {
+      out += ", \"contact\": {\"status\": \"";
+      out += to_string(c.status);
+      out += "\", \"time\": ";
+      if (has_time) append_number(out, c.time); else out += "null";
+      out += ", \"point\": ";
+      if (has_point) append_vec(out, c.point.data(), N); else out += "null";
+      out += ", \"normal\": ";
+      if (has_point) append_vec(out, c.normal.data(), N); else out += "null";
+      out += ", \"iterations\": ";
+      out += std::to_string(c.iterations);
+      out += '}';
+    }
+    out += '}';
+    return;
+  }
+  out += std::to_string(index);
+  if (line != 0) {
+    out += ',';
+    out += std::to_string(line);
+  }
+  out += ',';
+  if (a != nullptr) append_csv_field(out, *a);
+  out += ',';
+  if (b != nullptr) append_csv_field(out, *b);
+  if (q.relation) {
+    out += ',';
+    out += to_string(r.relation);
+  }
+  if (q.contact) {
+    out += ',';
+    out += to_string(c.status);
+    out += ',';
+    if (has_time) append_number(out, c.time);
+    for (int i = 0; i < N; ++i) {
+      out += ',';
+      if (has_point) append_number(out, c.point[i]);
+    }
+    for (int i = 0; i < N; ++i) {
+      out += ',';
+      if (has_point) append_number(out, c.normal[i]);
+    }
+    out += ',';
+    out += std::to_string(c.iterations);
+  }
+  out += '\n';
+}
+
+std::string csv_header(int dim, bool line_column, const Queries& q) {
+  static const char* axes[3] = {"x", "y", "z"};
+  std::string h = "index";
+  if (line_column) h += ",line";
+  h += ",a,b";
+  if (q.relation) h += ",relation";
+  if (q.contact) {
+    h += ",contact_status,contact_time";
+    for (int i = 0; i < dim; ++i) h += std::string(",contact_") + axes[i];
+    for (int i = 0; i < dim; ++i) h += std::string(",normal_") + axes[i];
+    h += ",contact_iterations";
+  }
+  h += '\n';
+  return h;
+}
+
+void append_window(std::string& out, const Window& w) {
+  out += '[';
+  append_number(out, w.t0);
+  out += ", ";
+  if (std::isfinite(w.t1)) append_number(out, w.t1); else out += "null";
+  out += ']';
+}
+
+std::string json_header(const Input& in, const Window& w, const Queries& q, const std::string& extra) {
+  std::string h = "{\n  \"ellipsect\": \"";
+  h += version;
+  h += "\",\n  \"scene\": ";
+  append_json_string(h, in.path);
+  h += ",\n  \"dimension\": " + std::to_string(in.dim) + ",\n";
+  h += extra;
+  h += "  \"time_window\": ";
+  append_window(h, w);
+  h += ",\n  \"queries\": [";
+  bool first = true;
+  for (const auto& [on, name] : {std::pair{q.relation, "relation"}, std::pair{q.contact, "contact"}}) {
+    if (!on) continue;
+    if (!first) h += ", ";
+    h += std::string("\"") + name + "\"";
+    first = false;
+  }
+  h += "],\n  \"results\": [\n";
+  return h;
+}
+
+std::string json_footer(bool any, std::uint64_t pairs, std::uint64_t listed, const Counters& c, const Queries& q) {
+  std::string f = any ? "\n  ],\n" : "  ],\n";
+  f += "  \"summary\": {\"pairs\": " + std::to_string(pairs) + ", \"listed\": " + std::to_string(listed);
+  if (q.relation) {
+    f += ", \"relation\": {";
+    for (int i = 0; i < n_relations; ++i) {
+      if (i) f += ", ";
+      f += "\"";
+      f += to_string(static_cast<Relation>(i));
+      f += "\": " + std::to_string(c.relation[static_cast<std::size_t>(i)]);
+    }
+    f += '}';
+  }
+  if (q.contact) {
+    f += ", \"contact\": {";
+    for (int i = 0; i < n_statuses; ++i) {
+      if (i) f += ", ";
+      f += "\"";
+      f += to_string(static_cast<ContactStatus>(i));
+      f += "\": " + std::to_string(c.contact[static_cast<std::size_t>(i)]);
+    }
+    f += '}';
+  }
+  f += "}\n}\n";
+  return f;
+}
+
+template <int N>
+void count(Counters& c, const PairResult<N>& r, const Queries& q) {
+  ++c.pairs;
+  if (q.relation) ++c.relation[static_cast<std::size_t>(r.relation)];
+  if (q.contact) ++c.contact[static_cast<std::size_t>(r.contact.status)];
+}
+
+Queries resolve_queries(const std::vector<std::string>& names, bool has_velocity) {
+  Queries q;
+  if (names.empty()) {
+    q.relation = true;
+    q.contact = has_velocity;
+    return q;
+  }
+  q.relation = false;
+  for (const auto& n : names) {
+    if (n == "relation") {
+      q.relation = true;
+    } else if (n == "contact") {
+      q.contact = true;
+    } else {
+      throw UsageError("--query: unknown query \"" + n + "\" (available: relation, contact)");
+    }
+  }
+  return q;
+}
+
+// Writes records in input order as chunks complete; shared by both kinds of input.
+class RecordWriter {
+public:
+  RecordWriter(Output& out, Format format, std::string header)
+      : out_(out), format_(format), header_(std::move(header)) {}
+
+  void write_blocks(const std::vector<BlockOut>& blocks, std::size_t n_blocks) {
+    for (std::size_t b = 0; b < n_blocks; ++b)
+      if (!blocks[b].error.empty()) throw BadInput(blocks[b].error);
+    start();
+    for (std::size_t b = 0; b < n_blocks; ++b) {
+      const BlockOut& blk = blocks[b];
+      if (blk.text.empty()) continue;
+      if (format_ == Format::json && any_) out_.write(",\n");
+      out_.write(blk.text);
+      any_ = true;
+      counts.add(blk.counts);
+    }
+  }
+  void start() {
+    if (started_) return;
+    out_.write(header_);
+    started_ = true;
+  }
+  bool any() const { return any_; }
+  Counters counts;
+
+private:
+  Output& out_;
+  Format format_;
+  std::string header_;
+  bool started_ = false;
+  bool any_ = false;
+};
+
+struct Job {
+  std::uint32_t i, j;
+  bool deduced;  // left out by the broad phase: separated, no contact
+};
+
+// Three stages run concurrently: reading chunk k + 1 (one thread), evaluating chunk k (all
+// threads) and writing chunk k - 1 (one thread). Chunks and blocks are double-buffered;
+// each stage waits for the one that last used its buffer, so output stays in input order.
+// Chunk needs: std::uint64_t first, n; double fraction.
+template <class Chunk, class Read, class Process>
+std::uint64_t run_pipeline(Read&& read, Process&& process, RecordWriter& writer, Progress& progress) {
+  Chunk chunks[2];
+  std::vector<BlockOut> blocks[2];
+  std::size_t n_blocks[2] = {0, 0};
+  std::uint64_t total = 0;
+  std::future<bool> reading = std::async(std::launch::async, [&] { return read(chunks[0]); });
+  std::future<void> writing;
+  for (std::size_t k = 0;; ++k) {
+    const std::size_t c = k % 2;
+    if (!reading.get()) break;
+    reading = std::async(std::launch::async, [&, k] { return read(chunks[(k + 1) % 2]); });
+    n_blocks[c] = process(chunks[c], blocks[c]);
+    total = chunks[c].first + chunks[c].n;
+    if (writing.valid()) writing.get();
+    const double fraction = chunks[c].fraction;
+    writing = std::async(std::launch::async, [&, c, fraction, total] {
+      writer.write_blocks(blocks[c], n_blocks[c]);
+      progress.update(fraction, total);
+    });
+  }
+  if (writing.valid()) writing.get();
+  return total;
+}
+
+struct LineChunk {
+  std::vector<std::string> lines = std::vector<std::string>(chunk_size);
+  std::vector<std::uint64_t> numbers = std::vector<std::uint64_t>(chunk_size);
+  std::uint64_t first = 0, n = 0;
+  double fraction = -1;
+};
+
+struct JobChunk {
+  std::vector<Job> jobs;
+  std::uint64_t first = 0, n = 0;
+  double fraction = -1;
+};
+
+template <int N>
+int check_pairs_csv(const Input& in, const CheckOptions& opt, const Window& w, const Queries& q, Format format,
+                    int threads) {
+  const PairColumns<N> columns = pair_columns<N>(in);
+  LineReader reader(in.path);
+  std::string header_line;
+  std::uint64_t line_number = 0;
+  reader.next(header_line, line_number);  // header
+  Output out(opt.output);
+  Progress progress(opt.common.progress, "pairs");
+  const auto t_start = std::chrono::steady_clock::now();
+  RecordWriter writer(out, format,
+                      format == Format::json ? json_header(in, w, q, "") : csv_header(in.dim, true, q));
+  std::uint64_t next_index = 0;
+  auto read = [&](LineChunk& ch) {
+    std::size_t n = 0;
+    while (n < chunk_size && reader.next(ch.lines[n], ch.numbers[n])) ++n;
+    ch.first = next_index;
+    ch.n = n;
+    next_index += n;
+    ch.fraction = reader.size() ? static_cast<double>(reader.bytes_read()) / static_cast<double>(reader.size()) : -1.0;
+    return n > 0;
+  };
+  auto process = [&](const LineChunk& ch, std::vector<BlockOut>& blocks) {
+    const std::size_t n = ch.n;
+    const std::size_t n_blocks = (n + block_size - 1) / block_size;
+    if (blocks.size() < n_blocks) blocks.resize(n_blocks);
+    parallel_for(n_blocks, threads, [&](std::size_t blk) {
+      BlockOut& o = blocks[blk];
+      o.text.clear();
+      o.error.clear();
+      o.counts = Counters{};
+      RowScratch scratch;
+      const std::size_t end = std::min(n, (blk + 1) * block_size);
+      for (std::size_t k = blk * block_size; k < end; ++k) {
+        try {
+          const auto ab = parse_pair_row<N>(ch.lines[k], ch.numbers[k], columns, in.path, scratch);
+          const PairResult<N> r = evaluate<N>(ab.first, ab.second, w, q);
+          if (format == Format::json && !o.text.empty()) o.text += ",\n";
+          const std::string* a = columns.a.id >= 0 ? &ab.first.id : nullptr;
+          const std::string* b = columns.b.id >= 0 ? &ab.second.id : nullptr;
+          append_record<N>(o.text, format, ch.first + k, ch.numbers[k], a, b, r, q);
+          count<N>(o.counts, r, q);
+        } catch (const BadInput& e) {
+          o.error = e.what();
+          return;
+        }
+      }
+    });
+    return n_blocks;
+  };
+  const std::uint64_t total = run_pipeline<LineChunk>(read, process, writer, progress);
+  if (total == 0) throw BadInput(in.path + ": no pairs (the file has only a header)");
+  progress.finish();
+  if (format == Format::json) out.write(json_footer(writer.any(), total, total, writer.counts, q));
+  out.commit();
+  if (opt.stats) {
+    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
+    std::fprintf(stderr, "ellipsect: %llu pairs in %.3f s (%.4g pairs/s, %d threads)\n",
+                 static_cast<unsigned long long>(total), s, static_cast<double>(total) / s, threads);
+  }
+  return exit_ok;
+}
+
+template <int N>
+int check_bodies(const Input& in, const CheckOptions& opt, const Window& w, const Queries& q, Format format,
+                 int threads) {
+  const auto t_start = std::chrono::steady_clock::now();
+  const BodyScene<N> scene = load_bodies<N>(in);
+  const auto& bodies = scene.bodies;
+  const std::uint64_t n = bodies.size();
+  const std::uint64_t all_pairs = n * (n - 1) / 2;
+
+  // The pair source: fill(jobs, max) appends up to max jobs, returns how many; fraction()
+  // tells how far it has got. Both run on the reading stage only.
+  std::function<std::size_t(std::vector<Job>&, std::size_t)> fill;
+  std::function<double()> fraction = [] { return -1.0; };
+  std::uint64_t total_pairs = 0;  // pairs the summary speaks for
+  std::uint64_t unlisted = 0;     // pairs left out by the broad phase and not listed
+  std::string pair_mode;
+
+  std::optional<PairsFile> pairs_file;
+  std::unordered_map<std::string, std::uint32_t> ids;
+  std::vector<IndexPair> candidates;
+  std::vector<IndexPair> tmp;
+  std::size_t pos = 0;
+  std::uint32_t ci = 0, cj = 1;
+  if (!opt.common.pairs_file.empty()) {
+    ids = id_index<N>(bodies);
+    pairs_file.emplace(opt.common.pairs_file, ids);
+    pair_mode = "pairs file";
+    fill = [&](std::vector<Job>& jobs, std::size_t max) {
+      tmp.clear();
+      const std::size_t k = pairs_file->read(tmp, max);
+      for (const auto& [i, j] : tmp) jobs.push_back({i, j, false});
+      return k;
+    };
+    fraction = [&] { return pairs_file->progress(); };
+  } else if (scene.pairs_listed) {
+    pair_mode = "listed";
+    total_pairs = scene.pairs.size();
+    fill = [&](std::vector<Job>& jobs, std::size_t max) {
+      std::size_t k = 0;
+      for (; k < max && pos < scene.pairs.size(); ++k, ++pos)
+        jobs.push_back({scene.pairs[pos].first, scene.pairs[pos].second, false});
+      return k;
+    };
+    fraction = [&] { return scene.pairs.empty() ? 1.0 : static_cast<double>(pos) / static_cast<double>(scene.pairs.size()); };
+  } else {
+    total_pairs = all_pairs;
+    std::string report = opt.report;
+    if (report == "auto") report = n <= report_all_limit ? "all" : "candidates";
+    if (!opt.broad_phase) report = "all";
+    if (opt.broad_phase) candidates = broad_phase<N>(bodies, w, q.contact);
+    if (report == "candidates") {
+      pair_mode = "broad-phase candidates";
+      unlisted = all_pairs - candidates.size();
+      fill = [&](std::vector<Job>& jobs, std::size_t max) {
+        std::size_t k = 0;
+        for (; k < max && pos < candidates.size(); ++k, ++pos)
+          jobs.push_back({candidates[pos].first, candidates[pos].second, false});
+        return k;
+      };
+      fraction = [&] {
+        return candidates.empty() ? 1.0 : static_cast<double>(pos) / static_cast<double>(candidates.size());
+      };
+    } else {
+      pair_mode = opt.broad_phase ? "all pairs" : "all pairs, no broad phase";
+      fill = [&](std::vector<Job>& jobs, std::size_t max) {
+        std::size_t k = 0;
+        while (k < max && n >= 2 && ci + 1 < n) {
+          bool deduced = false;
+          if (opt.broad_phase) {
+            while (pos < candidates.size() && candidates[pos] < IndexPair{ci, cj}) ++pos;
+            deduced = !(pos < candidates.size() && candidates[pos] == IndexPair{ci, cj});
+          }
+          jobs.push_back({ci, cj, deduced});
+          ++k;
+          if (++cj == n) {
+            ++ci;
+            cj = ci + 1;
+          }
+        }
+        return k;
+      };
+      fraction = [&] {
+        const double i = ci;
+        const double dn = static_cast<double>(n);
+        return all_pairs == 0 ? 1.0 : (i * dn - i * (i + 1) / 2) / static_cast<double>(all_pairs);
+      };
+    }
+  }
+
+  Output out(opt.output);
+  Progress progress(opt.common.progress, "pairs");
+  std::string extra = "  \"bodies\": " + std::to_string(n) + ",\n  \"pair_source\": ";
+  append_json_string(extra, pair_mode);
+  extra += ",\n";
+  RecordWriter writer(out, format, format == Format::json ? json_header(in, w, q, extra) : csv_header(in.dim, false, q));
+  const PairResult<N> sep = separated_result<N>();
+  std::uint64_t next_index = 0;
+  auto read = [&](JobChunk& ch) {
+    ch.jobs.clear();
+    ch.jobs.reserve(chunk_size);
+    ch.n = fill(ch.jobs, chunk_size);
+    ch.first = next_index;
+    next_index += ch.n;
+    ch.fraction = fraction();
+    return ch.n > 0;
+  };
+  auto process = [&](const JobChunk& ch, std::vector<BlockOut>& blocks) {
+    const std::size_t m = ch.n;
+    const std::size_t n_blocks = (m + block_size - 1) / block_size;
+    if (blocks.size() < n_blocks) blocks.resize(n_blocks);
+    parallel_for(n_blocks, threads, [&](std::size_t blk) {
+      BlockOut& o = blocks[blk];
+      o.text.clear();
+      o.error.clear();
+      o.counts = Counters{};
+      const std::size_t end = std::min(m, (blk + 1) * block_size);
+      for (std::size_t k = blk * block_size; k < end; ++k) {
+        const Job& jb = ch.jobs[k];
+        const Body<N>& a = bodies[jb.i];
+        const Body<N>& b = bodies[jb.j];
+        const PairResult<N> r = jb.deduced ? sep : evaluate<N>(a, b, w, q);
+        if (format == Format::json && !o.text.empty()) o.text += ",\n";
+        append_record<N>(o.text, format, ch.first + k, 0, &a.id, &b.id, r, q);
+        count<N>(o.counts, r, q);
+      }
+    });
+    return n_blocks;
+  };
+  const std::uint64_t index = run_pipeline<JobChunk>(read, process, writer, progress);
+  writer.start();
+  progress.finish();
+  if (pairs_file) total_pairs = index;
+  Counters c = writer.counts;
+  c.relation[static_cast<std::size_t>(Relation::separated)] += q.relation ? unlisted : 0;
+  c.contact[static_cast<std::size_t>(ContactStatus::no_contact_in_window)] += q.contact ? unlisted : 0;
+  if (format == Format::json) out.write(json_footer(writer.any(), total_pairs, index, c, q));
+  out.commit();
+  if (opt.stats) {
+    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
+    std::fprintf(stderr, "ellipsect: %llu bodies, %llu pairs (%s), %llu listed, in %.3f s (%d threads)\n",
+                 static_cast<unsigned long long>(n), static_cast<unsigned long long>(total_pairs), pair_mode.c_str(),
+                 static_cast<unsigned long long>(index), s, threads);
+  }
+  return exit_ok;
+}
+
+}  // namespace
+
+template <int N>
+PairResult<N> evaluate(const Body<N>& a, const Body<N>& b, const Window& window, const Queries& queries) {
+  PairResult<N> r;
+  if (window.t0 == 0.0) {
+    if (queries.relation) r.relation = classify(a.shape, b.shape);
+    if (queries.contact) r.contact = first_contact(a.shape, a.velocity, b.shape, b.velocity, window.t1);
+    return r;
+  }
+  // Move both bodies to t0; search [t0, t1] as [0, t1 - t0] from there.
+  Ellipsoid<double, N> a0 = a.shape, b0 = b.shape;
+  try {
+    a0 = a.shape.translated(a.velocity * window.t0);
+    b0 = b.shape.translated(b.velocity * window.t0);
+  } catch (const InputError& e) {
+    throw BadInput("body " + a.id + " or " + b.id + " at the window start t0 = " + number_string(window.t0) + ": " +
+                   e.what());
+  }
+  if (queries.relation) r.relation = classify(a0, b0);
+  if (queries.contact) {
+    r.contact = first_contact(a0, a.velocity, b0, b.velocity, window.t1 - window.t0);
+    r.contact.time += window.t0;
+  }
+  return r;
+}
+
+template <int N>
+PairResult<N> separated_result() {
+  PairResult<N> r;
+  r.relation = Relation::separated;
+  r.contact.status = ContactStatus::no_contact_in_window;
+  r.contact.time = std::numeric_limits<double>::quiet_NaN();
+  r.contact.point.setConstant(std::numeric_limits<double>::quiet_NaN());
+  r.contact.normal.setConstant(std::numeric_limits<double>::quiet_NaN());
+  r.contact.iterations = 0;
+  return r;
+}
+
+Window effective_window(const Input& in, const Common& common) {
+  if (common.window) return *common.window;
+  return in.window;
+}
+
+template <int N>
+PairSet<N> load_pair_set(const Input& in, const Common& common, const Window& window, bool swept, std::size_t limit,
+                         std::uint64_t row) {
+  PairSet<N> set;
+  if (in.kind == InputKind::pairs_csv) {
+    if (!common.pairs_file.empty()) throw UsageError("--pairs applies to bodies scenes, not to a pairs CSV");
+    load_pair_rows<N>(in, limit, set.bodies, set.pairs, row);
+    return set;
+  }
+  BodyScene<N> scene = load_bodies<N>(in);
+  set.bodies = std::move(scene.bodies);
+  if (!common.pairs_file.empty()) {
+    const auto ids = id_index<N>(set.bodies);
+    PairsFile pf(common.pairs_file, ids);
+    while (set.pairs.size() < limit && pf.read(set.pairs, limit - set.pairs.size()) > 0) {
+    }
+  } else if (scene.pairs_listed) {
+    set.pairs = std::move(scene.pairs);
+    if (set.pairs.size() > limit) set.pairs.resize(limit);
+  } else {
+    set.pairs = broad_phase<N>(set.bodies, window, swept);
+    set.pairs_from_broad_phase = true;
+    if (set.pairs.size() > limit) set.pairs.resize(limit);
+  }
+  return set;
+}
+
+int run_check(const CheckOptions& opt) {
+  const Input in = open_input(opt.common.scene);
+  const Window w = effective_window(in, opt.common);
+  const Queries q = resolve_queries(opt.queries, in.has_velocity);
+  const Format format = opt.format == "csv" ? Format::csv : Format::json;
+  const int threads = resolve_threads(opt.common.threads);
+  if (in.kind == InputKind::pairs_csv) {
+    if (!opt.common.pairs_file.empty()) throw UsageError("--pairs applies to bodies scenes, not to a pairs CSV");
+    return in.dim == 2 ? check_pairs_csv<2>(in, opt, w, q, format, threads)
+                       : check_pairs_csv<3>(in, opt, w, q, format, threads);
+  }
+  return in.dim == 2 ? check_bodies<2>(in, opt, w, q, format, threads) : check_bodies<3>(in, opt, w, q, format, threads);
+}
+
+template PairResult<2> evaluate<2>(const Body<2>&, const Body<2>&, const Window&, const Queries&);
+template PairResult<3> evaluate<3>(const Body<3>&, const Body<3>&, const Window&, const Queries&);
+template PairResult<2> separated_result<2>();
+template PairResult<3> separated_result<3>();
+template PairSet<2> load_pair_set<2>(const Input&, const Common&, const Window&, bool, std::size_t, std::uint64_t);
+template PairSet<3> load_pair_set<3>(const Input&, const Common&, const Window&, bool, std::size_t, std::uint64_t);
+
+}  // namespace ellipsect::cli

@@ -1,0 +1,95 @@
+// The commands of the `ellipsect` program and the per-pair evaluation they share.
+#pragma once
+
+#include "output.hpp"
+#include "scene.hpp"
+
+#include <ellipsect/classify.hpp>
+#include <ellipsect/contact.hpp>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace ellipsect::cli {
+
+// Which answers `check` computes per pair. New query families (distance, penetration)
+// add a flag here, a key in the JSON record and columns in the CSV record.
+struct Queries {
+  bool relation = true;
+  bool contact = false;
+};
+
+template <int N>
+struct PairResult {
+  Relation relation = Relation::separated;
+  Contact<double, N> contact;
+};
+
+// Evaluates one pair over the window: the relation at t0, and the first contact in
+// [t0, t1] (bodies move as center + t * velocity; the contact time is absolute).
+template <int N>
+PairResult<N> evaluate(const Body<N>& a, const Body<N>& b, const Window& window, const Queries& queries);
+
+// The answer the broad phase implies for a pair it left out: separated, no contact.
+template <int N>
+PairResult<N> separated_result();
+
+// Settings common to the commands.
+struct Common {
+  std::string scene;
+  std::string pairs_file;            // --pairs: a,b ids (bodies scenes)
+  std::optional<Window> window;      // --window overrides the scene's
+  int threads = 0;                   // 0: all hardware threads
+  Progress::Mode progress = Progress::Mode::automatic;
+};
+
+struct CheckOptions {
+  Common common;
+  std::string output;                 // "" or "-": stdout
+  std::string format = "json";        // json | csv
+  std::vector<std::string> queries;   // empty: relation, plus contact when there are velocities
+  std::string report = "auto";        // auto | all | candidates
+  bool broad_phase = true;
+  bool stats = false;
+};
+
+struct RenderOptions {
+  Common common;
+  std::string output;
+  std::optional<double> time;
+  std::string plane = "xy";
+  int width = 800;
+  std::uint64_t row = 1;  // pairs CSV: which row to draw
+};
+
+struct BenchOptions {
+  Common common;
+  std::vector<std::string> queries;  // overlap, classify, contact
+  double min_time = 0.5;
+  std::size_t limit = 100000;
+  std::string format = "text";       // text | json
+  std::string output;
+};
+
+int run_check(const CheckOptions& options);
+int run_render(const RenderOptions& options);
+int run_bench(const BenchOptions& options);
+
+// The window to use: --window, else the scene's, else [0, inf).
+Window effective_window(const Input& in, const Common& common);
+
+// Bodies and the pairs to evaluate (listed, from --pairs, or from the broad phase), for
+// render and bench. `swept`: broad-phase boxes over the window.
+template <int N>
+struct PairSet {
+  std::vector<Body<N>> bodies;
+  std::vector<IndexPair> pairs;
+  bool pairs_from_broad_phase = false;
+};
+
+template <int N>
+PairSet<N> load_pair_set(const Input& in, const Common& common, const Window& window, bool swept, std::size_t limit,
+                         std::uint64_t row);
+
+}  // namespace ellipsect::cli

@@ -1,0 +1,72 @@
+// Shared pieces of the `ellipsect` command-line program: errors and exit codes, number
+// and string formatting, the parallel loop.
+#pragma once
+
+#include <charconv>
+#include <cmath>
+#include <cstdint>
+#include <functional>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+
+namespace ellipsect::cli {
+
+// Exit codes (documented in docs/cli.md).
+enum ExitCode : int {
+  exit_ok = 0,
+  exit_usage = 1,      // bad command line
+  exit_bad_input = 2,  // the scene (or pairs file) is malformed or invalid
+  exit_io = 3,         // a file cannot be read or written, rsvg-convert missing or failed
+  exit_internal = 4,   // an unexpected internal error
+};
+
+// A problem with the input's content. The message names the file, the line (CSV) or the
+// JSON path, and the field.
+struct BadInput : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// A file that cannot be opened, read or written.
+struct IoError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// A bad option value found after parsing (e.g. --plane for a 2D scene).
+struct UsageError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// Shortest decimal that reads back as the same double ("nan"/"inf" are never written:
+// callers write null or an empty field for non-finite values).
+inline void append_number(std::string& out, double x) {
+  char buf[32];
+  const auto r = std::to_chars(buf, buf + sizeof buf, x);
+  out.append(buf, r.ptr);
+}
+
+inline std::string number_string(double x) {
+  std::string s;
+  append_number(s, x);
+  return s;
+}
+
+// A JSON string literal (quotes included).
+void append_json_string(std::string& out, std::string_view s);
+
+// A CSV field, quoted when it holds a comma, a quote, a line break or leading/trailing
+// blanks.
+void append_csv_field(std::string& out, std::string_view s);
+
+// Parses a whole field as a double (leading '+' and surrounding blanks accepted; "nan" and
+// "inf" are parsed, callers reject them). False when the field is not a number.
+bool parse_double(std::string_view s, double& out);
+
+// Runs body(block) for block in [0, blocks) on up to `threads` threads (the caller's
+// thread included); blocks are handed out dynamically.
+void parallel_for(std::size_t blocks, int threads, const std::function<void(std::size_t)>& body);
+
+// Number of threads for --threads N (0: all hardware threads).
+int resolve_threads(int requested);
+
+}  // namespace ellipsect::cli

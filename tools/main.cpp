@@ -1,0 +1,169 @@
+// The `ellipsect` command-line program: scenes in, answers and pictures out.
+//   ellipsect check SCENE    relation and first contact of every pair (JSON or CSV)
+//   ellipsect render SCENE   an SVG or PNG picture of the scene at one time
+//   ellipsect bench SCENE    queries per second on the scene's pairs
+// docs/cli.md documents the commands, docs/scene-format.md the scene files.
+#include "commands.hpp"
+#include "common.hpp"
+
+#include <ellipsect/version.hpp>
+
+#include <CLI/CLI.hpp>
+
+#include <cstdio>
+#include <exception>
+#include <new>
+
+namespace {
+
+using namespace ellipsect::cli;
+
+void add_common(CLI::App& cmd, Common& c, std::vector<double>& window, std::string& progress) {
+  cmd.add_option("SCENE", c.scene, "Scene file: JSON (.json) or CSV (.csv); see docs/scene-format.md")
+      ->required()
+      ->type_name("FILE");
+  cmd.add_option("--pairs", c.pairs_file,
+                 "CSV file of pairs to check (columns a,b: body ids); for JSON scenes and bodies CSVs")
+      ->type_name("FILE");
+  cmd.add_option("--window", window, "Time window T0 T1 for first contact (T1 may be inf); overrides the scene's")
+      ->expected(2)
+      ->type_name("T0 T1");
+  cmd.add_option("-j,--threads", c.threads, "Worker threads (default 0: all cores)")->check(CLI::NonNegativeNumber);
+  cmd.add_option("--progress", progress, "Progress bar on stderr: auto (when stderr is a terminal), always, never")
+      ->check(CLI::IsMember({"auto", "always", "never"}))
+      ->default_str("auto");
+}
+
+void finish_common(Common& c, const std::vector<double>& window, const std::string& progress) {
+  if (!window.empty()) {
+    if (window.size() != 2 || std::isnan(window[0]) || !std::isfinite(window[0]) || std::isnan(window[1]) ||
+        window[1] < window[0])
+      throw UsageError("--window: expected T0 T1 with T0 finite and T1 >= T0 (T1 may be inf)");
+    c.window = Window{window[0], window[1]};
+  }
+  c.progress = parse_progress_mode(progress);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"ellipsect " + std::string(ellipsect::version) +
+               ": exact collision queries between ellipses and ellipsoids, on scene files."};
+  app.name("ellipsect");
+  app.set_version_flag("--version", std::string("ellipsect ") + ellipsect::version);
+  app.require_subcommand(1);
+  app.footer(
+      "Examples:\n"
+      "  ellipsect check examples/scenes/swept_2d.json\n"
+      "  ellipsect render examples/scenes/swept_2d.json -o swept_2d.svg\n"
+      "  ellipsect bench examples/scenes/bodies_10k.csv\n"
+      "Run 'ellipsect COMMAND --help' for a command's options.\n"
+      "Exit codes: 0 ok, 1 bad command line, 2 bad input, 3 I/O error, 4 internal error.");
+
+  CheckOptions check;
+  RenderOptions render;
+  BenchOptions bench;
+  std::vector<double> check_window, render_window, bench_window;
+  std::string check_progress = "auto", render_progress = "auto", bench_progress = "auto";
+
+  CLI::App* c = app.add_subcommand("check", "Relation (and, with velocities, first contact) of every pair");
+  add_common(*c, check.common, check_window, check_progress);
+  c->add_option("-o,--output", check.output, "Output file (default: stdout); written whole or not at all")
+      ->type_name("FILE");
+  c->add_option("-f,--format", check.format, "Output format: json or csv")
+      ->check(CLI::IsMember({"json", "csv"}))
+      ->default_str("json");
+  c->add_option("--query", check.queries,
+                "Comma-separated answers per pair: relation, contact (default: relation, and contact when the scene "
+                "has velocities)")
+      ->delimiter(',')
+      ->type_name("LIST");
+  c->add_option("--report", check.report,
+                "Without listed pairs: all (every pair), candidates (only pairs the broad phase keeps; the others are "
+                "separated), auto (all up to 1000 bodies, else candidates)")
+      ->check(CLI::IsMember({"auto", "all", "candidates"}))
+      ->default_str("auto");
+  c->add_flag("--no-broad-phase", [&](std::int64_t) { check.broad_phase = false; },
+              "Evaluate every pair exactly, without the bounding-box broad phase (implies --report all)");
+  c->add_flag("--stats", check.stats, "Print the pair count, time and throughput to stderr");
+  c->footer(
+      "Examples:\n"
+      "  ellipsect check examples/scenes/swept_2d.json\n"
+      "  ellipsect check examples/scenes/bodies_10k.csv --format csv -o overlaps.csv\n"
+      "  ellipsect check pairs.csv --window 0 10 -o results.json --stats");
+
+  CLI::App* r = app.add_subcommand("render", "Draw the scene at one time as SVG (or PNG through rsvg-convert)");
+  add_common(*r, render.common, render_window, render_progress);
+  r->add_option("-o,--output", render.output, "Output picture: .svg, or .png (needs rsvg-convert)")
+      ->required()
+      ->type_name("FILE");
+  r->add_option("-t,--time", render.time, "Time to draw (default: the first contact, else the window start)")
+      ->type_name("T");
+  r->add_option("--plane", render.plane, "3D scenes: projection plane xy, yz or xz")
+      ->check(CLI::IsMember({"xy", "yz", "xz"}))
+      ->default_str("xy");
+  r->add_option("--width", render.width, "Width of the plot area in pixels")
+      ->check(CLI::Range(100, 20000))
+      ->default_str("800");
+  r->add_option("--row", render.row, "Pairs CSV: the data row to draw (default 1)")->check(CLI::PositiveNumber);
+  r->footer(
+      "Examples:\n"
+      "  ellipsect render examples/scenes/swept_2d.json -o swept_2d.svg\n"
+      "  ellipsect render examples/scenes/swept_3d.json --plane xz -o swept_3d.png\n"
+      "  ellipsect render examples/scenes/swept_2d.json --time 1.5 -o at_1.5.svg");
+
+  CLI::App* b = app.add_subcommand("bench", "Time the queries on the scene's pairs; prints queries per second");
+  add_common(*b, bench.common, bench_window, bench_progress);
+  b->add_option("--query", bench.queries,
+                "Comma-separated queries to time: overlap, classify, contact (default: overlap, classify, and contact "
+                "when the scene has velocities)")
+      ->delimiter(',')
+      ->type_name("LIST");
+  b->add_option("--min-time", bench.min_time, "Seconds to run each query (at least one pass over the pairs)")
+      ->default_str("0.5");
+  b->add_option("--limit", bench.limit, "At most this many pairs (pairs CSVs are loaded into memory)")
+      ->default_str("100000");
+  b->add_option("-f,--format", bench.format, "Output format: text or json")
+      ->check(CLI::IsMember({"text", "json"}))
+      ->default_str("text");
+  b->add_option("-o,--output", bench.output, "Output file (default: stdout)")->type_name("FILE");
+  b->footer(
+      "Examples:\n"
+      "  ellipsect bench examples/scenes/swept_3d.json\n"
+      "  ellipsect bench examples/scenes/bodies_10k.csv --query overlap -j 1 --min-time 2");
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int rc = app.exit(e);
+    return rc == 0 ? exit_ok : exit_usage;
+  }
+
+  try {
+    if (c->parsed()) {
+      finish_common(check.common, check_window, check_progress);
+      return run_check(check);
+    }
+    if (r->parsed()) {
+      finish_common(render.common, render_window, render_progress);
+      return run_render(render);
+    }
+    finish_common(bench.common, bench_window, bench_progress);
+    return run_bench(bench);
+  } catch (const UsageError& e) {
+    std::fprintf(stderr, "ellipsect: error: %s\nRun with --help for more information.\n", e.what());
+    return exit_usage;
+  } catch (const BadInput& e) {
+    std::fprintf(stderr, "ellipsect: error: %s\n", e.what());
+    return exit_bad_input;
+  } catch (const IoError& e) {
+    std::fprintf(stderr, "ellipsect: error: %s\n", e.what());
+    return exit_io;
+  } catch (const std::bad_alloc&) {
+    std::fprintf(stderr, "ellipsect: error: out of memory\n");
+    return exit_internal;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "ellipsect: internal error: %s\n", e.what());
+    return exit_internal;
+  }
+}
