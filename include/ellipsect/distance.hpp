@@ -13,24 +13,28 @@
 //     point_a = center(a) + M_a^-1 n / rho_a(n),   point_b = center(b) - M_b^-1 n / rho_b(n),
 // and point_b - point_a = distance * normal with normal = n, in both cases.
 //
-// Method (docs/distance.md): the status comes from the reduced-frame gap of classify; the
-// maximum of g is found by trust-region Newton on the sphere of directions, started for
-// separated and touching bodies from the common normal of the Perram-Wertheim contact
-// (where g > 0, so the iteration stays in the convex cone on which g has a unique maximum);
-// for overlapping bodies from the best of several directions sampled on both bodies'
-// Gauss maps (penetration depth is not a convex problem: g can have several local maxima).
+// Method (docs/distance.md): trust-region Newton on the sphere of directions. The status
+// is classify's (certified far from touching by the Perram-Wertheim test or by a converged
+// gap above the tangency band, otherwise decided in classify's reduced frame). Separated
+// and touching bodies need one descent, started in {g > 0}: g is concave and positively
+// homogeneous, so its maximum on that cone is unique. Penetration depth is not a convex
+// problem (g can have several local maxima), so overlapping bodies also start from the
+// best directions sampled on both bodies' Gauss maps, and the deepest descent wins.
 //
 // Accuracy (tested against a 50-digit reference, tests/property/distance_property_test.cpp,
 // on random and adversarial pairs: aspect ratios to 1e4, near tangency, deep overlap,
 // containment, equal bodies, scale 1e-6 and 1e6, bodies 1e4 sizes apart), with
 // scale = largest radius of a + largest radius of b + |distance|:
 //   distance     absolute error <= 1e-12 * scale (separated, touching and overlapping);
-//   point_a/_b   within 1e-12 * scale of the boundary of a / b;
-//   normal       the outward normal of a at point_a and the inward normal of b at point_b,
-//                to 1e-12 * scale / (smallest radius of curvature) rad; point_b - point_a
-//                is parallel to it (the optimality condition).
-// Swapping a and b gives the same distance, swapped points and the negated normal, bit
-// for bit. float bodies are computed in double and the results rounded.
+//   point_a/_b   within 1e-12 * scale of the boundary of a / b, and of the support points
+//                of `normal`; within 1e-10 * scale of the exact witness points where the
+//                optimum is unique;
+//   normal       parallel to the outward normal of a at point_a and to the inward normal
+//                of b at point_b, to 1e-12 * scale / (smallest radius of curvature) rad.
+// The status equals classify's (separated, touching, overlapping for all other relations).
+// Swapping two distinct bodies gives the same distance, swapped points and the negated
+// normal, bit for bit. float bodies are computed in double and the results rounded (tested to 1e-6 *
+// scale).
 #pragma once
 
 #include <ellipsect/options.hpp>

@@ -3,6 +3,8 @@
 
 #include <ellipsect/classify.hpp>
 #include <ellipsect/contact.hpp>
+#include <ellipsect/distance.hpp>
+#include <ellipsect/intersect2.hpp>
 #include <ellipsect/options.hpp>
 #include <ellipsect/point.hpp>
 #include <ellipsect/polygonal2.hpp>

@@ -22,6 +22,8 @@
 
 #include <ellipsect/shapes.hpp>
 
+#include <Eigen/LU>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -33,22 +35,33 @@ template <class R, int N> using Tangent = Eigen::Matrix<R, N - 1, 1>;
 template <class R, int N> using TangentMat = Eigen::Matrix<R, N - 1, N - 1>;
 template <class R, int N> using TangentBasis = Eigen::Matrix<R, N, N - 1>;
 
-// Body 1 and body 2 in working precision; r = c_2 - c_1.
+// Body 1 and body 2 in working precision: B_i = diag(radii_i) axes_i^T (so rho_i(n) =
+// |B_i n| and M_i^-1 = B_i^T B_i), axes and radii, and r = c_2 - c_1.
 template <class R, int N>
 struct GapBodies {
+  Mat<R, N> b1, b2;
   Mat<R, N> axes1, axes2;
   Vec<R, N> radii1, radii2;
   Vec<R, N> r;
+  R r_norm;
 };
 
 template <class R, int N, class T>
 GapBodies<R, N> gap_bodies(const Ellipsoid<T, N>& first, const Ellipsoid<T, N>& second) noexcept {
-  return {first.axes().template cast<R>(), second.axes().template cast<R>(), first.radii().template cast<R>(),
-          second.radii().template cast<R>(),
-          second.center().template cast<R>() - first.center().template cast<R>()};
+  GapBodies<R, N> g;
+  g.axes1 = first.axes().template cast<R>();
+  g.axes2 = second.axes().template cast<R>();
+  g.radii1 = first.radii().template cast<R>();
+  g.radii2 = second.radii().template cast<R>();
+  g.b1 = g.radii1.asDiagonal() * g.axes1.transpose();
+  g.b2 = g.radii2.asDiagonal() * g.axes2.transpose();
+  g.r = second.center().template cast<R>() - first.center().template cast<R>();
+  g.r_norm = g.r.norm();
+  return g;
 }
 
-// An orthonormal basis of the plane orthogonal to the unit vector n.
+// An orthonormal basis of the plane orthogonal to the unit vector n (in 3D the branchless
+// construction of Duff et al., "Building an Orthonormal Basis, Revisited", 2017).
 template <class R, int N>
 TangentBasis<R, N> tangent_basis(const Vec<R, N>& n) noexcept {
   static_assert(N == 2 || N == 3, "ellipsect: distances are implemented for N = 2 and 3");
@@ -56,13 +69,10 @@ TangentBasis<R, N> tangent_basis(const Vec<R, N>& n) noexcept {
   if constexpr (N == 2) {
     q << -n[1], n[0];
   } else {
-    int i = 0;  // the coordinate axis least aligned with n
-    for (int j = 1; j < 3; ++j)
-      if (std::abs(n[j]) < std::abs(n[i])) i = j;
-    Vec<R, 3> t = -n[i] * n;
-    t[i] += R(1);
-    q.col(0) = t.normalized();
-    q.col(1) = n.cross(Vec<R, 3>(q.col(0)));
+    const R sign = std::copysign(R(1), n[2]);
+    const R a = R(-1) / (sign + n[2]);
+    const R b = n[0] * n[1] * a;
+    q << R(1) + sign * n[0] * n[0] * a, b, sign * b, sign + n[1] * n[1] * a, -sign * n[0], -n[1];
   }
   return q;
 }
@@ -78,16 +88,17 @@ struct GapAt {
   R noise;                    // rounding of phi: a few ulps of |r| + rho_1 + rho_2
 };
 
-// Support radius of one body along n; adds its term to the Hessian.
+// Support radius |B n| of one body along n; sets its support offset s = B^T B n / |B n| and
+// adds its term Q^T (B^T B - s s^T) Q / |B n| to the Hessian.
 template <class R, int N>
-R support(const Mat<R, N>& axes, const Vec<R, N>& radii, const Vec<R, N>& n, const TangentBasis<R, N>& q,
-          Vec<R, N>& s, TangentMat<R, N>& hess) noexcept {
-  const Vec<R, N> w = radii.cwiseProduct(axes.transpose() * n);
-  const R rho = w.norm();
-  s = axes * (radii.cwiseProduct(w) / rho);
-  const TangentBasis<R, N> v = radii.asDiagonal() * (axes.transpose() * q);
-  const Tangent<R, N> st = q.transpose() * s;
-  hess += (v.transpose() * v - st * st.transpose()) / rho;
+R support(const Mat<R, N>& b, const Vec<R, N>& n, const TangentBasis<R, N>& q, Vec<R, N>& s,
+          TangentMat<R, N>& hess) noexcept {
+  const Vec<R, N> w = b * n;
+  const R rho = w.norm(), inv = R(1) / rho;
+  s = b.transpose() * w * inv;
+  const TangentBasis<R, N> v = b * q;
+  const Tangent<R, N> st = v.transpose() * w * inv;  // q^T s
+  hess += (v.transpose() * v - st * st.transpose()) * inv;
   return rho;
 }
 
@@ -97,38 +108,75 @@ GapAt<R, N> gap_at(const GapBodies<R, N>& g, const Vec<R, N>& n) noexcept {
   at.n = n;
   at.q = tangent_basis<R, N>(n);
   at.hess.setZero();
-  const R rho1 = support<R, N>(g.axes1, g.radii1, n, at.q, at.s1, at.hess);
-  const R rho2 = support<R, N>(g.axes2, g.radii2, n, at.q, at.s2, at.hess);
+  const R rho1 = support<R, N>(g.b1, n, at.q, at.s1, at.hess);
+  const R rho2 = support<R, N>(g.b2, n, at.q, at.s2, at.hess);
   at.phi = rho1 + rho2 - n.dot(g.r);
   at.grad = at.q.transpose() * (at.s1 + at.s2 - g.r);
   at.hess -= at.phi * TangentMat<R, N>::Identity();
-  at.noise = R(8) * std::numeric_limits<R>::epsilon() * (g.r.norm() + rho1 + rho2);
+  at.noise = R(8) * std::numeric_limits<R>::epsilon() * (g.r_norm + rho1 + rho2);
   return at;
 }
 
 // phi alone, for ranking candidate directions.
 template <class R, int N>
 R gap_value(const GapBodies<R, N>& g, const Vec<R, N>& n) noexcept {
-  return g.radii1.cwiseProduct(g.axes1.transpose() * n).norm() + g.radii2.cwiseProduct(g.axes2.transpose() * n).norm() -
-         n.dot(g.r);
+  return (g.b1 * n).norm() + (g.b2 * n).norm() - n.dot(g.r);
 }
 
-// Smallest eigenvalue of a 1x1 or 2x2 symmetric matrix and a unit eigenvector.
+// The Perram-Wertheim direction y = C^-1 r, C = (1 - l) M_1^-1 + l M_2^-1, at the
+// two-ball weight l = rho_1(r) / (rho_1(r) + rho_2(r)) of detail::pw_certificate, and
+// F(l) = l (1 - l) r . y, a lower bound on the square of the Perram-Wertheim factor.
+// Whenever F > 1 the bodies are apart along y: with a = rho_1(y), b = rho_2(y) and
+// u = y . C y = (1 - l) a^2 + l b^2, Cauchy-Schwarz gives a + b <= sqrt(u / (l (1 - l)))
+// = u / sqrt(F), so g(y) = u - a - b >= u (1 - 1 / sqrt(F)) > 0.
+template <class R, int N>
+struct PwDirection {
+  Vec<R, N> n;  // y / |y|
+  R f;          // F(l)
+};
+
+template <class R, int N>
+PwDirection<R, N> pw_direction(const GapBodies<R, N>& g) noexcept {
+  const Mat<R, N> p1 = g.b1.transpose() * g.b1, p2 = g.b2.transpose() * g.b2;
+  const R rho1 = (g.b1 * g.r).norm(), rho2 = (g.b2 * g.r).norm();
+  const R l = rho1 / (rho1 + rho2);
+  const Vec<R, N> y = Mat<R, N>((R(1) - l) * p1 + l * p2).inverse() * g.r;  // closed form for N <= 3
+  return {y.normalized(), l * (R(1) - l) * g.r.dot(y)};
+}
+
+// Smallest eigenvalue of a 1x1 or 2x2 symmetric matrix.
 template <class R, int M>
-R lowest_eigen(const Eigen::Matrix<R, M, M>& h, Eigen::Matrix<R, M, 1>& v) noexcept {
+R lowest_eigenvalue(const Eigen::Matrix<R, M, M>& h) noexcept {
   if constexpr (M == 1) {
-    v[0] = R(1);
     return h(0, 0);
   } else {
     const R half_diff = (h(0, 0) - h(1, 1)) / 2;
-    const R rad = std::hypot(half_diff, h(0, 1));
-    const R lambda = (h(0, 0) + h(1, 1)) / 2 - rad;
-    // (h - lambda I) v = 0: take the larger of the two equivalent row solutions.
+    return (h(0, 0) + h(1, 1)) / 2 - std::sqrt(half_diff * half_diff + h(0, 1) * h(0, 1));
+  }
+}
+
+// A unit eigenvector of a 1x1 or 2x2 symmetric matrix for its eigenvalue lambda.
+template <class R, int M>
+Eigen::Matrix<R, M, 1> eigenvector(const Eigen::Matrix<R, M, M>& h, R lambda) noexcept {
+  if constexpr (M == 1) {
+    return Eigen::Matrix<R, 1, 1>(R(1));
+  } else {
+    // (h - lambda I) v = 0: the larger of the two equivalent row solutions.
     const Eigen::Matrix<R, 2, 1> v1(h(0, 1), lambda - h(0, 0)), v2(lambda - h(1, 1), h(0, 1));
     const Eigen::Matrix<R, 2, 1> best = v1.squaredNorm() >= v2.squaredNorm() ? v1 : v2;
     const R len = best.norm();
-    v = len > R(0) ? Eigen::Matrix<R, 2, 1>(best / len) : Eigen::Matrix<R, 2, 1>(1, 0);
-    return lambda;
+    return len > R(0) ? Eigen::Matrix<R, 2, 1>(best / len) : Eigen::Matrix<R, 2, 1>(1, 0);
+  }
+}
+
+// Solution of h t = -g for a positive definite 1x1 or 2x2 h.
+template <class R, int M>
+Eigen::Matrix<R, M, 1> newton_solve(const Eigen::Matrix<R, M, M>& h, const Eigen::Matrix<R, M, 1>& g) noexcept {
+  if constexpr (M == 1) {
+    return Eigen::Matrix<R, 1, 1>(-g[0] / h(0, 0));
+  } else {
+    const R inv_det = R(1) / (h(0, 0) * h(1, 1) - h(0, 1) * h(1, 0));
+    return Eigen::Matrix<R, 2, 1>((h(0, 1) * g[1] - h(1, 1) * g[0]) * inv_det, (h(1, 0) * g[0] - h(0, 0) * g[1]) * inv_det);
   }
 }
 
@@ -139,25 +187,28 @@ template <class R, int N>
 Tangent<R, N> trust_step(const GapAt<R, N>& at, R radius, bool& newton) noexcept {
   using Tan = Tangent<R, N>;
   using TMat = TangentMat<R, N>;
-  Tan v;
-  const R lambda = lowest_eigen<R, N - 1>(at.hess, v);
-  const R gnorm = at.grad.norm();
   newton = true;
-  if (std::abs(lambda) <= at.noise && gnorm <= at.noise && at.hess.cwiseAbs().maxCoeff() <= at.noise) return Tan::Zero();
-  if (lambda > R(0)) {
-    const Tan t = at.hess.llt().solve(-at.grad);
-    if (t.norm() <= radius) return t;
+  // Positive definite: every leading minor positive (no eigenvalue needed).
+  const bool definite = at.hess(0, 0) > R(0) && (N == 2 || at.hess.determinant() > R(0));
+  if (definite) {
+    const Tan t = newton_solve<R, N - 1>(at.hess, at.grad);
+    if (t.squaredNorm() <= radius * radius) return t;
+  } else if (at.grad.squaredNorm() <= at.noise * at.noise && at.hess.cwiseAbs().maxCoeff() <= at.noise) {
+    return Tan::Zero();
   }
+  const R lambda = lowest_eigenvalue<R, N - 1>(at.hess);
   newton = false;
   // Levenberg-Marquardt shift: |t| <= |grad| / (lambda + sigma) = radius.
   Tan t = Tan::Zero();
+  const R gnorm = at.grad.norm();
   if (gnorm > R(0)) {
     const R sigma = std::max(R(0), -lambda) + gnorm / radius;
-    t = (at.hess + sigma * TMat::Identity()).llt().solve(-at.grad);
+    t = newton_solve<R, N - 1>(TMat(at.hess + sigma * TMat::Identity()), at.grad);
   }
   if (lambda <= R(0) && t.norm() < radius / 2) {
     // Negative curvature with a small gradient (near a maximum or saddle): move along the
     // lowest eigenvector, downhill, to the trust radius.
+    const Tan v = eigenvector<R, N - 1>(at.hess, lambda);
     const R along = std::sqrt(radius * radius - t.squaredNorm());
     t += (at.grad.dot(v) > R(0) ? -along : along) * v;
   }
@@ -172,9 +223,11 @@ struct Descent {
 };
 
 // Minimizes phi on the sphere from the unit direction n0, at most `max_iterations` steps.
-// Converged when the Newton model predicts a decrease far below rounding, or when it
-// stops contracting quadratically while already at the rounding level of phi (the
-// gradient is then rounding noise and the direction is as accurate as the data allow).
+// Converged when the Newton step is below the resolution of a unit vector, when the model
+// predicts a decrease far below rounding, or when Newton stops contracting quadratically
+// while already at the rounding level of phi (the gradient is then rounding noise and the
+// direction is as accurate as the data allow). Within rounding, Newton steps are taken
+// without the decrease test, which the noise would make meaningless.
 template <class R, int N>
 Descent<R, N> descend(const GapBodies<R, N>& g, const Vec<R, N>& n0, int max_iterations) noexcept {
   constexpr R eps = std::numeric_limits<R>::epsilon();
@@ -185,20 +238,25 @@ Descent<R, N> descend(const GapBodies<R, N>& g, const Vec<R, N>& n0, int max_ite
   while (d.iterations < max_iterations) {
     bool newton;
     const Tangent<R, N> t = trust_step<R, N>(d.at, radius, newton);
+    const R len = t.norm();
     const R pred = -(d.at.grad.dot(t) + t.dot(d.at.hess * t) / 2);
     const bool rounding_level = newton && pred <= d.at.noise;
-    if (newton && (pred <= eps * d.at.noise || (rounding_level && pred > last_pred / 4))) {
+    if (newton && (len <= 2 * eps || pred <= eps * d.at.noise || (rounding_level && pred > last_pred / 4))) {
       d.converged = true;
       return d;
     }
     ++d.iterations;
-    const GapAt<R, N> trial = gap_at<R, N>(g, Vec<R, N>((d.at.n + d.at.q * t).normalized()));
-    const R ratio = (d.at.phi - trial.phi) / pred;
-    const R len = t.norm();
-    if (ratio < R(0.25)) radius = len / 4;
-    else if (ratio > R(0.75) && len > R(0.99) * radius) radius = std::min(R(1), 2 * radius);
-    // Within rounding the model is trusted over the noisy decrease.
-    if (ratio > R(0) || rounding_level) {
+    const Vec<R, N> m = d.at.n + d.at.q * t;
+    const GapAt<R, N> trial = gap_at<R, N>(g, Vec<R, N>(m * (R(1) / m.norm())));
+    if (rounding_level) {
+      last_pred = pred;
+      d.at = trial;
+      continue;
+    }
+    const R actual = d.at.phi - trial.phi;  // compared with the predicted decrease
+    if (actual < R(0.25) * pred) radius = len / 4;
+    else if (actual > R(0.75) * pred && len > radius / 2) radius = std::min(R(1), 2 * radius);
+    if (actual > R(0)) {
       if (newton) last_pred = pred;
       d.at = trial;
     }
@@ -207,41 +265,48 @@ Descent<R, N> descend(const GapBodies<R, N>& g, const Vec<R, N>& n0, int max_ite
 }
 
 // Directions to start the penetration search from: the Gauss maps of both bodies at a
-// fixed symmetric set of parameter points u (normal of body i at c_i + axes_i diag(radii_i) u
-// is axes_i diag(radii_i)^-1 u). The samples crowd where a body is flat, which is where its
-// support radius changes fastest with the direction, so narrow valleys of phi are seen.
+// fixed symmetric set of parameter points u (the normal of body i at c_i + axes_i
+// diag(radii_i) u is along axes_i diag(radii_i)^-1 u). The samples crowd where a body is
+// flat, which is where its support radius changes fastest with the direction, so narrow
+// valleys of phi are seen. Each valley shows as a sample that is no worse than its
+// neighbours in the parameter set; the best of these discrete minima are the starts.
 template <int N>
-constexpr int gauss_samples = N == 2 ? 16 : 26;
-
-template <class R, int N>
-std::array<Vec<R, N>, gauss_samples<N>> gauss_parameters() noexcept {
-  std::array<Vec<R, N>, gauss_samples<N>> u;
-  if constexpr (N == 2) {
-    for (int i = 0; i < 16; ++i) {
-      const R angle = R(i) * R(M_PI / 8);
-      u[i] = Vec<R, 2>(std::cos(angle), std::sin(angle));
+struct GaussSamples {
+  static constexpr int count = N == 2 ? 16 : 26;
+  std::array<Vec<double, N>, count> u;
+  std::array<std::array<int, count>, count> neighbours;  // indices, -1 terminated
+  GaussSamples() noexcept {
+    if constexpr (N == 2) {
+      for (int i = 0; i < count; ++i) u[i] = Vec<double, 2>(std::cos(i * M_PI / 8), std::sin(i * M_PI / 8));
+    } else {
+      int m = 0;  // the directions of the cube's faces, edges and corners
+      for (int x = -1; x <= 1; ++x)
+        for (int y = -1; y <= 1; ++y)
+          for (int z = -1; z <= 1; ++z)
+            if (x != 0 || y != 0 || z != 0) u[m++] = Vec<double, 3>(x, y, z).normalized();
     }
-  } else {
-    int m = 0;  // the 26 directions of the cube's faces, edges and corners
-    for (int x = -1; x <= 1; ++x)
-      for (int y = -1; y <= 1; ++y)
-        for (int z = -1; z <= 1; ++z)
-          if (x != 0 || y != 0 || z != 0) u[m++] = Vec<R, 3>(R(x), R(y), R(z)).normalized();
+    // Neighbours: the adjacent angles in 2D (22.5 degrees), the directions within 60
+    // degrees in 3D (face-edge 45, face-corner 54.7, edge-corner 35.3, edge-edge 60).
+    const double min_cos = N == 2 ? 0.9 : 0.49;
+    for (int i = 0; i < count; ++i) {
+      int k = 0;
+      for (int j = 0; j < count; ++j)
+        if (j != i && u[i].dot(u[j]) >= min_cos) neighbours[i][k++] = j;
+      neighbours[i][k] = -1;
+    }
   }
-  return u;
-}
+};
 
-// The `count` sampled directions with the smallest phi, best first.
+// Up to Count sampled directions at discrete minima of phi, the smallest phi first.
 template <class R, int N, int Count>
-std::array<Vec<R, N>, Count> best_samples(const GapBodies<R, N>& g) noexcept {
-  static const auto params = gauss_parameters<R, N>();
-  std::array<Vec<R, N>, Count> best;
+int sampled_starts(const GapBodies<R, N>& g, std::array<Vec<R, N>, Count>& best) noexcept {
+  static const GaussSamples<N> samples;
+  constexpr int count = GaussSamples<N>::count;
   std::array<R, Count> value;
-  value.fill(std::numeric_limits<R>::infinity());
-  auto offer = [&](const Vec<R, N>& n) {
-    const R v = gap_value<R, N>(g, n);
-    if (!(v < value[Count - 1])) return;
-    int i = Count - 1;
+  int found = 0;
+  auto offer = [&](R v, const Vec<R, N>& n) {
+    if (found == Count && !(v < value[Count - 1])) return;
+    int i = found < Count ? found++ : Count - 1;
     for (; i > 0 && v < value[i - 1]; --i) {
       value[i] = value[i - 1];
       best[i] = best[i - 1];
@@ -249,11 +314,22 @@ std::array<Vec<R, N>, Count> best_samples(const GapBodies<R, N>& g) noexcept {
     value[i] = v;
     best[i] = n;
   };
-  for (const auto& u : params) {
-    offer(Vec<R, N>(g.axes1 * u.cwiseQuotient(g.radii1)).normalized());
-    offer(Vec<R, N>(g.axes2 * u.cwiseQuotient(g.radii2)).normalized());
+  for (int body = 0; body < 2; ++body) {
+    const Mat<R, N>& axes = body == 0 ? g.axes1 : g.axes2;
+    const Vec<R, N>& radii = body == 0 ? g.radii1 : g.radii2;
+    std::array<Vec<R, N>, count> n;
+    std::array<R, count> v;
+    for (int i = 0; i < count; ++i) {
+      n[i] = Vec<R, N>(axes * samples.u[i].template cast<R>().cwiseQuotient(radii)).normalized();
+      v[i] = gap_value<R, N>(g, n[i]);
+    }
+    for (int i = 0; i < count; ++i) {
+      bool minimum = true;
+      for (int k = 0; samples.neighbours[i][k] >= 0 && minimum; ++k) minimum = v[i] <= v[samples.neighbours[i][k]];
+      if (minimum) offer(v[i], n[i]);
+    }
   }
-  return best;
+  return found;
 }
 
 }  // namespace ellipsect::detail

@@ -1,0 +1,83 @@
+// Boundary intersection points and overlap area of two ellipses.
+//
+// Math. In the reduced frame of classify (the rounder ellipse S is the unit circle, the
+// other ellipse O is axis-aligned with center k and semi-axes e), O's boundary is
+// w(t) = k + (e_0 cos t, e_1 sin t), and the boundaries meet where h(t) = |w(t)| = 1. The
+// critical points of h (the feet of the normals from S's center to O: the closest and
+// farthest points of the secular equation, plus the two of its middle branch, which exist
+// when S's center lies inside the evolute of O) split the parameter circle into arcs on
+// which h is monotone; each arc whose ends lie on opposite sides of 1 holds exactly one
+// transverse crossing, found by bracketed Newton, and a critical point with h within the
+// tangency band of 1 is a tangent point. The overlap area is the polygon of the
+// transverse crossings plus one circular or elliptic segment per arc of the intersection's
+// boundary, (ab / 2)(delta - sin delta) for a parameter span delta, mapped back to the
+// world by the determinant of the reduction (docs/distance.md).
+//
+// The tangency band is classify's (Options::tolerance, relative), and both functions
+// decide with the same numbers as classify: a touching pair has exactly one tangent point,
+// equal ellipses are reported as such, containment has no transverse crossing.
+//
+// Accuracy (tested against a 50-digit reference, tests/property/intersect2_property_test.cpp:
+// quartic roots for the points, tanh-sinh quadrature for the area; random and adversarial
+// pairs: aspect ratios to 1e4, near tangency, containment, equal bodies, scale 1e-6 and
+// 1e6), with scale = largest radius of a + largest radius of b:
+//   points  within 1e-12 * scale of both boundaries; a transverse crossing within
+//           1e-12 * scale / sin(crossing angle) of the exact one;
+//   kinds   the number of transverse crossings is exact outside the tangency band;
+//   area    absolute error <= 1e-12 * the smaller ellipse's area.
+// Swapping a and b gives the same points (listed in the new a's order) and the same area,
+// bit for bit.
+// float ellipses are computed in double and the results rounded.
+#pragma once
+
+#include <ellipsect/classify.hpp>
+#include <ellipsect/options.hpp>
+#include <ellipsect/shapes.hpp>
+
+#include <array>
+#include <string_view>
+
+namespace ellipsect {
+
+enum class CrossingKind {
+  transverse,  // the boundaries cross
+  tangent,     // the boundaries touch without crossing (within the tangency band)
+};
+
+enum class BoundaryStatus {
+  points,  // the boundaries share exactly the `count` points listed (possibly none)
+  equal,   // the ellipses are equal within the tangency band: every point is common
+};
+
+std::string_view to_string(CrossingKind k) noexcept;
+std::string_view to_string(BoundaryStatus s) noexcept;
+
+template <class T>
+struct BoundaryIntersection {
+  BoundaryStatus status = BoundaryStatus::points;
+  // Number of common points, 0 to 4 (0 when equal).
+  int count = 0;
+  // World-frame points, the first `count` valid, in counter-clockwise order of a's
+  // parametrization angle (a's center + axes diag(radii) (cos t, sin t), t in (-pi, pi]).
+  std::array<Vec2<T>, 4> points;
+  std::array<CrossingKind, 4> kinds;
+};
+
+template <class T>
+BoundaryIntersection<T> intersect_boundaries(const Ellipse2<T>& a, const Ellipse2<T>& b,
+                                             const Options& options = {}) noexcept;
+
+template <class T>
+struct OverlapArea {
+  // Area of the intersection of the two closed ellipses, in world units squared: 0 when
+  // separated or touching, the smaller ellipse's area under containment (the rounder
+  // one's when equal).
+  T area;
+  // classify(a, b), which selects the configuration.
+  Relation relation;
+};
+
+template <class T>
+OverlapArea<T> overlap_area(const Ellipse2<T>& a, const Ellipse2<T>& b, const Options& options = {}) noexcept;
+
+}  // namespace ellipsect

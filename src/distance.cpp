@@ -1,0 +1,197 @@
+// Separation distance and penetration depth (docs/distance.md):
+//
+// * The signed distance is max over unit n of the support gap g(n) = -phi(n)
+//   (detail/distance_gap.hpp), found by trust-region Newton on the sphere. On the cone
+//   {g > 0} the maximum is unique (g is concave and positively homogeneous), so a descent
+//   that converges with g > 0 has found the separation distance, wherever it started.
+// * The status agrees with classify. Far from touching it is certain without the
+//   reduction: F(l) >= 1.01^2 in the Perram-Wertheim test (separated; the direction it
+//   implies separates the bodies), classify's overlap certificate, or a converged descent
+//   whose gap exceeds the tangency band of the reduced frame with its rounding (the
+//   sphere body scaled by 1 + gap reaches at most gap * its largest radius further, so
+//   gap >= distance / that radius). Otherwise the reduced frame decides as classify does:
+//   the origin outside O and the gap |P| - 1 of O's closest point P against the band,
+//   re-decided in the wider type when rounding could flip it; the world normal of the
+//   sphere body at P starts the descent (the ball scaled by |P| touches O there, so that
+//   plane separates the bodies when |P| > 1).
+// * Overlapping bodies: penetration is not convex, so the descent also starts from the
+//   best sampled directions of both Gauss maps; the deepest converged descent wins.
+// * The computation is written with the sphere body first, so swapping the arguments
+//   swaps the points and negates the normal without changing a bit.
+#include <ellipsect/distance.hpp>
+
+#include "detail/classify_impl.hpp"
+#include "detail/distance_gap.hpp"
+#include "detail/instantiate.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <optional>
+
+namespace ellipsect {
+
+std::string_view to_string(DistanceStatus s) noexcept {
+  switch (s) {
+    case DistanceStatus::separated: return "separated";
+    case DistanceStatus::touching: return "touching";
+    case DistanceStatus::overlapping: return "overlapping";
+    case DistanceStatus::did_not_converge: return "did_not_converge";
+  }
+  return "unknown";
+}
+
+namespace {
+
+// The reduced-frame start: the status and the world normal of S at the reduced closest
+// point of O (pointing from S towards O), or a zero vector where there is none.
+template <class R, int N>
+struct Start {
+  DistanceStatus status;
+  Vec<R, N> normal;
+};
+
+template <class W, class R, class T, int N>
+Start<R, N> start(const Ellipsoid<T, N>& s, const Ellipsoid<T, N>& o, W tol, bool& doubt) noexcept {
+  const auto red = detail::reduce<W>(s, o);
+  const W rounding = detail::reduced_rounding<W>(s, o, red.e, red.k);
+  const W q0 = detail::level_at_origin<W, N>(red.e, red.k);
+  Start<R, N> st;
+  st.normal.setZero();
+  doubt = std::abs(q0) <= rounding;
+  const auto p = q0 > W(0) ? detail::closest_from_outside<W, N>(red.e, red.k) : detail::closest_from_inside<W, N>(red.e, red.k);
+  if (p.norm > W(0)) st.normal = Vec<W, N>(red.normal_map * p.point).normalized().template cast<R>();
+  if (q0 <= W(0)) {
+    st.status = DistanceStatus::overlapping;
+    return st;
+  }
+  const W gap = p.norm - W(1);
+  doubt = doubt || std::abs(gap - tol) <= rounding || std::abs(gap + tol) <= rounding;
+  st.status = gap > tol ? DistanceStatus::separated : gap >= -tol ? DistanceStatus::touching : DistanceStatus::overlapping;
+  return st;
+}
+
+// The start before any reduction: the better separating of the Perram-Wertheim
+// direction y and the line of centers (nearly the answer for bodies far apart, where y
+// is the normal of the hugely scaled bodies), and the status when it is already certain.
+template <class R, int N>
+struct QuickStart {
+  std::optional<DistanceStatus> status;
+  Vec<R, N> normal;
+};
+
+template <class R, class T, int N>
+QuickStart<R, N> quick_start(const Ellipsoid<T, N>& s, const Ellipsoid<T, N>& o, const detail::GapBodies<R, N>& g) noexcept {
+  if (g.r_norm == R(0)) {  // common center: overlapping; start along S's shortest axis
+    int i;
+    s.radii().minCoeff(&i);
+    return {DistanceStatus::overlapping, g.axes1.col(i).normalized()};  // float axes: unit to rounding only
+  }
+  const auto pw = detail::pw_direction<R, N>(g);
+  const Vec<R, N> line = g.r / g.r_norm;
+  const Vec<R, N> n = detail::gap_value<R, N>(g, line) < detail::gap_value<R, N>(g, pw.n) ? line : pw.n;
+  // F >= 1.01^2 puts y, and then n, in {g > 0}.
+  if (pw.f >= R(1.01 * 1.01)) return {DistanceStatus::separated, n};
+  if (detail::pw_certificate<R>(s, o) == detail::Certificate::overlapping) return {DistanceStatus::overlapping, n};
+  return {std::nullopt, n};
+}
+
+// A separation distance above which classify certainly says separated: the tangency band
+// times the sphere body's largest radius, plus the rounding of the reduced frame
+// (detail::reduced_rounding, in world units) and of the distance itself.
+template <class R, class T, int N>
+R separation_margin(const Ellipsoid<T, N>& s, const Ellipsoid<T, N>& o, const detail::GapBodies<R, N>& g, R tol) noexcept {
+  const R a_max = R(s.radii().maxCoeff()), aspect = a_max / R(s.radii().minCoeff());
+  const R size = g.r_norm + a_max + R(o.radii().maxCoeff()) + R(s.center().norm()) + R(o.center().norm());
+  return tol * a_max + R(4 * detail::reduced_frame_ulps) * std::numeric_limits<R>::epsilon() * aspect * size;
+}
+
+// Directions sampled for the penetration search, in addition to the other starts.
+template <int N>
+constexpr int penetration_starts = N == 2 ? 3 : 4;
+
+template <class T, int N>
+Distance<T, N> solve(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b, const Options& options,
+                     bool penetration) noexcept {
+  using R = detail::Work<T>;
+  constexpr T nan = std::numeric_limits<T>::quiet_NaN();
+  Distance<T, N> out;
+  out.distance = nan;
+  out.point_a.setConstant(nan);
+  out.point_b.setConstant(nan);
+  out.normal.setConstant(nan);
+
+  const auto [s, o, a_is_s] = detail::order_pair(a, b);
+  const auto g = detail::gap_bodies<R>(s, o);
+  const QuickStart<R, N> quick = quick_start<R>(s, o, g);
+
+  if (quick.status == DistanceStatus::overlapping && !penetration) {
+    out.status = DistanceStatus::overlapping;
+    out.distance = T(0);
+    return out;
+  }
+  // The first descent starts from the quick direction; `starts` holds the others.
+  auto best = detail::descend<R, N>(g, quick.normal, options.max_iterations);
+  out.iterations = best.iterations;
+  std::array<Vec<R, N>, 1 + penetration_starts<N>> starts;
+  int count = 0;
+  if (quick.status) {
+    out.status = *quick.status;
+  } else if (best.converged && -best.at.phi > separation_margin<R>(s, o, g, R(options.tolerance))) {
+    out.status = DistanceStatus::separated;
+  } else {
+    bool doubt;
+    Start<R, N> st = start<R, R>(s, o, R(options.tolerance), doubt);
+    if (doubt) st = start<detail::Wide<R>, R>(s, o, detail::Wide<R>(options.tolerance), doubt);
+    out.status = st.status;
+    // Absent only when S's center lies exactly on O's boundary (the bodies overlap).
+    if (st.normal.squaredNorm() > R(0)) starts[count++] = st.normal;
+  }
+  if (out.status == DistanceStatus::overlapping) {
+    if (!penetration) {
+      out.distance = T(0);
+      return out;
+    }
+    std::array<Vec<R, N>, penetration_starts<N>> sampled;
+    const int found = detail::sampled_starts<R, N, penetration_starts<N>>(g, sampled);
+    for (int i = 0; i < found; ++i) starts[count++] = sampled[i];
+  }
+  for (int i = 0; i < count; ++i) {
+    const auto d = detail::descend<R, N>(g, starts[i], options.max_iterations);
+    out.iterations += d.iterations;
+    // The smallest phi wins (an unconverged one lower than every converged one makes the
+    // answer uncertain); within rounding, a converged descent wins.
+    const R noise = std::max(d.at.noise, best.at.noise);
+    if (d.at.phi < best.at.phi - noise || (d.at.phi <= best.at.phi + noise && d.converged && !best.converged)) best = d;
+  }
+
+  if (!best.converged) out.status = DistanceStatus::did_not_converge;
+  const Vec<R, N> point_s = s.center().template cast<R>() + best.at.s1;
+  const Vec<R, N> point_o = o.center().template cast<R>() - best.at.s2;
+  out.distance = T(-best.at.phi);
+  out.point_a = (a_is_s ? point_s : point_o).template cast<T>();
+  out.point_b = (a_is_s ? point_o : point_s).template cast<T>();
+  out.normal = (a_is_s ? best.at.n : Vec<R, N>(-best.at.n)).template cast<T>();
+  return out;
+}
+
+}  // namespace
+
+template <class T, int N>
+Distance<T, N> distance(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b, const Options& options) noexcept {
+  return solve(a, b, options, false);
+}
+
+template <class T, int N>
+Distance<T, N> signed_distance(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b, const Options& options) noexcept {
+  return solve(a, b, options, true);
+}
+
+#define ELLIPSECT_INSTANTIATE(T, N)                                                                              \
+  template Distance<T, N> distance<T, N>(const Ellipsoid<T, N>&, const Ellipsoid<T, N>&, const Options&) noexcept; \
+  template Distance<T, N> signed_distance<T, N>(const Ellipsoid<T, N>&, const Ellipsoid<T, N>&, const Options&) noexcept;
+ELLIPSECT_FOR_EACH_TYPE_AND_DIM(ELLIPSECT_INSTANTIATE)
+#undef ELLIPSECT_INSTANTIATE
+
+}  // namespace ellipsect

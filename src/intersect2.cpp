@@ -1,0 +1,329 @@
+// Boundary intersection points and overlap area of two ellipses (docs/distance.md).
+//
+// Reduced frame (detail/reduce.hpp): S is the unit circle, O = { k + diag(e) u : |u| = 1 }.
+// With u = (cos t, sin t), w(t) = k + diag(e) u and h(t) = |w(t)|:
+//
+// * Critical points of h are the feet of the normals from the origin to O: u_i =
+//   -c_i / (e_i^2 + s), c_i = e_i k_i, for the roots s of the secular equation
+//   sum c_i^2 / (e_i^2 + s)^2 = 1 (detail/secular.hpp). Its outer branches give the
+//   closest and the farthest point (the solver handles their hard cases). With e_lo < e_hi,
+//   delta = e_hi^2 - e_lo^2 and a = -(e_lo^2 + s) in (0, delta), the middle branch is
+//   S(a) = c_lo^2 / a^2 + c_hi^2 / (delta - a)^2, convex, with its minimum in closed form at
+//   a* = delta |c_lo|^(2/3) / (|c_lo|^(2/3) + |c_hi|^(2/3)), where
+//   S(a*) = (|c_lo|^(2/3) + |c_hi|^(2/3))^3 / delta^2 (the evolute, an astroid); when it is
+//   below 1 there is one root on each side of a*. When c_lo or c_hi vanishes the middle
+//   points are the mirror image of the hard-case point across O's axis and a vertex.
+// * Between consecutive critical points h is monotone: a transverse crossing wherever the
+//   ends lie beyond the band on opposite sides of 1, a tangent point at each critical
+//   point within the band. These are the comparisons classify makes (same functions, same
+//   numbers), so the two agree; near a band edge both re-decide in the wider type.
+// * Area: the crossings split the intersection's boundary into arcs of O inside S and
+//   arcs of S inside O; the area is the polygon of the crossings plus the segment between
+//   each arc and its chord, (e_0 e_1 / 2)(dt - sin dt) or (dtheta - sin dtheta) / 2, times
+//   the determinant of the map back to the world (the product of S's radii).
+#include <ellipsect/intersect2.hpp>
+
+#include "detail/classify_impl.hpp"
+
+#include <array>
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <numbers>
+#include <utility>
+
+namespace ellipsect {
+
+std::string_view to_string(CrossingKind k) noexcept {
+  switch (k) {
+    case CrossingKind::transverse: return "transverse";
+    case CrossingKind::tangent: return "tangent";
+  }
+  return "unknown";
+}
+
+std::string_view to_string(BoundaryStatus s) noexcept {
+  switch (s) {
+    case BoundaryStatus::points: return "points";
+    case BoundaryStatus::equal: return "equal";
+  }
+  return "unknown";
+}
+
+namespace {
+
+template <class R>
+constexpr R two_pi = 2 * std::numbers::pi_v<R>;
+
+// Insertion sort of the first n (at most 4) elements.
+template <class A, class Less>
+void sort_first(A& items, int n, Less less) noexcept {
+  for (int i = 1; i < n; ++i)
+    for (int j = i; j > 0 && less(items[j], items[j - 1]); --j) std::swap(items[j], items[j - 1]);
+}
+
+template <class R>
+struct Point {
+  R t;           // O's parameter angle
+  Vec<R, 2> w;   // reduced-frame point k + diag(e) (cos t, sin t)
+  R h;           // |w|
+  CrossingKind kind = CrossingKind::tangent;
+  bool entering = false;  // transverse: O's boundary goes into S as t increases
+};
+
+template <class R>
+Point<R> on_o(const Vec<R, 2>& e, const Vec<R, 2>& k, const Vec<R, 2>& u) noexcept {
+  const Vec<R, 2> w = k + e.cwiseProduct(u);
+  return {std::atan2(u[1], u[0]), w, w.norm()};
+}
+
+template <class R>
+Point<R> from_branch(const Vec<R, 2>& e, const detail::BranchPoint<R, 2>& b) noexcept {
+  const Vec<R, 2> u = b.offset.cwiseQuotient(e);
+  return {std::atan2(u[1], u[0]), b.point, b.norm};
+}
+
+// Root of f on [lo, hi] where f is monotone (increasing when `increasing`) and changes
+// sign; f(x, value, slope). Bracketed Newton, then bisection to adjacent floats; steps
+// below 2 eps (|x| + floor) end it.
+template <class R, class F>
+R monotone_root(F f, R lo, R hi, bool increasing, R floor) noexcept {
+  constexpr R eps = std::numeric_limits<R>::epsilon();
+  R x = lo + (hi - lo) / 2;
+  for (int it = 0; it < detail::secular_newton_steps; ++it) {
+    R fx, dfx;
+    f(x, fx, dfx);
+    if (fx == R(0)) return x;
+    ((fx < R(0)) == increasing ? lo : hi) = x;
+    R next = x - fx / dfx;
+    if (!(next > lo && next < hi)) next = lo + (hi - lo) / 2;
+    if (std::abs(next - x) <= 2 * eps * (std::abs(next) + floor)) return next;
+    x = next;
+  }
+  for (;;) {  // terminates: the bracket shrinks to adjacent floats
+    const R mid = lo + (hi - lo) / 2;
+    if (mid <= lo || mid >= hi) return mid;
+    R fx, dfx;
+    f(mid, fx, dfx);
+    ((fx < R(0)) == increasing ? lo : hi) = mid;
+  }
+}
+
+// Critical points of h on O's boundary (2 or 4; possibly repeated).
+template <class R>
+int critical_points(const Vec<R, 2>& e, const Vec<R, 2>& k, std::array<Point<R>, 4>& out) noexcept {
+  const bool outside = detail::level_at_origin<R, 2>(e, k) > R(0);
+  const auto closest = outside ? detail::closest_from_outside<R, 2>(e, k) : detail::closest_from_inside<R, 2>(e, k);
+  const auto farthest = detail::farthest<R, 2>(e, k);
+  out[0] = from_branch<R>(e, closest);
+  out[1] = from_branch<R>(e, farthest);
+  int m = 2;
+  const int lo = e[0] <= e[1] ? 0 : 1, hi = 1 - lo;
+  const R delta = (e[hi] - e[lo]) * (e[hi] + e[lo]);
+  if (!(delta > R(0))) return m;
+  const R c_lo = e[lo] * k[lo], c_hi = e[hi] * k[hi];
+  auto add = [&](R u_lo, R u_hi) {
+    Vec<R, 2> u;
+    u[lo] = u_lo;
+    u[hi] = u_hi;
+    out[m++] = on_o<R>(e, k, u);
+  };
+  auto mirrored = [&](const Point<R>& p, int axis) {
+    Vec<R, 2> u = (p.w - k).cwiseQuotient(e);
+    u[axis] = -u[axis];
+    out[m++] = on_o<R>(e, k, u);
+  };
+  if (c_lo != R(0) && c_hi != R(0)) {
+    const R cl = std::cbrt(c_lo * c_lo), ch = std::cbrt(c_hi * c_hi);
+    if (!((cl + ch) * std::sqrt(cl + ch) < delta)) return m;  // S(a*) >= 1: no middle roots
+    const R a_star = delta * cl / (cl + ch);
+    auto s_minus_one = [&](R a, R& f, R& df) {
+      const R b = delta - a, tl = c_lo / a, th = c_hi / b;
+      f = tl * tl + th * th - R(1);
+      df = 2 * (th * th / b - tl * tl / a);
+    };
+    const R left = std::abs(c_lo), right = delta - std::abs(c_hi);  // S >= 1 at both
+    if (left < a_star) {
+      const R a = monotone_root<R>(s_minus_one, left, a_star, false, R(0));
+      add(c_lo / a, -c_hi / (delta - a));
+    }
+    if (a_star < right) {
+      const R a = monotone_root<R>(s_minus_one, a_star, right, true, R(0));
+      add(c_lo / a, -c_hi / (delta - a));
+    }
+  } else if (c_hi != R(0)) {  // c_lo = 0: the closest point is the hard case when |c_hi| < delta
+    if (std::abs(c_hi) < delta) {
+      mirrored(out[0], lo);
+      add(R(0), c_hi > R(0) ? R(-1) : R(1));
+    }
+  } else if (c_lo != R(0)) {  // c_hi = 0: the farthest point is the hard case when |c_lo| < delta
+    if (std::abs(c_lo) < delta) {
+      mirrored(out[1], hi);
+      add(c_lo > R(0) ? R(1) : R(-1), R(0));
+    }
+  } else {  // concentric: the four vertices
+    mirrored(out[0], lo);
+    mirrored(out[1], hi);
+  }
+  return m;
+}
+
+// All common points in the reduced frame, sorted by t. `doubt` is set when rounding could
+// flip a comparison with the band (the caller repeats the computation in the wider type).
+template <class R>
+struct Common {
+  detail::Reduced<R, 2> red;
+  std::array<Point<R>, 4> points;
+  int count = 0;
+};
+
+template <class R, class T>
+Common<R> common_points(const Ellipse2<T>& s, const Ellipse2<T>& o, R tol, bool& doubt) noexcept {
+  Common<R> out;
+  out.red = detail::reduce<R>(s, o);
+  const Vec<R, 2>& e = out.red.e;
+  const Vec<R, 2>& k = out.red.k;
+  const R rounding = detail::reduced_rounding<R>(s, o, e, k);
+  doubt = std::abs(detail::level_at_origin<R, 2>(e, k)) <= rounding;
+  std::array<Point<R>, 4> crit;
+  const int m = critical_points<R>(e, k, crit);
+  const auto by_t = [](const Point<R>& x, const Point<R>& y) { return x.t < y.t; };
+  sort_first(crit, m, by_t);
+  for (int i = 0; i < m; ++i) {
+    const R v = crit[i].h - R(1);
+    doubt = doubt || std::abs(v - tol) <= rounding || std::abs(v + tol) <= rounding;
+    // A tangent point (repeated critical points, e.g. a mirror image on the axis, once).
+    if (std::abs(v) <= tol && (i == 0 || crit[i].t != crit[i - 1].t)) out.points[out.count++] = crit[i];
+    const Point<R>& next = crit[(i + 1) % m];
+    const R v1 = next.h - R(1);
+    if (!((v < -tol && v1 > tol) || (v > tol && v1 < -tol))) continue;
+    const R t1 = next.t > crit[i].t ? next.t : next.t + two_pi<R>;
+    auto f = [&](R t, R& fx, R& dfx) {
+      const R c = std::cos(t), sn = std::sin(t);
+      const Vec<R, 2> w(k[0] + e[0] * c, k[1] + e[1] * sn);
+      fx = w.squaredNorm() - R(1);
+      dfx = 2 * (w[1] * e[1] * c - w[0] * e[0] * sn);
+    };
+    const R t = monotone_root<R>(f, crit[i].t, t1, v < R(0), R(1));
+    Point<R> p = on_o<R>(e, k, Vec<R, 2>(std::cos(t), std::sin(t)));
+    p.t = t;
+    p.kind = CrossingKind::transverse;
+    p.entering = v1 < R(0);
+    out.points[out.count++] = p;
+  }
+  sort_first(out.points, out.count, by_t);
+  return out;
+}
+
+// The computation in working precision, repeated in the wider type when in doubt; `use`
+// receives the result.
+template <class T, class Use>
+void with_common_points(const Ellipse2<T>& s, const Ellipse2<T>& o, const Options& options, Use use) noexcept {
+  using R = detail::Work<T>;
+  bool doubt;
+  const auto c = common_points<R>(s, o, R(options.tolerance), doubt);
+  if (!doubt) return use(c);
+  using W = detail::Wide<R>;
+  use(common_points<W>(s, o, W(options.tolerance), doubt));
+}
+
+// delta - sin(delta) for delta in [0, 2 pi], without cancellation for small delta.
+template <class R>
+R chord_gap(R d) noexcept {
+  if (d >= R(1)) return d - std::sin(d);
+  // d^3/3! - d^5/5! + ... ; nine terms reach 1/21! < eps for d < 1.
+  const R d2 = d * d;
+  R sum = 0;
+  for (int n = 21; n >= 5; n -= 2) sum = R(1) / R(n - 1) / R(n) * (R(1) - d2 * sum);
+  return d * d2 / R(6) * (R(1) - d2 * sum);
+}
+
+template <class R>
+R ccw_span(R from, R to) noexcept {
+  const R d = to - from;
+  return d > R(0) ? d : d + two_pi<R>;
+}
+
+// Area of S inside O in the reduced frame from the transverse crossings.
+template <class R>
+R lens_area(const Common<R>& c) noexcept {
+  std::array<const Point<R>*, 4> x;
+  int m = 0;
+  for (int i = 0; i < c.count; ++i)
+    if (c.points[i].kind == CrossingKind::transverse) x[m++] = &c.points[i];
+  R area = 0;
+  for (int i = 0; i < m; ++i) {
+    const Point<R>& p = *x[i];
+    const Point<R>& q = *x[(i + 1) % m];
+    const Vec<R, 2> dp = p.w - x[0]->w, dq = q.w - x[0]->w;
+    area += (dp[0] * dq[1] - dp[1] * dq[0]) / 2;
+    if (p.entering)  // O's arc from p to q lies inside S
+      area += c.red.e[0] * c.red.e[1] / 2 * chord_gap(ccw_span(p.t, q.t));
+    else  // S's arc from p to q lies inside O
+      area += chord_gap(ccw_span(std::atan2(p.w[1], p.w[0]), std::atan2(q.w[1], q.w[0]))) / 2;
+  }
+  return area;
+}
+
+}  // namespace
+
+template <class T>
+BoundaryIntersection<T> intersect_boundaries(const Ellipse2<T>& a, const Ellipse2<T>& b, const Options& options) noexcept {
+  BoundaryIntersection<T> out;
+  const Relation relation = classify(a, b, options);
+  if (relation == Relation::equal) out.status = BoundaryStatus::equal;
+  if (relation == Relation::equal || relation == Relation::separated) return out;
+  const auto [s, o, a_is_s] = detail::order_pair(a, b);
+  with_common_points<T>(s, o, options, [&](const auto& c) {
+    using R = typename std::decay_t<decltype(c.red.e)>::Scalar;
+    const Vec<R, 2> ca = a.center().template cast<R>();
+    const Mat<R, 2> axes_a = a.axes().template cast<R>();
+    const Vec<R, 2> radii_a = a.radii().template cast<R>();
+    std::array<std::pair<R, int>, 4> order;
+    std::array<Vec<R, 2>, 4> world;
+    for (int i = 0; i < c.count; ++i) {
+      world[i] = s.center().template cast<R>() + c.red.to_world * c.points[i].w;
+      const Vec<R, 2> u = (axes_a.transpose() * (world[i] - ca)).cwiseQuotient(radii_a);
+      order[i] = {std::atan2(u[1], u[0]), i};
+    }
+    sort_first(order, c.count, std::less<>());
+    out.count = c.count;
+    for (int i = 0; i < c.count; ++i) {
+      out.points[i] = world[order[i].second].template cast<T>();
+      out.kinds[i] = c.points[order[i].second].kind;
+    }
+  });
+  return out;
+}
+
+template <class T>
+OverlapArea<T> overlap_area(const Ellipse2<T>& a, const Ellipse2<T>& b, const Options& options) noexcept {
+  using R = detail::Work<T>;
+  auto area_of = [](const Ellipse2<T>& e) { return std::numbers::pi_v<R> * R(e.radii()[0]) * R(e.radii()[1]); };
+  OverlapArea<T> out{T(0), classify(a, b, options)};
+  const auto [s, o, a_is_s] = detail::order_pair(a, b);
+  switch (out.relation) {
+    case Relation::separated:
+    case Relation::touching: break;
+    case Relation::a_contains_b: out.area = T(area_of(b)); break;
+    case Relation::b_contains_a: out.area = T(area_of(a)); break;
+    case Relation::equal: out.area = T(area_of(s)); break;
+    case Relation::overlapping:
+      with_common_points<T>(s, o, options, [&](const auto& c) {
+        using W = typename std::decay_t<decltype(c.red.e)>::Scalar;
+        out.area = T(lens_area<W>(c) * W(s.radii()[0]) * W(s.radii()[1]));
+      });
+      break;
+  }
+  return out;
+}
+
+template BoundaryIntersection<float> intersect_boundaries<float>(const Ellipse2<float>&, const Ellipse2<float>&,
+                                                                 const Options&) noexcept;
+template BoundaryIntersection<double> intersect_boundaries<double>(const Ellipse2<double>&, const Ellipse2<double>&,
+                                                                   const Options&) noexcept;
+template OverlapArea<float> overlap_area<float>(const Ellipse2<float>&, const Ellipse2<float>&, const Options&) noexcept;
+template OverlapArea<double> overlap_area<double>(const Ellipse2<double>&, const Ellipse2<double>&,
+                                                  const Options&) noexcept;
+
+}  // namespace ellipsect
