@@ -170,26 +170,19 @@ std::string json_header(const Input& in, const Window& w, const Queries& q, cons
 std::string json_footer(bool any, std::uint64_t pairs, std::uint64_t listed, const Counters& c, const Queries& q) {
   std::string f = any ? "\n  ],\n" : "  ],\n";
   f += "  \"summary\": {\"pairs\": " + std::to_string(pairs) + ", \"listed\": " + std::to_string(listed);
-  if (q.relation) {
-    f += ", \"relation\": {";
-    for (int i = 0; i < n_relations; ++i) {
+  // ", "name": {"value": count, ...}" for one enum's counters.
+  auto counts = [&f](const char* name, int n, auto value, const auto& counter) {
+    f += std::string(", \"") + name + "\": {";
+    for (int i = 0; i < n; ++i) {
       if (i) f += ", ";
       f += "\"";
-      f += to_string(static_cast<Relation>(i));
-      f += "\": " + std::to_string(c.relation[static_cast<std::size_t>(i)]);
+      f += to_string(value(i));
+      f += "\": " + std::to_string(counter[static_cast<std::size_t>(i)]);
     }
     f += '}';
-  }
-  if (q.contact) {
-    f += ", \"contact\": {";
-    for (int i = 0; i < n_statuses; ++i) {
-      if (i) f += ", ";
-      f += "\"";
-      f += to_string(static_cast<ContactStatus>(i));
-      f += "\": " + std::to_string(c.contact[static_cast<std::size_t>(i)]);
-    }
-    f += '}';
-  }
+  };
+  if (q.relation) counts("relation", n_relations, [](int i) { return static_cast<Relation>(i); }, c.relation);
+  if (q.contact) counts("contact", n_statuses, [](int i) { return static_cast<ContactStatus>(i); }, c.contact);
   f += "}\n}\n";
   return f;
 }
