@@ -1,5 +1,6 @@
 #include <ellipsect/classify.hpp>
 
+#include "detail/certificates-inl.hpp"
 #include "detail/classify_impl.hpp"
 #include "detail/instantiate.hpp"
 
@@ -38,10 +39,12 @@ detail::ReducedRelation decide(const Ellipsoid<T, N>& s, const Ellipsoid<T, N>& 
 template <class T, int N>
 Relation classify(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b, const Options& options) noexcept {
   using R = detail::Work<T>;
+  namespace hw = detail::HWY_NAMESPACE;
+  const double code = hw::classify_code<double, N>(hw::lanes_of(a), hw::lanes_of(b), options.tolerance);
+  if (code < 0) return Relation::separated;
+  if (code > 0) return Relation::overlapping;
   const auto [s, o, a_is_s] = detail::order_pair(a, b);
   const R tol = R(options.tolerance);
-  if (detail::bounding_balls_apart<R>(s, o, tol)) return Relation::separated;
-  if (detail::pw_certificate<R>(s, o) == detail::Certificate::separated) return Relation::separated;
   switch (decide<R>(s, o, tol)) {
     case detail::ReducedRelation::s_contains_o: return a_is_s ? Relation::a_contains_b : Relation::b_contains_a;
     case detail::ReducedRelation::o_contains_s: return a_is_s ? Relation::b_contains_a : Relation::a_contains_b;
@@ -56,15 +59,11 @@ Relation classify(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b, const Opti
 template <class T, int N>
 bool overlap(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b, const Options& options) noexcept {
   using R = detail::Work<T>;
+  namespace hw = detail::HWY_NAMESPACE;
+  const double code = hw::overlap_code<double, N>(hw::lanes_of(a), hw::lanes_of(b), options.tolerance);
+  if (code != 0) return code > 0;
   const auto [s, o, a_is_s] = detail::order_pair(a, b);
   const R tol = R(options.tolerance);
-  if (detail::bounding_balls_apart<R>(s, o, tol)) return false;
-  if (detail::inscribed_balls_meet<R>(s, o)) return true;
-  switch (detail::pw_certificate<R>(s, o)) {
-    case detail::Certificate::separated: return false;
-    case detail::Certificate::overlapping: return true;
-    case detail::Certificate::unknown: break;
-  }
   const auto red = detail::reduce<R>(s, o);
   const R gap = detail::gap_reduced<R, N>(red.e, red.k);
   // Outside the rounding of the band's outer edge the sign is certain; on it, classify's

@@ -14,6 +14,7 @@
 // * Tolerances are relative (Options::tolerance for tangency, ulps for the time).
 #include <ellipsect/contact.hpp>
 
+#include "detail/certificates-inl.hpp"
 #include "detail/classify_impl.hpp"
 #include "detail/instantiate.hpp"
 
@@ -33,19 +34,6 @@ std::string_view to_string(ContactStatus s) noexcept {
   }
   return "unknown";
 }
-
-namespace {
-
-// Smallest distance between the centers over [0, t_max] exceeds the bounding radii.
-template <class R, int N>
-bool swept_balls_apart(const Vec<R, N>& c0, const Vec<R, N>& v, R t_max, R reach) noexcept {
-  const R vv = v.squaredNorm();
-  R t = vv > R(0) ? -c0.dot(v) / vv : R(0);
-  t = std::min(std::max(t, R(0)), t_max);
-  return (c0 + t * v).norm() > reach;
-}
-
-}  // namespace
 
 // One solve in working precision R. `doubt` is set to the estimated error of the
 // outcome relative to what the caller's accuracy claim allows: > 1 means the answer may be
@@ -180,17 +168,19 @@ Contact<T, N> first_contact(const Ellipsoid<T, N>& a, const Vec<T, N>& velocity_
   out.normal.setConstant(out.time);
   if (!velocity_a.allFinite() || !velocity_b.allFinite() || std::isnan(t_max) || t_max < T(0)) return out;
 
-  const auto [s, o, a_is_s] = detail::order_pair(a, b);
-  const Vec<T, N>& vs = a_is_s ? velocity_a : velocity_b;
-  const Vec<T, N>& vo = a_is_s ? velocity_b : velocity_a;
-  const R tol = R(options.tolerance);
-  const R reach = (R(s.radii().maxCoeff()) + R(o.radii().maxCoeff())) * (R(1) + R(2) * tol + R(1e-9));
-  const Vec<R, N> c0 = o.center().template cast<R>() - s.center().template cast<R>();
-  const Vec<R, N> v = vo.template cast<R>() - vs.template cast<R>();
-  if (swept_balls_apart<R, N>(c0, v, R(t_max), reach)) {
+  namespace hw = detail::HWY_NAMESPACE;
+  double va[N], vb[N];
+  for (int i = 0; i < N; ++i) {
+    va[i] = double(velocity_a[i]);
+    vb[i] = double(velocity_b[i]);
+  }
+  if (hw::swept_code<double, N>(hw::lanes_of(a), va, hw::lanes_of(b), vb, double(t_max), options.tolerance) > 0) {
     out.status = ContactStatus::no_contact_in_window;
     return out;
   }
+  const auto [s, o, a_is_s] = detail::order_pair(a, b);
+  const Vec<T, N>& vs = a_is_s ? velocity_a : velocity_b;
+  const Vec<T, N>& vo = a_is_s ? velocity_b : velocity_a;
   R doubt;
   out = solve_contact<R, T, N>(s, o, vs, vo, R(t_max), a_is_s, options, doubt);
   if (doubt > R(1)) {  // too close to call in R: certify in the wider type

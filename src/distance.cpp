@@ -20,6 +20,7 @@
 //   swaps the points and negates the normal without changing a bit.
 #include <ellipsect/distance.hpp>
 
+#include "detail/certificates-inl.hpp"
 #include "detail/classify_impl.hpp"
 #include "detail/distance_gap.hpp"
 #include "detail/instantiate.hpp"
@@ -93,7 +94,8 @@ QuickStart<R, N> quick_start(const Ellipsoid<T, N>& s, const Ellipsoid<T, N>& o,
   const Vec<R, N> n = detail::gap_value<R, N>(g, line) < detail::gap_value<R, N>(g, pw.n) ? line : pw.n;
   // F >= 1.01^2 puts y, and then n, in {g > 0}.
   if (pw.f >= R(1.01 * 1.01)) return {DistanceStatus::separated, n};
-  if (detail::pw_certificate<R>(s, o) == detail::Certificate::overlapping) return {DistanceStatus::overlapping, n};
+  namespace hw = detail::HWY_NAMESPACE;  // a certain common point
+  if (hw::overlap_code<double, N>(hw::lanes_of(s), hw::lanes_of(o), 0.0) > 0) return {DistanceStatus::overlapping, n};
   return {std::nullopt, n};
 }
 

@@ -14,8 +14,6 @@
 #include "reduce.hpp"
 #include "secular.hpp"
 
-#include <Eigen/Cholesky>
-
 #include <limits>
 
 namespace ellipsect::detail {
@@ -66,57 +64,6 @@ R reduced_rounding(const Ellipsoid<T, N>& s, const Ellipsoid<T, N>& o, const Vec
   const R world = R(s.center().norm()) + R(o.center().norm());
   return R(reduced_frame_ulps) * std::numeric_limits<R>::epsilon() *
          (k.norm() + e.maxCoeff() + world / R(s.radii().minCoeff()));
-}
-
-// Certain separation from the circumscribed balls: their distance exceeds the sum of the
-// radii by more than the band, so mu - 1 and hence the reduced gap exceed it too.
-template <class R, int N, class T>
-bool bounding_balls_apart(const Ellipsoid<T, N>& s, const Ellipsoid<T, N>& o, R tol) noexcept {
-  const R dist = (o.center().template cast<R>() - s.center().template cast<R>()).norm();
-  const R reach = R(s.radii().maxCoeff()) + R(o.radii().maxCoeff());
-  return dist > reach * (R(1) + R(2) * tol + R(1e-9));
-}
-
-// Certain overlap from the inscribed balls (margin 1e-9 for rounding).
-template <class R, int N, class T>
-bool inscribed_balls_meet(const Ellipsoid<T, N>& s, const Ellipsoid<T, N>& o) noexcept {
-  const R dist = (o.center().template cast<R>() - s.center().template cast<R>()).norm();
-  const R reach = R(s.radii().minCoeff()) + R(o.radii().minCoeff());
-  return dist < reach * (R(1) - R(1e-9));
-}
-
-// A cheap certificate from the Perram-Wertheim function F(l) = l (1 - l) r^T C^-1 r,
-// C = (1 - l) Ms^-1 + l Mo^-1, r = c_o - c_s, whose maximum over l is mu^2 (mu: the factor
-// that makes the scaled bodies touch). Any single l bounds mu from below, so
-// F(l) >= 1.01^2 certifies separation; and the point x(l) = c_s + (1 - l) Ms^-1 C^-1 r
-// lies inside both bodies when its two quadrics are <= 0.98, which certifies overlap.
-// l is the exact maximizer for two balls, rho_s / (rho_s + rho_o) with rho the support
-// radii along r. The margins (1%) dwarf the rounding of F (relative eps * cond(C) <= 1e-8
-// for aspect ratios up to 1e4, the range where the filter is used), so a certified answer
-// is also the one the exact path would give, far outside the tangency band.
-enum class Certificate { unknown, separated, overlapping };
-
-template <class R, int N, class T>
-Certificate pw_certificate(const Ellipsoid<T, N>& s, const Ellipsoid<T, N>& o) noexcept {
-  const auto aspect = [](const Ellipsoid<T, N>& e) { return e.radii().maxCoeff() / e.radii().minCoeff(); };
-  if (aspect(s) > T(1e4) || aspect(o) > T(1e4)) return Certificate::unknown;
-  const Mat<R, N> as = s.axes().template cast<R>(), ao = o.axes().template cast<R>();
-  const Vec<R, N> rs = s.radii().template cast<R>(), ro = o.radii().template cast<R>();
-  const Vec<R, N> cs = s.center().template cast<R>(), co = o.center().template cast<R>();
-  const Vec<R, N> r = co - cs;
-  const Mat<R, N> inv_s = as * rs.cwiseAbs2().asDiagonal() * as.transpose();
-  const Mat<R, N> inv_o = ao * ro.cwiseAbs2().asDiagonal() * ao.transpose();
-  const R rho_s = std::sqrt(r.dot(inv_s * r)), rho_o = std::sqrt(r.dot(inv_o * r));
-  if (!(rho_s + rho_o > R(0))) return Certificate::unknown;
-  const R l = rho_s / (rho_s + rho_o);
-  const Eigen::LLT<Mat<R, N>> llt((R(1) - l) * inv_s + l * inv_o);
-  if (llt.info() != Eigen::Success) return Certificate::unknown;
-  const Vec<R, N> y = llt.solve(r);
-  if (l * (R(1) - l) * r.dot(y) >= R(1.01 * 1.01)) return Certificate::separated;
-  const Vec<R, N> x = cs + (R(1) - l) * (inv_s * y);
-  const R qs = (as.transpose() * (x - cs)).cwiseQuotient(rs).squaredNorm();
-  const R qo = (ao.transpose() * (x - co)).cwiseQuotient(ro).squaredNorm();
-  return qs <= R(0.98) && qo <= R(0.98) ? Certificate::overlapping : Certificate::unknown;
 }
 
 }  // namespace ellipsect::detail

@@ -124,7 +124,7 @@ R gap_value(const GapBodies<R, N>& g, const Vec<R, N>& n) noexcept {
 }
 
 // The Perram-Wertheim direction y = C^-1 r, C = (1 - l) M_1^-1 + l M_2^-1, at the
-// two-ball weight l = rho_1(r) / (rho_1(r) + rho_2(r)) of detail::pw_certificate, and
+// two-ball weight l = rho_1(r) / (rho_1(r) + rho_2(r)) of detail/certificates-inl.hpp, and
 // F(l) = l (1 - l) r . y, a lower bound on the square of the Perram-Wertheim factor.
 // Whenever F > 1 the bodies are apart along y: with a = rho_1(y), b = rho_2(y) and
 // u = y . C y = (1 - l) a^2 + l b^2, Cauchy-Schwarz gives a + b <= sqrt(u / (l (1 - l)))

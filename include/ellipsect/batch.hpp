@@ -1,0 +1,106 @@
+// Batch queries: overlap, classify and first_contact over arrays of pairs, several pairs
+// per instruction (SIMD), on all cores.
+//
+// Contract: out[i] equals the scalar function's answer for pair i bit for bit (every
+// field of a Contact included), at every SIMD width and thread count
+// (tests/unit/batch_test.cpp); the accuracy statements of classify.hpp and contact.hpp
+// therefore hold unchanged. Invalid pairs cannot be stored: Pairs takes validated
+// Ellipsoids, and a non-finite velocity or bad t_max gives ContactStatus::invalid_input
+// exactly as first_contact does.
+//
+// Method: a vectorized filter evaluates, for several pairs at once, the certificates the
+// scalar functions try first (detail/certificates-inl.hpp: circumscribed and inscribed
+// balls, the Perram-Wertheim function at the two-ball parameter, support points for
+// containment, swept balls for contact), with the same operations in the same order, so
+// a pair it decides gets the scalar answer exactly. Pairs it leaves open (near tangency,
+// aspect ratios above 1e4, containment, contacts that may happen) go to the scalar
+// function. Random pairs are mostly decided by the filter; near-tangent ones never are.
+//
+// SIMD: Highway compiles the filter for each x86-64 instruction set (AVX-512, AVX2,
+// SSE4, SSSE3, and a portable scalar fallback) and picks the widest one the CPU has at run time;
+// simd_targets() lists them and set_simd_target() pins one (tests and benchmarks).
+// Threads: pairs are cut into fixed chunks that threads take in turn; each answer is
+// written to its own slot, so the output never depends on the thread count.
+#pragma once
+
+#include <ellipsect/classify.hpp>
+#include <ellipsect/contact.hpp>
+#include <ellipsect/options.hpp>
+#include <ellipsect/shapes.hpp>
+
+#include <cstddef>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace ellipsect {
+
+struct BatchOptions {
+  Options query;    // tolerance and iteration cap, as for the scalar functions
+  int threads = 0;  // 0: every hardware thread; 1: the calling thread only
+};
+
+// Pairs (a_i, b_i), with velocities and a time window for first_contact, stored as
+// structure of arrays: one contiguous column per coordinate (centers, axes, radii,
+// velocities) in double, plus the bodies themselves for the scalar fallback.
+template <class T, int N>
+class Pairs {
+public:
+  // Column order of one body: center[0..N), axes (i, j) at N + i * N + j, radii[0..N).
+  static constexpr int body_columns = N + N * N + N;
+  // a's columns, b's columns, velocity_a, velocity_b, t_max.
+  static constexpr int columns = 2 * body_columns + 2 * N + 1;
+
+  Pairs() : columns_(columns) {}
+
+  void reserve(std::size_t n);
+  // A static pair (zero velocities, t_max = 0: first_contact reports the state at t = 0).
+  void push_back(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b);
+  void push_back(const Ellipsoid<T, N>& a, const Vec<T, N>& velocity_a, const Ellipsoid<T, N>& b,
+                 const Vec<T, N>& velocity_b, T t_max);
+  void clear();
+
+  std::size_t size() const noexcept { return a_.size(); }
+  const Ellipsoid<T, N>& a(std::size_t i) const { return a_[i]; }
+  const Ellipsoid<T, N>& b(std::size_t i) const { return b_[i]; }
+  Vec<T, N> velocity_a(std::size_t i) const;
+  Vec<T, N> velocity_b(std::size_t i) const;
+  T t_max(std::size_t i) const { return T(columns_[columns - 1][i]); }
+  // Column k (see the order above), size() values.
+  const double* column(int k) const noexcept { return columns_[static_cast<std::size_t>(k)].data(); }
+
+private:
+  std::vector<std::vector<double>> columns_;
+  std::vector<Ellipsoid<T, N>> a_, b_;
+};
+
+// out.size() must equal pairs.size() (std::invalid_argument otherwise).
+template <class T, int N>
+void overlap(const Pairs<T, N>& pairs, std::span<bool> out, const BatchOptions& options = {});
+template <class T, int N>
+void classify(const Pairs<T, N>& pairs, std::span<Relation> out, const BatchOptions& options = {});
+template <class T, int N>
+void first_contact(const Pairs<T, N>& pairs, std::span<Contact<T, N>> out, const BatchOptions& options = {});
+
+// Array-of-structs convenience: pair i is (a[i], b[i]); a, b and out of equal sizes.
+template <class T, int N>
+void overlap(std::span<const Ellipsoid<T, N>> a, std::span<const Ellipsoid<T, N>> b, std::span<bool> out,
+             const BatchOptions& options = {});
+template <class T, int N>
+void classify(std::span<const Ellipsoid<T, N>> a, std::span<const Ellipsoid<T, N>> b, std::span<Relation> out,
+              const BatchOptions& options = {});
+template <class T, int N>
+void first_contact(std::span<const Ellipsoid<T, N>> a, std::span<const Vec<T, N>> velocity_a,
+                   std::span<const Ellipsoid<T, N>> b, std::span<const Vec<T, N>> velocity_b,
+                   std::span<const T> t_max, std::span<Contact<T, N>> out, const BatchOptions& options = {});
+
+// Instruction sets the batch functions can use on this CPU, widest first (Highway's
+// names: "AVX3" (AVX-512), "AVX2", "SSE4", "SSSE3", "SCALAR" on x86-64).
+std::vector<std::string> simd_targets();
+// The instruction set in use.
+std::string simd_target();
+// Pins one of simd_targets() for every later batch call; "" restores the widest. Not
+// thread-safe: call it while no batch query runs. Throws InputError for an unknown name.
+void set_simd_target(const std::string& name);
+
+}  // namespace ellipsect

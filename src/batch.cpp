@@ -1,0 +1,190 @@
+// Batch queries (include/ellipsect/batch.hpp): the SIMD certificate filter on chunks of
+// pairs, the scalar function on the pairs it leaves open, chunks shared among threads.
+#include <ellipsect/batch.hpp>
+
+#include "detail/batch_kernels.hpp"
+#include "detail/instantiate.hpp"
+
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <stdexcept>
+#include <thread>
+
+namespace ellipsect {
+
+template <class T, int N>
+void Pairs<T, N>::reserve(std::size_t n) {
+  for (auto& c : columns_) c.reserve(n);
+  a_.reserve(n);
+  b_.reserve(n);
+}
+
+template <class T, int N>
+void Pairs<T, N>::push_back(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b) {
+  push_back(a, Vec<T, N>::Zero(), b, Vec<T, N>::Zero(), T(0));
+}
+
+template <class T, int N>
+void Pairs<T, N>::push_back(const Ellipsoid<T, N>& a, const Vec<T, N>& velocity_a, const Ellipsoid<T, N>& b,
+                            const Vec<T, N>& velocity_b, T t_max) {
+  auto put = [&](int first, const Ellipsoid<T, N>& e) {
+    for (int i = 0; i < N; ++i) {
+      columns_[static_cast<std::size_t>(first + i)].push_back(double(e.center()[i]));
+      columns_[static_cast<std::size_t>(first + N + N * N + i)].push_back(double(e.radii()[i]));
+      for (int j = 0; j < N; ++j) columns_[static_cast<std::size_t>(first + N + i * N + j)].push_back(double(e.axes()(i, j)));
+    }
+  };
+  put(0, a);
+  put(body_columns, b);
+  for (int i = 0; i < N; ++i) {
+    columns_[static_cast<std::size_t>(2 * body_columns + i)].push_back(double(velocity_a[i]));
+    columns_[static_cast<std::size_t>(2 * body_columns + N + i)].push_back(double(velocity_b[i]));
+  }
+  columns_[columns - 1].push_back(double(t_max));
+  a_.push_back(a);
+  b_.push_back(b);
+}
+
+template <class T, int N>
+void Pairs<T, N>::clear() {
+  for (auto& c : columns_) c.clear();
+  a_.clear();
+  b_.clear();
+}
+
+template <class T, int N>
+Vec<T, N> Pairs<T, N>::velocity_a(std::size_t i) const {
+  Vec<T, N> v;
+  for (int k = 0; k < N; ++k) v[k] = T(columns_[static_cast<std::size_t>(2 * body_columns + k)][i]);
+  return v;
+}
+
+template <class T, int N>
+Vec<T, N> Pairs<T, N>::velocity_b(std::size_t i) const {
+  Vec<T, N> v;
+  for (int k = 0; k < N; ++k) v[k] = T(columns_[static_cast<std::size_t>(2 * body_columns + N + k)][i]);
+  return v;
+}
+
+namespace {
+
+constexpr std::size_t chunk = 1024;  // pairs per unit of work (a thread takes whole chunks)
+
+// Calls work(begin, end) on every chunk of [0, n), on `threads` threads (0: all).
+template <class Work>
+void for_each_chunk(std::size_t n, int threads, const Work& work) {
+  const std::size_t chunks = (n + chunk - 1) / chunk;
+  std::size_t workers = threads > 0 ? std::size_t(threads) : std::max(1u, std::thread::hardware_concurrency());
+  workers = std::min(workers, chunks);
+  std::atomic<std::size_t> next{0};
+  auto run = [&] {
+    for (std::size_t c; (c = next.fetch_add(1)) < chunks;) work(c * chunk, std::min(n, (c + 1) * chunk));
+  };
+  if (workers <= 1) return run();
+  std::vector<std::jthread> pool;
+  pool.reserve(workers - 1);
+  for (std::size_t w = 1; w < workers; ++w) pool.emplace_back(run);
+  run();
+}
+
+// The filter on each chunk; `answer(i, code)` writes pair i's result from its code
+// (0: undecided, the scalar function answers).
+template <class T, int N, class Answer>
+void run_batch(const Pairs<T, N>& pairs, std::size_t out_size, detail::BatchQuery query, const BatchOptions& options,
+               const Answer& answer) {
+  if (out_size != pairs.size()) throw std::invalid_argument("ellipsect: out.size() must equal the number of pairs");
+  std::array<const double*, Pairs<T, N>::columns> columns;
+  for (int k = 0; k < Pairs<T, N>::columns; ++k) columns[static_cast<std::size_t>(k)] = pairs.column(k);
+  for_each_chunk(pairs.size(), options.threads, [&](std::size_t begin, std::size_t end) {
+    std::array<signed char, chunk> codes;
+    detail::certify_pairs(N, query, columns.data(), begin, end, options.query.tolerance, codes.data());
+    for (std::size_t i = begin; i < end; ++i) answer(i, codes[i - begin]);
+  });
+}
+
+template <class T, int N>
+Pairs<T, N> pairs_of(std::span<const Ellipsoid<T, N>> a, std::span<const Ellipsoid<T, N>> b) {
+  if (a.size() != b.size()) throw std::invalid_argument("ellipsect: a and b must have equal sizes");
+  Pairs<T, N> pairs;
+  pairs.reserve(a.size());
+  for (std::size_t i = 0; i < a.size(); ++i) pairs.push_back(a[i], b[i]);
+  return pairs;
+}
+
+}  // namespace
+
+template <class T, int N>
+void overlap(const Pairs<T, N>& pairs, std::span<bool> out, const BatchOptions& options) {
+  run_batch(pairs, out.size(), detail::BatchQuery::overlap, options, [&](std::size_t i, signed char code) {
+    out[i] = code != 0 ? code > 0 : overlap(pairs.a(i), pairs.b(i), options.query);
+  });
+}
+
+template <class T, int N>
+void classify(const Pairs<T, N>& pairs, std::span<Relation> out, const BatchOptions& options) {
+  run_batch(pairs, out.size(), detail::BatchQuery::classify, options, [&](std::size_t i, signed char code) {
+    out[i] = code < 0   ? Relation::separated
+             : code > 0 ? Relation::overlapping
+                        : classify(pairs.a(i), pairs.b(i), options.query);
+  });
+}
+
+template <class T, int N>
+void first_contact(const Pairs<T, N>& pairs, std::span<Contact<T, N>> out, const BatchOptions& options) {
+  run_batch(pairs, out.size(), detail::BatchQuery::contact, options, [&](std::size_t i, signed char code) {
+    if (code > 0) {  // what first_contact answers when the swept balls stay apart
+      Contact<T, N> c;
+      c.status = ContactStatus::no_contact_in_window;
+      c.time = std::numeric_limits<T>::quiet_NaN();
+      c.point.setConstant(c.time);
+      c.normal.setConstant(c.time);
+      out[i] = c;
+    } else {
+      out[i] = first_contact(pairs.a(i), pairs.velocity_a(i), pairs.b(i), pairs.velocity_b(i), pairs.t_max(i),
+                             options.query);
+    }
+  });
+}
+
+template <class T, int N>
+void overlap(std::span<const Ellipsoid<T, N>> a, std::span<const Ellipsoid<T, N>> b, std::span<bool> out,
+             const BatchOptions& options) {
+  overlap(pairs_of(a, b), out, options);
+}
+
+template <class T, int N>
+void classify(std::span<const Ellipsoid<T, N>> a, std::span<const Ellipsoid<T, N>> b, std::span<Relation> out,
+              const BatchOptions& options) {
+  classify(pairs_of(a, b), out, options);
+}
+
+template <class T, int N>
+void first_contact(std::span<const Ellipsoid<T, N>> a, std::span<const Vec<T, N>> velocity_a,
+                   std::span<const Ellipsoid<T, N>> b, std::span<const Vec<T, N>> velocity_b,
+                   std::span<const T> t_max, std::span<Contact<T, N>> out, const BatchOptions& options) {
+  const std::size_t n = a.size();
+  if (b.size() != n || velocity_a.size() != n || velocity_b.size() != n || t_max.size() != n)
+    throw std::invalid_argument("ellipsect: a, velocity_a, b, velocity_b and t_max must have equal sizes");
+  Pairs<T, N> pairs;
+  pairs.reserve(n);
+  for (std::size_t i = 0; i < n; ++i) pairs.push_back(a[i], velocity_a[i], b[i], velocity_b[i], t_max[i]);
+  first_contact(pairs, out, options);
+}
+
+#define ELLIPSECT_INSTANTIATE(T, N)                                                                              \
+  template class Pairs<T, N>;                                                                                    \
+  template void overlap<T, N>(const Pairs<T, N>&, std::span<bool>, const BatchOptions&);                         \
+  template void classify<T, N>(const Pairs<T, N>&, std::span<Relation>, const BatchOptions&);                    \
+  template void first_contact<T, N>(const Pairs<T, N>&, std::span<Contact<T, N>>, const BatchOptions&);          \
+  template void overlap<T, N>(std::span<const Ellipsoid<T, N>>, std::span<const Ellipsoid<T, N>>,                \
+                              std::span<bool>, const BatchOptions&);                                             \
+  template void classify<T, N>(std::span<const Ellipsoid<T, N>>, std::span<const Ellipsoid<T, N>>,               \
+                               std::span<Relation>, const BatchOptions&);                                        \
+  template void first_contact<T, N>(std::span<const Ellipsoid<T, N>>, std::span<const Vec<T, N>>,                \
+                                    std::span<const Ellipsoid<T, N>>, std::span<const Vec<T, N>>,                \
+                                    std::span<const T>, std::span<Contact<T, N>>, const BatchOptions&);
+ELLIPSECT_FOR_EACH_TYPE_AND_DIM(ELLIPSECT_INSTANTIATE)
+#undef ELLIPSECT_INSTANTIATE
+
+}  // namespace ellipsect

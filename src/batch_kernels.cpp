@@ -1,0 +1,153 @@
+// SIMD build of the certificate filter: Highway compiles this file once per instruction
+// set (foreach_target) and dispatches to the widest one the CPU supports. Built with
+// -ffp-contract=off so that every lane rounds exactly as the scalar code does.
+#undef HWY_TARGET_INCLUDE
+#define HWY_TARGET_INCLUDE "batch_kernels.cpp"
+#include <hwy/foreach_target.h>  // IWYU pragma: keep
+
+#include <hwy/highway.h>
+
+#include "detail/batch_kernels.hpp"
+#include "detail/certificates-inl.hpp"
+
+#include <algorithm>
+
+HWY_BEFORE_NAMESPACE();
+namespace ellipsect::detail::HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
+
+template <int N>
+struct Layout {
+  static constexpr int body = N + N * N + N;       // center, axes (row-major), radii
+  static constexpr int columns = 2 * body + 2 * N + 1;  // a, b, velocity_a, velocity_b, t_max
+};
+
+template <int N, class D>
+BodyLanes<hn::Vec<D>, N> load_body(D d, const double* const* src, std::size_t i, int first) {
+  BodyLanes<hn::Vec<D>, N> b;
+  for (int k = 0; k < N; ++k) {
+    b.c[k] = hn::LoadU(d, src[first + k] + i);
+    b.r[k] = hn::LoadU(d, src[first + N + N * N + k] + i);
+    for (int j = 0; j < N; ++j) b.axes[k][j] = hn::LoadU(d, src[first + N + k * N + j] + i);
+  }
+  return b;
+}
+
+template <int N, class D>
+hn::Vec<D> certify_lanes(D d, BatchQuery query, const double* const* src, std::size_t i, double tol) {
+  using V = hn::Vec<D>;
+  constexpr int body = Layout<N>::body;
+  const auto a = load_body<N>(d, src, i, 0), b = load_body<N>(d, src, i, body);
+  const V vtol = hn::Set(d, tol);
+  if (query == BatchQuery::overlap) return overlap_code<V, N>(a, b, vtol);
+  if (query == BatchQuery::classify) return classify_code<V, N>(a, b, vtol);
+  V va[N], vb[N];
+  for (int k = 0; k < N; ++k) {
+    va[k] = hn::LoadU(d, src[2 * body + k] + i);
+    vb[k] = hn::LoadU(d, src[2 * body + N + k] + i);
+  }
+  return swept_code<V, N>(a, va, b, vb, hn::LoadU(d, src[2 * body + 2 * N] + i), vtol);
+}
+
+template <int N>
+void certify(BatchQuery query, const double* const* columns, std::size_t begin, std::size_t end, double tol,
+             signed char* codes) {
+  const hn::ScalableTag<double> d;
+  constexpr int n_columns = Layout<N>::columns;
+  const std::size_t lanes = hn::Lanes(d);
+  HWY_ALIGN double out[HWY_LANES(double)];
+  auto emit = [&](std::size_t at, std::size_t count) {
+    for (std::size_t k = 0; k < count; ++k) codes[at - begin + k] = static_cast<signed char>(out[k]);
+  };
+  std::size_t i = begin;
+  for (; i + lanes <= end; i += lanes) {
+    hn::Store(certify_lanes<N>(d, query, columns, i, tol), d, out);
+    emit(i, lanes);
+  }
+  if (i == end) return;
+  // The last partial vector: the remaining pairs, padded by repeating the last one.
+  const std::size_t rest = end - i;
+  HWY_ALIGN double tail[n_columns][HWY_LANES(double)];
+  const double* src[n_columns];
+  for (int k = 0; k < n_columns; ++k) {
+    for (std::size_t j = 0; j < lanes; ++j) tail[k][j] = columns[k][i + std::min(j, rest - 1)];
+    src[k] = tail[k];
+  }
+  hn::Store(certify_lanes<N>(d, query, src, 0, tol), d, out);
+  emit(i, rest);
+}
+
+void Certify2(BatchQuery query, const double* const* columns, std::size_t begin, std::size_t end, double tol,
+              signed char* codes) {
+  certify<2>(query, columns, begin, end, tol, codes);
+}
+
+void Certify3(BatchQuery query, const double* const* columns, std::size_t begin, std::size_t end, double tol,
+              signed char* codes) {
+  certify<3>(query, columns, begin, end, tol, codes);
+}
+
+const char* TargetInUse() { return hwy::TargetName(HWY_TARGET); }
+
+}  // namespace ellipsect::detail::HWY_NAMESPACE
+HWY_AFTER_NAMESPACE();
+
+#if HWY_ONCE
+#include <ellipsect/batch.hpp>
+
+namespace ellipsect {
+namespace detail {
+
+HWY_EXPORT(Certify2);
+HWY_EXPORT(Certify3);
+HWY_EXPORT(TargetInUse);
+
+void certify_pairs(int dim, BatchQuery query, const double* const* columns, std::size_t begin, std::size_t end,
+                   double tol, signed char* codes) {
+  if (dim == 2) {
+    HWY_DYNAMIC_DISPATCH(Certify2)(query, columns, begin, end, tol, codes);
+  } else {
+    HWY_DYNAMIC_DISPATCH(Certify3)(query, columns, begin, end, tol, codes);
+  }
+}
+
+std::string target_in_use() { return HWY_DYNAMIC_DISPATCH(TargetInUse)(); }
+
+namespace {
+
+// The CPU's targets, recorded before any pinning narrows what Highway reports.
+const std::vector<std::int64_t>& available_targets() {
+  static const std::vector<std::int64_t> targets = hwy::SupportedAndGeneratedTargets();
+  return targets;
+}
+
+}  // namespace
+}  // namespace detail
+
+std::vector<std::string> simd_targets() {
+  std::vector<std::string> names;
+  for (const auto t : detail::available_targets()) names.emplace_back(hwy::TargetName(t));
+  return names;
+}
+
+std::string simd_target() { return detail::target_in_use(); }
+
+void set_simd_target(const std::string& name) {
+  if (name.empty()) {
+    hwy::SetSupportedTargetsForTest(0);
+    return;
+  }
+  std::string offered;
+  for (const auto t : detail::available_targets()) {
+    if (name == hwy::TargetName(t)) {
+      hwy::SetSupportedTargetsForTest(t);
+      return;
+    }
+    offered += offered.empty() ? "" : ", ";
+    offered += hwy::TargetName(t);
+  }
+  throw InputError("simd_target", "'" + name + "' is not available on this CPU (available: " + offered + ")");
+}
+
+}  // namespace ellipsect
+#endif  // HWY_ONCE

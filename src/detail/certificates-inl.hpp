@@ -1,0 +1,267 @@
+// Certificates that decide most pairs without the exact solve, written once for a lane
+// type V: double (one pair: classify.cpp, contact.cpp) or a Highway vector of doubles
+// (several pairs per instruction: batch_kernels.cpp). Both run the same IEEE operations in
+// the same order (the SIMD file is built with -ffp-contract=off), so a lane of the vector
+// code returns exactly what the scalar code returns for that pair: the batch functions
+// equal the scalar ones bit for bit.
+//
+// Each certificate answers only far from the tangency band; pairs it leaves open (code 0)
+// take the exact path.
+//   circumscribed balls apart                 -> separated
+//   inscribed balls meet                      -> a common point
+//   Perram-Wertheim F(l) = l (1 - l) r^T C^-1 r, C = (1 - l) Sa + l Sb (S = A diag(radii^2)
+//   A^T, r = c_b - c_a), at the two-ball maximizer l = rho_a / (rho_a + rho_b) (rho: support
+//   radii along r). max_l F = mu^2 (mu: the scale at which the bodies touch), so
+//     F >= 1.01^2                             -> separated
+//   and x = c_a + (1 - l) Sa y, y = C^-1 r, has quadrics qa = (1 - l)^2 y^T Sa y and
+//   qb = l^2 y^T Sb y:
+//     qa, qb <= 0.98                          -> a common interior point
+//   a's support point away from b, c_a - Sa r / rho_a, has b's quadric >= 1.02 and b's away
+//   from a has a's quadric >= 1.02            -> neither body inside the other
+//   the centers' closest approach over [0, t_max] exceeds the circumscribed radii
+//                                             -> no contact in the window
+// The 1-2% margins dwarf the rounding of F and of the quadrics (relative eps * cond(C) <=
+// 1e-8 for aspect ratios up to 1e4, the range where F is used), and the balls carry a 1e-9
+// margin, so a certified answer is the one the exact path gives.
+//
+// Highway's per-target include guard: the file is compiled once per SIMD target.
+#if defined(ELLIPSECT_CERTIFICATES_INL_) == defined(HWY_TARGET_TOGGLE)
+#ifdef ELLIPSECT_CERTIFICATES_INL_
+#undef ELLIPSECT_CERTIFICATES_INL_
+#else
+#define ELLIPSECT_CERTIFICATES_INL_
+#endif
+
+#include <ellipsect/shapes.hpp>
+
+#include <hwy/highway.h>
+
+#include <cmath>
+#include <type_traits>
+#include <utility>
+
+HWY_BEFORE_NAMESPACE();
+namespace ellipsect::detail::HWY_NAMESPACE {
+
+// Scalar twins of the Highway operations, so one template serves both. Max and Min follow
+// the x86 instructions (the second operand when unordered).
+HWY_INLINE double Sqrt(double x) { return std::sqrt(x); }
+HWY_INLINE double Max(double a, double b) { return a > b ? a : b; }
+HWY_INLINE double Min(double a, double b) { return a < b ? a : b; }
+HWY_INLINE bool Lt(double a, double b) { return a < b; }
+HWY_INLINE bool Le(double a, double b) { return a <= b; }
+HWY_INLINE bool Gt(double a, double b) { return a > b; }
+HWY_INLINE bool Ge(double a, double b) { return a >= b; }
+HWY_INLINE bool IsFinite(double x) { return std::isfinite(x); }
+HWY_INLINE bool And(bool a, bool b) { return a && b; }
+HWY_INLINE bool Or(bool a, bool b) { return a || b; }
+HWY_INLINE bool AndNot(bool not_a, bool b) { return !not_a && b; }
+HWY_INLINE double IfThenElse(bool m, double yes, double no) { return m ? yes : no; }
+
+template <class V>
+HWY_INLINE V Splat(double x) {
+  if constexpr (std::is_same_v<V, double>) {
+    return x;
+  } else {
+    return hwy::HWY_NAMESPACE::Set(hwy::HWY_NAMESPACE::DFromV<V>(), x);
+  }
+}
+
+template <class V, class M>
+HWY_INLINE bool all_lanes(M m) {
+  if constexpr (std::is_same_v<V, double>) {
+    return m;
+  } else {
+    return hwy::HWY_NAMESPACE::AllTrue(hwy::HWY_NAMESPACE::DFromV<V>(), m);
+  }
+}
+
+// One body per lane: center, principal directions (axes[i][j]: component i of axis j), radii.
+template <class V, int N>
+struct BodyLanes {
+  V c[N];
+  V axes[N][N];
+  V r[N];
+};
+
+template <class T, int N>
+BodyLanes<double, N> lanes_of(const Ellipsoid<T, N>& e) noexcept {
+  BodyLanes<double, N> b;
+  for (int i = 0; i < N; ++i) {
+    b.c[i] = double(e.center()[i]);
+    b.r[i] = double(e.radii()[i]);
+    for (int j = 0; j < N; ++j) b.axes[i][j] = double(e.axes()(i, j));
+  }
+  return b;
+}
+
+template <class V, int N>
+HWY_INLINE V dot(const V* x, const V* y) {
+  V s = x[0] * y[0];
+  for (int i = 1; i < N; ++i) s = s + x[i] * y[i];
+  return s;
+}
+
+template <class V, int N>
+HWY_INLINE V largest(const V* r) {
+  V m = r[0];
+  for (int i = 1; i < N; ++i) m = Max(m, r[i]);
+  return m;
+}
+
+template <class V, int N>
+HWY_INLINE V smallest(const V* r) {
+  V m = r[0];
+  for (int i = 1; i < N; ++i) m = Min(m, r[i]);
+  return m;
+}
+
+// S = A diag(r^2) A^T, the inverse of the body's quadric matrix.
+template <class V, int N>
+HWY_INLINE void shape_matrix(const BodyLanes<V, N>& b, V (&s)[N][N]) {
+  V r2[N];
+  for (int k = 0; k < N; ++k) r2[k] = b.r[k] * b.r[k];
+  for (int i = 0; i < N; ++i)
+    for (int j = i; j < N; ++j) {
+      V t = b.axes[i][0] * b.axes[j][0] * r2[0];
+      for (int k = 1; k < N; ++k) t = t + b.axes[i][k] * b.axes[j][k] * r2[k];
+      s[i][j] = t;
+      s[j][i] = t;
+    }
+}
+
+template <class V, int N>
+HWY_INLINE void times(const V (&s)[N][N], const V* w, V* g) {
+  for (int i = 0; i < N; ++i) g[i] = dot<V, N>(s[i], w);
+}
+
+// The body's quadric at offset w from its center: sum_k ((A^T w)_k / r_k)^2.
+template <class V, int N>
+HWY_INLINE V level(const BodyLanes<V, N>& b, const V* w) {
+  V q = Splat<V>(0);
+  for (int k = 0; k < N; ++k) {
+    V s = b.axes[0][k] * w[0];
+    for (int i = 1; i < N; ++i) s = s + b.axes[i][k] * w[i];
+    const V t = s / b.r[k];
+    q = q + t * t;
+  }
+  return q;
+}
+
+// Circumscribed-ball reach of the pair, with the band and the 1e-9 rounding margin.
+template <class V, int N>
+HWY_INLINE V outer_reach(const BodyLanes<V, N>& a, const BodyLanes<V, N>& b, V tol) {
+  return (largest<V, N>(a.r) + largest<V, N>(b.r)) * (Splat<V>(1) + Splat<V>(2) * tol + Splat<V>(1e-9));
+}
+
+// Codes: -1 separated, +1 decided otherwise (overlap: a common point; classify: relation
+// overlapping, neither body inside the other), 0 undecided.
+template <class V, int N, bool containment>
+HWY_INLINE V certify(const BodyLanes<V, N>& a, const BodyLanes<V, N>& b, V tol) {
+  const V one = Splat<V>(1), zero = Splat<V>(0), minus_one = zero - one;
+  V r[N];
+  for (int i = 0; i < N; ++i) r[i] = b.c[i] - a.c[i];
+  const V d2 = dot<V, N>(r, r);
+  const V outer = outer_reach<V, N>(a, b, tol);
+  const V inner = (smallest<V, N>(a.r) + smallest<V, N>(b.r)) * Splat<V>(1 - 1e-9);
+  const auto apart = Gt(d2, outer * outer);
+  const auto inside = Lt(d2, inner * inner);
+  if constexpr (containment) {
+    if (all_lanes<V>(apart)) return minus_one;
+  } else {
+    if (all_lanes<V>(Or(apart, inside))) return IfThenElse(apart, minus_one, one);
+  }
+  const V aspect = Splat<V>(1e4);
+  auto gate = And(Le(largest<V, N>(a.r), aspect * smallest<V, N>(a.r)),
+                  Le(largest<V, N>(b.r), aspect * smallest<V, N>(b.r)));
+
+  V sa[N][N], sb[N][N], ga[N], gb[N];
+  shape_matrix<V, N>(a, sa);
+  shape_matrix<V, N>(b, sb);
+  times<V, N>(sa, r, ga);
+  times<V, N>(sb, r, gb);
+  const V rho_a = Sqrt(dot<V, N>(r, ga)), rho_b = Sqrt(dot<V, N>(r, gb));
+  const V l = rho_a / (rho_a + rho_b), m = one - l;
+  // C = m Sa + l Sb = L D L^T (lower triangle only), then y = C^-1 r.
+  V dg[N], low[N][N];
+  for (int j = 0; j < N; ++j) {
+    V s = m * sa[j][j] + l * sb[j][j];
+    for (int k = 0; k < j; ++k) s = s - low[j][k] * low[j][k] * dg[k];
+    dg[j] = s;
+    gate = And(gate, Gt(s, zero));
+    for (int i = j + 1; i < N; ++i) {
+      V t = m * sa[i][j] + l * sb[i][j];
+      for (int k = 0; k < j; ++k) t = t - low[i][k] * low[j][k] * dg[k];
+      low[i][j] = t / s;
+    }
+  }
+  V y[N];
+  for (int i = 0; i < N; ++i) {
+    V s = r[i];
+    for (int k = 0; k < i; ++k) s = s - low[i][k] * y[k];
+    y[i] = s;
+  }
+  for (int i = 0; i < N; ++i) y[i] = y[i] / dg[i];
+  for (int i = N - 1; i >= 0; --i)
+    for (int k = i + 1; k < N; ++k) y[i] = y[i] - low[k][i] * y[k];
+
+  const V f = l * m * dot<V, N>(r, y);
+  const auto separated = Or(apart, And(gate, Ge(f, Splat<V>(1.01 * 1.01))));
+  V sy_a[N], sy_b[N];
+  times<V, N>(sa, y, sy_a);
+  times<V, N>(sb, y, sy_b);
+  const V qa = m * m * dot<V, N>(y, sy_a), qb = l * l * dot<V, N>(y, sy_b);
+  const V deep = Splat<V>(0.98);
+  const auto shared = AndNot(separated, Or(inside, And(gate, And(Le(qa, deep), Le(qb, deep)))));
+  if constexpr (!containment) {
+    return IfThenElse(separated, minus_one, IfThenElse(shared, one, zero));
+  } else {
+    V wa[N], wb[N];  // a's support point away from b, relative to c_b; b's away from a, relative to c_a
+    for (int i = 0; i < N; ++i) {
+      wa[i] = zero - r[i] - ga[i] / rho_a;
+      wb[i] = r[i] + gb[i] / rho_b;
+    }
+    const V out = Splat<V>(1.02);
+    const auto proper = And(And(shared, gate), And(Ge(level<V, N>(b, wa), out), Ge(level<V, N>(a, wb), out)));
+    return IfThenElse(separated, minus_one, IfThenElse(proper, one, zero));
+  }
+}
+
+template <class V, int N>
+HWY_INLINE V overlap_code(const BodyLanes<V, N>& a, const BodyLanes<V, N>& b, V tol) {
+  return certify<V, N, false>(a, b, tol);
+}
+
+template <class V, int N>
+HWY_INLINE V classify_code(const BodyLanes<V, N>& a, const BodyLanes<V, N>& b, V tol) {
+  return certify<V, N, true>(a, b, tol);
+}
+
+// +1 when the velocities and t_max are valid and the circumscribed balls stay apart over
+// [0, t_max] (first_contact: no contact in the window), else 0.
+template <class V, int N>
+HWY_INLINE V swept_code(const BodyLanes<V, N>& a, const V* va, const BodyLanes<V, N>& b, const V* vb, V t_max,
+                        V tol) {
+  const V one = Splat<V>(1), zero = Splat<V>(0);
+  V c0[N], v[N];
+  auto valid = Ge(t_max, zero);
+  for (int i = 0; i < N; ++i) {
+    c0[i] = b.c[i] - a.c[i];
+    v[i] = vb[i] - va[i];
+    valid = And(valid, And(IsFinite(va[i]), IsFinite(vb[i])));
+  }
+  const V vv = dot<V, N>(v, v);
+  const auto moving = Gt(vv, zero);
+  V t = IfThenElse(moving, (zero - dot<V, N>(c0, v)) / IfThenElse(moving, vv, one), zero);
+  valid = And(valid, IsFinite(t));
+  t = Min(Max(t, zero), t_max);
+  V p[N];
+  for (int i = 0; i < N; ++i) p[i] = c0[i] + t * v[i];
+  const V reach = outer_reach<V, N>(a, b, tol);
+  return IfThenElse(And(valid, Gt(dot<V, N>(p, p), reach * reach)), one, zero);
+}
+
+}  // namespace ellipsect::detail::HWY_NAMESPACE
+HWY_AFTER_NAMESPACE();
+
+#endif  // per-target include guard

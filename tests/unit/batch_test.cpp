@@ -1,0 +1,205 @@
+// Batch queries equal the scalar ones bit for bit: on every scenario category, for every
+// SIMD target the CPU offers, at several thread counts, through both entry points.
+#include <ellipsect/batch.hpp>
+
+#include "detail/batch_kernels.hpp"
+#include "detail/certificates-inl.hpp"
+#include "scenarios/scenarios.hpp"
+#include "tests/support.hpp"
+
+#include <gtest/gtest.h>
+
+#include <bit>
+#include <cmath>
+#include <limits>
+#include <memory>
+
+namespace {
+
+using namespace ellipsect;
+
+template <class T, int N>
+Ellipsoid<T, N> as(const Ellipsoid<double, N>& e) {
+  return Ellipsoid<T, N>::from_axes(e.center().template cast<T>(), e.axes().template cast<T>(),
+                                    e.radii().template cast<T>());
+}
+
+// Every category, `per_category` seeds each, plus a count that is no multiple of any
+// vector width (the padded tail).
+template <class T, int N>
+Pairs<T, N> scenario_pairs(int per_category) {
+  Pairs<T, N> pairs;
+  for (const auto category : scenarios::all_categories)
+    for (int i = 0; i < per_category; ++i) {
+      const auto c = scenarios::make_case<N>(category, 7000 + std::uint64_t(i));
+      pairs.push_back(as<T>(c.a), c.va.template cast<T>(), as<T>(c.b), c.vb.template cast<T>(), T(c.t_max));
+    }
+  return pairs;
+}
+
+template <class T>
+bool same_bits(T x, T y) {
+  return (std::isnan(x) && std::isnan(y)) || x == y;
+}
+
+template <class T, int N>
+void expect_same(const Contact<T, N>& batch, const Contact<T, N>& scalar, std::size_t i) {
+  EXPECT_EQ(batch.status, scalar.status) << "pair " << i;
+  EXPECT_EQ(batch.iterations, scalar.iterations) << "pair " << i;
+  EXPECT_TRUE(same_bits(batch.time, scalar.time)) << "pair " << i << ": " << batch.time << " vs " << scalar.time;
+  for (int k = 0; k < N; ++k) {
+    EXPECT_TRUE(same_bits(batch.point[k], scalar.point[k])) << "pair " << i;
+    EXPECT_TRUE(same_bits(batch.normal[k], scalar.normal[k])) << "pair " << i;
+  }
+}
+
+template <class T, int N>
+void expect_batch_equals_scalar(const Pairs<T, N>& pairs, int threads) {
+  const std::size_t n = pairs.size();
+  const BatchOptions options{.query = {}, .threads = threads};
+  const auto overlaps = std::make_unique<bool[]>(n);
+  std::vector<Relation> relations(n);
+  std::vector<Contact<T, N>> contacts(n);
+  overlap(pairs, std::span<bool>(overlaps.get(), n), options);
+  classify(pairs, std::span<Relation>(relations), options);
+  first_contact(pairs, std::span<Contact<T, N>>(contacts), options);
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto &a = pairs.a(i), &b = pairs.b(i);
+    EXPECT_EQ(overlaps[i], overlap(a, b)) << "pair " << i;
+    EXPECT_EQ(relations[i], classify(a, b)) << "pair " << i;
+    expect_same(contacts[i], first_contact(a, pairs.velocity_a(i), b, pairs.velocity_b(i), pairs.t_max(i)), i);
+  }
+}
+
+template <class T, int N>
+void every_target(int per_category) {
+  const auto pairs = scenario_pairs<T, N>(ellipsect::testing::cases(per_category));
+  for (const auto& target : simd_targets()) {
+    SCOPED_TRACE(target);
+    set_simd_target(target);
+    EXPECT_EQ(simd_target(), target);
+    expect_batch_equals_scalar(pairs, 1);
+  }
+  set_simd_target("");
+}
+
+TEST(Batch, EqualsScalarOnEveryTarget2D) { every_target<double, 2>(60); }
+TEST(Batch, EqualsScalarOnEveryTarget3D) { every_target<double, 3>(60); }
+TEST(Batch, EqualsScalarInFloat) {
+  every_target<float, 2>(20);
+  every_target<float, 3>(20);
+}
+
+// The vector filter's code for each pair is the scalar certificate's, on every target,
+// and it decides most pairs of the random category (the point of the filter).
+template <int N>
+void codes_equal_scalar() {
+  namespace hw = detail::HWY_NAMESPACE;
+  const auto pairs = scenario_pairs<double, N>(ellipsect::testing::cases(50));
+  std::vector<const double*> columns;
+  for (int k = 0; k < Pairs<double, N>::columns; ++k) columns.push_back(pairs.column(k));
+  const std::size_t n = pairs.size();
+  std::vector<signed char> codes(n);
+  for (const auto& target : simd_targets()) {
+    SCOPED_TRACE(target);
+    set_simd_target(target);
+    for (const auto query : {detail::BatchQuery::overlap, detail::BatchQuery::classify, detail::BatchQuery::contact}) {
+      detail::certify_pairs(N, query, columns.data(), 0, n, 1e-12, codes.data());
+      std::size_t random = 0, decided = 0;
+      for (std::size_t i = 0; i < n; ++i) {
+        const auto a = hw::lanes_of(pairs.a(i)), b = hw::lanes_of(pairs.b(i));
+        double va[N], vb[N];
+        for (int k = 0; k < N; ++k) {
+          va[k] = pairs.velocity_a(i)[k];
+          vb[k] = pairs.velocity_b(i)[k];
+        }
+        const double scalar = query == detail::BatchQuery::overlap    ? hw::overlap_code<double, N>(a, b, 1e-12)
+                              : query == detail::BatchQuery::classify ? hw::classify_code<double, N>(a, b, 1e-12)
+                                                                      : hw::swept_code<double, N>(a, va, b, vb, pairs.t_max(i), 1e-12);
+        ASSERT_EQ(codes[i], static_cast<signed char>(scalar)) << "pair " << i;
+        if (i < n / scenarios::all_categories.size()) {  // the random category comes first
+          ++random;
+          decided += codes[i] != 0;
+        }
+      }
+      if (query == detail::BatchQuery::overlap) {
+        EXPECT_GT(decided, random / 2);
+      }
+    }
+  }
+  set_simd_target("");
+}
+
+TEST(Batch, FilterCodesEqualScalarCertificates) {
+  codes_equal_scalar<2>();
+  codes_equal_scalar<3>();
+}
+
+TEST(Batch, IndependentOfThreadCount) {
+  const auto pairs = scenario_pairs<double, 3>(ellipsect::testing::cases(400));  // several chunks
+  for (const int threads : {0, 2, 3, 7}) {
+    SCOPED_TRACE(threads);
+    expect_batch_equals_scalar(pairs, threads);
+  }
+}
+
+TEST(Batch, ArrayOfStructsEntryPoints) {
+  std::vector<Ellipsoid<double, 3>> a, b;
+  std::vector<Vec3<double>> va, vb;
+  std::vector<double> t_max;
+  for (const auto category : scenarios::all_categories)
+    for (int i = 0; i < 13; ++i) {
+      const auto c = scenarios::make_case<3>(category, 100 + std::uint64_t(i));
+      a.push_back(c.a);
+      b.push_back(c.b);
+      va.push_back(c.va);
+      vb.push_back(c.vb);
+      t_max.push_back(c.t_max);
+    }
+  const std::size_t n = a.size();
+  const auto overlaps = std::make_unique<bool[]>(n);
+  std::vector<Relation> relations(n);
+  std::vector<Contact<double, 3>> contacts(n);
+  overlap<double, 3>(a, b, std::span<bool>(overlaps.get(), n));
+  classify<double, 3>(a, b, relations);
+  first_contact<double, 3>(a, va, b, vb, t_max, contacts);
+  for (std::size_t i = 0; i < n; ++i) {
+    EXPECT_EQ(overlaps[i], overlap(a[i], b[i]));
+    EXPECT_EQ(relations[i], classify(a[i], b[i]));
+    expect_same(contacts[i], first_contact(a[i], va[i], b[i], vb[i], t_max[i]), i);
+  }
+}
+
+TEST(Batch, InvalidMotionIsReportedPerPair) {
+  const auto a = make_ball<double, 3>({0, 0, 0}, 1), b = make_ball<double, 3>({5, 0, 0}, 1);
+  const double inf = std::numeric_limits<double>::infinity(), nan = std::numeric_limits<double>::quiet_NaN();
+  Pairs<double, 3> pairs;
+  pairs.push_back(a, {inf, 0, 0}, b, {0, 0, 0}, 1);   // velocity not finite
+  pairs.push_back(a, {0, 0, 0}, b, {0, nan, 0}, 1);   // velocity not finite
+  pairs.push_back(a, {0, 0, 0}, b, {-1, 0, 0}, -1);   // negative window
+  pairs.push_back(a, {0, 0, 0}, b, {-1, 0, 0}, nan);  // NaN window
+  pairs.push_back(a, {0, 0, 0}, b, {-1, 0, 0}, 10);   // valid: hit at t = 3
+  std::vector<Contact<double, 3>> out(pairs.size());
+  first_contact(pairs, std::span<Contact<double, 3>>(out));
+  for (int i = 0; i < 4; ++i) EXPECT_EQ(out[std::size_t(i)].status, ContactStatus::invalid_input) << i;
+  EXPECT_EQ(out[4].status, ContactStatus::hit);
+  EXPECT_NEAR(out[4].time, 3.0, 1e-12);
+}
+
+TEST(Batch, SizesAndTargetsAreChecked) {
+  Pairs<double, 2> pairs;
+  std::vector<Relation> none;
+  classify(pairs, std::span<Relation>(none));  // empty batch: nothing to do
+  pairs.push_back(make_ball<double, 2>({0, 0}, 1), make_ball<double, 2>({1, 0}, 1));
+  EXPECT_THROW(classify(pairs, std::span<Relation>(none)), std::invalid_argument);
+  try {
+    set_simd_target("NO_SUCH_TARGET");
+    FAIL() << "an unknown instruction set was accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.field(), "simd_target");
+  }
+  ASSERT_FALSE(simd_targets().empty());
+  EXPECT_EQ(simd_target(), simd_targets().front());
+}
+
+}  // namespace
