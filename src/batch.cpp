@@ -69,14 +69,15 @@ Vec<T, N> Pairs<T, N>::velocity_b(std::size_t i) const {
 
 namespace {
 
-constexpr std::size_t chunk = 1024;  // pairs per unit of work (a thread takes whole chunks)
+constexpr std::size_t chunk = 1024;           // pairs per unit of work (a thread takes whole chunks)
+constexpr std::size_t chunks_per_thread = 8;  // at least ~100 us of work per thread started
 
-// Calls work(begin, end) on every chunk of [0, n), on `threads` threads (0: all).
+// Calls work(begin, end) on every chunk of [0, n), on up to `threads` threads (0: all).
 template <class Work>
 void for_each_chunk(std::size_t n, int threads, const Work& work) {
   const std::size_t chunks = (n + chunk - 1) / chunk;
   std::size_t workers = threads > 0 ? std::size_t(threads) : std::max(1u, std::thread::hardware_concurrency());
-  workers = std::min(workers, chunks);
+  workers = std::min(workers, (chunks + chunks_per_thread - 1) / chunks_per_thread);
   std::atomic<std::size_t> next{0};
   auto run = [&] {
     for (std::size_t c; (c = next.fetch_add(1)) < chunks;) work(c * chunk, std::min(n, (c + 1) * chunk));

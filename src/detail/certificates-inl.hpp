@@ -153,33 +153,14 @@ HWY_INLINE V level(const BodyLanes<V, N>& b, const V* w) {
 // The Perram-Wertheim function at l: C = (1 - l) Sa + l Sb = L D L^T, y = C^-1 r,
 // A = y^T Sa y, B = y^T Sb y, F = l (1 - l) r^T y, and the quadrics of the point x(l):
 // qa = (1 - l)^2 A, qb = l^2 B. F' = qa - qb, so at the maximizer qa = qb = F = mu^2.
-// With `step`, also the Newton iterate l - F'/F'' (F'' from z = C^-1 (Sb - Sa) y:
-// A' = -2 (Sa y).z, B' = -2 (Sb y).z), kept at l where it leaves (0, 1) or F'' >= 0.
-template <class V>
-struct PerramWertheim {
-  V f, qa, qb, next;
-  decltype(Lt(std::declval<V>(), std::declval<V>())) factored;  // D > 0: the values are meaningful
-};
-
 template <class V, int N>
-HWY_INLINE PerramWertheim<V> perram_wertheim(const V (&sa)[N][N], const V (&sb)[N][N], const V* r, V l, bool step) {
-  const V one = Splat<V>(1), zero = Splat<V>(0), m = one - l;
-  PerramWertheim<V> out;
-  V dg[N], inv[N], low[N][N];
-  out.factored = Gt(l, zero);
-  for (int j = 0; j < N; ++j) {
-    V s = m * sa[j][j] + l * sb[j][j];
-    for (int k = 0; k < j; ++k) s = s - low[j][k] * low[j][k] * dg[k];
-    dg[j] = s;
-    inv[j] = one / s;
-    out.factored = And(out.factored, Gt(s, zero));
-    for (int i = j + 1; i < N; ++i) {
-      V t = m * sa[i][j] + l * sb[i][j];
-      for (int k = 0; k < j; ++k) t = t - low[i][k] * low[j][k] * dg[k];
-      low[i][j] = t * inv[j];
-    }
-  }
-  auto solve = [&](const V* rhs, V* x) {
+struct PerramWertheim {
+  V l, f, qa, qb;
+  decltype(Lt(std::declval<V>(), std::declval<V>())) factored;  // D > 0: the values are meaningful
+  V low[N][N], inv[N], a, b, sy_a[N], sy_b[N];                    // for the Newton step
+
+  // x = C^-1 rhs with the factors.
+  HWY_INLINE void solve(const V* rhs, V* x) const {
     for (int i = 0; i < N; ++i) {
       V s = rhs[i];
       for (int k = 0; k < i; ++k) s = s - low[i][k] * x[k];
@@ -188,26 +169,50 @@ HWY_INLINE PerramWertheim<V> perram_wertheim(const V (&sa)[N][N], const V (&sb)[
     for (int i = 0; i < N; ++i) x[i] = x[i] * inv[i];
     for (int i = N - 1; i >= 0; --i)
       for (int k = i + 1; k < N; ++k) x[i] = x[i] - low[k][i] * x[k];
-  };
-  V y[N], sy_a[N], sy_b[N];
-  solve(r, y);
-  times<V, N>(sa, y, sy_a);
-  times<V, N>(sb, y, sy_b);
-  const V a = dot<V, N>(y, sy_a), b = dot<V, N>(y, sy_b);
-  out.f = l * m * dot<V, N>(r, y);
-  out.qa = m * m * a;
-  out.qb = l * l * b;
-  out.next = l;
-  if (step) {
+  }
+
+  // The Newton iterate l - F'/F'' (F'' from z = C^-1 (Sb - Sa) y: A' = -2 (Sa y).z,
+  // B' = -2 (Sb y).z), or l where it leaves (0, 1) or F'' >= 0.
+  HWY_INLINE V newton() const {
+    const V zero = Splat<V>(0), one = Splat<V>(1), two = Splat<V>(2), m = one - l;
     V d[N], z[N];
     for (int i = 0; i < N; ++i) d[i] = sy_b[i] - sy_a[i];
     solve(d, z);
-    const V two = Splat<V>(2);
     const V curvature = zero - two * (m * a + l * b) - two * (m * m * dot<V, N>(sy_a, z) - l * l * dot<V, N>(sy_b, z));
-    const V next = l - (out.qa - out.qb) / curvature;
-    out.next = IfThenElse(And(Lt(curvature, zero), And(Gt(next, zero), Lt(next, one))), next, l);
+    const V next = l - (qa - qb) / curvature;
+    return IfThenElse(And(Lt(curvature, zero), And(Gt(next, zero), Lt(next, one))), next, l);
   }
-  return out;
+};
+
+template <class V, int N>
+HWY_INLINE PerramWertheim<V, N> perram_wertheim(const V (&sa)[N][N], const V (&sb)[N][N], const V* r, V l) {
+  const V one = Splat<V>(1), zero = Splat<V>(0), m = one - l;
+  PerramWertheim<V, N> p;
+  p.l = l;
+  V dg[N];
+  p.factored = Gt(l, zero);
+  for (int j = 0; j < N; ++j) {
+    V s = m * sa[j][j] + l * sb[j][j];
+    for (int k = 0; k < j; ++k) s = s - p.low[j][k] * p.low[j][k] * dg[k];
+    dg[j] = s;
+    p.inv[j] = one / s;
+    p.factored = And(p.factored, Gt(s, zero));
+    for (int i = j + 1; i < N; ++i) {
+      V t = m * sa[i][j] + l * sb[i][j];
+      for (int k = 0; k < j; ++k) t = t - p.low[i][k] * p.low[j][k] * dg[k];
+      p.low[i][j] = t * p.inv[j];
+    }
+  }
+  V y[N];
+  p.solve(r, y);
+  times<V, N>(sa, y, p.sy_a);
+  times<V, N>(sb, y, p.sy_b);
+  p.a = dot<V, N>(y, p.sy_a);
+  p.b = dot<V, N>(y, p.sy_b);
+  p.f = l * m * dot<V, N>(r, y);
+  p.qa = m * m * p.a;
+  p.qb = l * l * p.b;
+  return p;
 }
 
 // Circumscribed-ball reach of the pair, with the band and the 1e-9 rounding margin.
@@ -254,14 +259,14 @@ HWY_INLINE V certify(const BodyLanes<V, N>& a, const BodyLanes<V, N>& b, V tol) 
   const V rho_a = Sqrt(dot<V, N>(r, ga)), rho_b = Sqrt(dot<V, N>(r, gb));
   // F at the two-ball l, then at Newton iterates towards its maximizer while some lane is
   // open: every l bounds mu from below and gives a candidate common point.
-  auto p = perram_wertheim<V, N>(sa, sb, r, rho_a / (rho_a + rho_b), true);
+  auto p = perram_wertheim<V, N>(sa, sb, r, rho_a / (rho_a + rho_b));
   gate = And(gate, p.factored);
   const V pass = one + margin, deep = one - margin;
-  auto certain = [&](const PerramWertheim<V>& q) { return And(gate, q.factored); };
+  auto certain = [&](const PerramWertheim<V, N>& q) { return And(gate, q.factored); };
   auto separated = Or(apart, And(certain(p), Ge(p.f, pass)));
   auto shared = AndNot(separated, Or(inside, And(certain(p), And(Le(p.qa, deep), Le(p.qb, deep)))));
   for (int it = 1; it <= newton_steps && !all_lanes<V>(Or(separated, shared)); ++it) {
-    p = perram_wertheim<V, N>(sa, sb, r, p.next, it < newton_steps);
+    p = perram_wertheim<V, N>(sa, sb, r, p.newton());
     separated = Or(separated, And(certain(p), Ge(p.f, pass)));
     shared = AndNot(separated, Or(shared, And(certain(p), And(Le(p.qa, deep), Le(p.qb, deep)))));
   }

@@ -136,10 +136,28 @@ TEST(Batch, FilterCodesEqualScalarCertificates) {
 }
 
 TEST(Batch, IndependentOfThreadCount) {
-  const auto pairs = scenario_pairs<double, 3>(ellipsect::testing::cases(400));  // several chunks
-  for (const int threads : {0, 2, 3, 7}) {
+  // Enough chunks (1024 pairs) for five threads: the scenario pairs repeated.
+  const auto base = scenario_pairs<double, 3>(ellipsect::testing::cases(100));
+  Pairs<double, 3> pairs;
+  while (pairs.size() < 40000)
+    for (std::size_t i = 0; i < base.size(); ++i)
+      pairs.push_back(base.a(i), base.velocity_a(i), base.b(i), base.velocity_b(i), base.t_max(i));
+  expect_batch_equals_scalar(pairs, 1);
+  const std::size_t n = pairs.size();
+  auto run = [&](int threads) {
+    const BatchOptions options{.query = {}, .threads = threads};
+    std::vector<Relation> relations(n);
+    std::vector<Contact<double, 3>> contacts(n);
+    classify(pairs, std::span<Relation>(relations), options);
+    first_contact(pairs, std::span<Contact<double, 3>>(contacts), options);
+    return std::pair(relations, contacts);
+  };
+  const auto [relations, contacts] = run(1);
+  for (const int threads : {0, 2, 3, 5}) {
     SCOPED_TRACE(threads);
-    expect_batch_equals_scalar(pairs, threads);
+    const auto [r, c] = run(threads);
+    EXPECT_EQ(r, relations);
+    for (std::size_t i = 0; i < n; ++i) expect_same(c[i], contacts[i], i);
   }
 }
 
