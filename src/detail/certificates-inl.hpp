@@ -5,24 +5,26 @@
 // code returns exactly what the scalar code returns for that pair: the batch functions
 // equal the scalar ones bit for bit.
 //
-// Each certificate answers only far from the tangency band; pairs it leaves open (code 0)
-// take the exact path.
-//   circumscribed balls apart                 -> separated
-//   inscribed balls meet                      -> a common point
+// Each certificate answers only outside the tangency band, by a margin well above its
+// rounding; pairs it leaves open (code 0) take the exact path.
+//   circumscribed balls apart (1e-9 margin)   -> separated
+//   inscribed balls meet (1e-9 margin)        -> a common point
 //   Perram-Wertheim F(l) = l (1 - l) r^T C^-1 r, C = (1 - l) Sa + l Sb (S = A diag(radii^2)
-//   A^T, r = c_b - c_a), at the two-ball maximizer l = rho_a / (rho_a + rho_b) (rho: support
-//   radii along r). max_l F = mu^2 (mu: the scale at which the bodies touch), so
-//     F >= 1.01^2                             -> separated
-//   and x = c_a + (1 - l) Sa y, y = C^-1 r, has quadrics qa = (1 - l)^2 y^T Sa y and
-//   qb = l^2 y^T Sb y:
-//     qa, qb <= 0.98                          -> a common interior point
+//   A^T, r = c_b - c_a): max_l F = mu^2, mu the scale at which the bodies touch. Any l
+//   bounds mu^2 from below, and x(l) = c_a + (1 - l) Sa C^-1 r has quadrics qa, qb:
+//     F >= 1 + margin                         -> separated
+//     qa, qb <= 1 - margin                    -> a common interior point
+//   evaluated at the two-ball maximizer l = rho_a / (rho_a + rho_b) (rho: support radii
+//   along r), then at Newton iterates while a lane is open. margin = 1e-6 + 1024 eps
+//   (aspect^2 + |c| / r_min): cond(C) <= (largest aspect ratio)^2, so F and the quadrics
+//   carry a relative rounding of a few eps (aspect^2 + |c| / r_min); F is only used for
+//   aspect ratios up to 1e4.
 //   a's support point away from b, c_a - Sa r / rho_a, has b's quadric >= 1.02 and b's away
 //   from a has a's quadric >= 1.02            -> neither body inside the other
 //   the centers' closest approach over [0, t_max] exceeds the circumscribed radii
 //                                             -> no contact in the window
-// The 1-2% margins dwarf the rounding of F and of the quadrics (relative eps * cond(C) <=
-// 1e-8 for aspect ratios up to 1e4, the range where F is used), and the balls carry a 1e-9
-// margin, so a certified answer is the one the exact path gives.
+// A certified answer is therefore the one the exact path gives (the property tests check
+// both against the 50-digit reference).
 //
 // Highway's per-target include guard: the file is compiled once per SIMD target.
 #if defined(ELLIPSECT_CERTIFICATES_INL_) == defined(HWY_TARGET_TOGGLE)

@@ -52,6 +52,34 @@ void check_against_reference(int per_category) {
 TEST(ClassifyProperty, MatchesReference2D) { check_against_reference<2>(cases(1000)); }
 TEST(ClassifyProperty, MatchesReference3D) { check_against_reference<3>(cases(1000)); }
 
+// Pairs placed just outside and inside the certificates' margins: both bodies scaled
+// about their centers so that the reference contact scale mu becomes 1 + delta, with
+// |delta| from 1e-8 to 1e-2 (the Perram-Wertheim margin is 1e-6 to 2.4e-5), over random
+// and high-aspect shapes. classify and overlap must match the reference on each.
+template <int N>
+void check_at_certificate_margins(int n) {
+  scenarios::detail::Rng rng(4242);
+  int decided = 0;
+  for (int i = 0; i < n; ++i) {
+    const auto category = i % 2 == 0 ? scenarios::Category::random : scenarios::Category::high_aspect;
+    const auto c = scenarios::make_case<N>(category, 300000 + std::uint64_t(i));
+    const double mu = ref::to_double(ref::pw_scale<N>(to_ref(c.a), to_ref(c.b)));
+    const double delta = (i % 4 < 2 ? 1 : -1) * std::pow(10.0, scenarios::detail::uniform(rng, -8, -2));
+    const double s = mu / (1 + delta);
+    const auto a = Ellipsoid<double, N>::from_axes(c.a.center(), c.a.axes(), c.a.radii() * s);
+    const auto b = Ellipsoid<double, N>::from_axes(c.b.center(), c.b.axes(), c.b.radii() * s);
+    const auto r = ref::classify<N>(to_ref(a), to_ref(b), band);
+    if (r.margin <= band) continue;
+    ++decided;
+    ASSERT_EQ(classify(a, b), from_ref(r.relation)) << describe(c) << " delta=" << delta;
+    ASSERT_EQ(overlap(a, b), from_ref(r.relation) != Relation::separated) << describe(c) << " delta=" << delta;
+  }
+  EXPECT_GT(decided, n * 9 / 10);
+}
+
+TEST(ClassifyProperty, MatchesReferenceAtCertificateMargins2D) { check_at_certificate_margins<2>(cases(1000)); }
+TEST(ClassifyProperty, MatchesReferenceAtCertificateMargins3D) { check_at_certificate_margins<3>(cases(1000)); }
+
 // Rigid motions and scaling by powers of two change no answer (the tolerance model is
 // relative; powers of two are exact, so the answer is identical, not just close).
 template <int N>
