@@ -15,10 +15,10 @@
 //     F >= 1 + margin                         -> separated
 //     qa, qb <= 1 - margin                    -> a common interior point
 //   evaluated at the two-ball maximizer l = rho_a / (rho_a + rho_b) (rho: support radii
-//   along r), then at Newton iterates while a lane is open. margin = 1e-6 + 1024 eps
-//   (aspect^2 + |c| / r_min): cond(C) <= (largest aspect ratio)^2, so F and the quadrics
-//   carry a relative rounding of a few eps (aspect^2 + |c| / r_min); F is only used for
-//   aspect ratios up to 1e4.
+//   along r), then at Newton iterates while a lane is open. cond(C) <= (largest aspect
+//   ratio)^2, so F and the quadrics carry a relative rounding of a few eps (aspect^2 +
+//   |c| / r_min); F is used for aspect ratios up to 1e4, with margin = 1e-6 + 1024 eps
+//   (1e8 + |c| / r_min), about 2.4e-5.
 //   a's support point away from b, c_a - Sa r / rho_a, has b's quadric >= 1.02 and b's away
 //   from a has a's quadric >= 1.02            -> neither body inside the other
 //   the centers' closest approach over [0, t_max] exceeds the circumscribed radii
@@ -244,14 +244,15 @@ HWY_INLINE V certify(const BodyLanes<V, N>& a, const BodyLanes<V, N>& b, V tol) 
   } else {
     if (all_lanes<V>(Or(apart, inside))) return IfThenElse(apart, minus_one, one);
   }
-  // Margins of the Perram-Wertheim tests: 1e-6 above 1024 times the rounding estimate of
-  // F and of the quadrics, eps (cond(C) + |c| / r_min) with cond(C) <= (largest aspect)^2.
-  const V aspect = Max(largest<V, N>(a.r) / smallest<V, N>(a.r), largest<V, N>(b.r) / smallest<V, N>(b.r));
+  // F is used for aspect ratios up to 1e4, so cond(C) <= 1e8; its margin is 1e-6 above
+  // 1024 times the rounding estimate eps (cond(C) + |c| / r_min) of F and the quadrics.
+  const V aspect = Splat<V>(1e4);
+  auto gate = And(Le(largest<V, N>(a.r), aspect * smallest<V, N>(a.r)), Le(largest<V, N>(b.r), aspect * smallest<V, N>(b.r)));
   V world = zero;
   for (int i = 0; i < N; ++i) world = world + Abs(a.c[i]) + Abs(b.c[i]);
   world = world / Min(smallest<V, N>(a.r), smallest<V, N>(b.r));
-  const V margin = Splat<V>(1e-6) + Splat<V>(1024 * std::numeric_limits<double>::epsilon()) * (aspect * aspect + world);
-  auto gate = Le(aspect, Splat<V>(1e4));
+  constexpr double ulp_scale = 1024 * std::numeric_limits<double>::epsilon();
+  const V margin = Splat<V>(1e-6 + ulp_scale * 1e8) + Splat<V>(ulp_scale) * world;
 
   V sa[N][N], sb[N][N], ga[N], gb[N];
   shape_matrix<V, N>(a, sa);

@@ -54,7 +54,7 @@ TEST(ClassifyProperty, MatchesReference3D) { check_against_reference<3>(cases(10
 
 // Pairs placed just outside and inside the certificates' margins: both bodies scaled
 // about their centers so that the reference contact scale mu becomes 1 + delta, with
-// |delta| from 1e-8 to 1e-2 (the Perram-Wertheim margin is 1e-6 to 2.4e-5), over random
+// |delta| from 1e-8 to 1e-2 (the Perram-Wertheim margin is about 2.4e-5), over random
 // and high-aspect shapes. classify and overlap must match the reference on each.
 template <int N>
 void check_at_certificate_margins(int n) {
