@@ -33,8 +33,8 @@ int bench(const Input& in, const BenchOptions& opt) {
     if (in.has_velocity) names.push_back("contact");
   }
   for (const auto& q : names)
-    if (q != "overlap" && q != "classify" && q != "contact")
-      throw UsageError("--query: unknown query \"" + q + "\" (available: overlap, classify, contact)");
+    if (q != "overlap" && q != "classify" && q != "contact" && q != "distance")
+      throw UsageError("--query: unknown query \"" + q + "\" (available: overlap, classify, contact, distance)");
 
   const auto t_load = Clock::now();
   PairSet<N> set = load_pair_set<N>(in, opt.common, w, in.has_velocity, opt.limit, 1);
@@ -62,7 +62,7 @@ int bench(const Input& in, const BenchOptions& opt) {
   // Each thread makes whole passes over the pairs (starting at its own offset) until the
   // minimum time has passed; throughput is all queries over the wall time.
   for (const auto& q : names) {
-    const int kind = q == "overlap" ? 0 : q == "classify" ? 1 : 2;
+    const int kind = q == "overlap" ? 0 : q == "classify" ? 1 : q == "contact" ? 2 : 3;
     auto one_pass = [&](std::size_t offset) {
       std::uint64_t local = 0;
       for (std::size_t i = 0; i < n_pairs; ++i) {
@@ -74,10 +74,12 @@ int bench(const Input& in, const BenchOptions& opt) {
           local += overlap(a, bb) ? 1u : 0u;
         } else if (kind == 1) {
           local += static_cast<std::uint64_t>(classify(a, bb));
-        } else {
+        } else if (kind == 2) {
           local += static_cast<std::uint64_t>(first_contact(a, set.bodies[set.pairs[k].first].velocity, bb,
                                                             set.bodies[set.pairs[k].second].velocity, t_max)
                                                   .status);
+        } else {
+          local += static_cast<std::uint64_t>(signed_distance(a, bb).status);
         }
       }
       return local;

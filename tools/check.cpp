@@ -1,5 +1,5 @@
-// `ellipsect check`: the relation (and first contact) of every pair, streamed in input
-// order, computed on all cores.
+// `ellipsect check`: the relation (and first contact, signed distance) of every pair,
+// streamed in input order, computed on all cores.
 #include "broad_phase.hpp"
 #include "commands.hpp"
 #include "common.hpp"
@@ -22,15 +22,19 @@ constexpr std::size_t report_all_limit = 1000;  // bodies: up to this many, --re
 
 constexpr int n_relations = 6;
 constexpr int n_statuses = 6;
+constexpr int n_distance_statuses = 4;
 
 struct Counters {
   std::uint64_t pairs = 0;
   std::array<std::uint64_t, n_relations> relation{};
   std::array<std::uint64_t, n_statuses> contact{};
+  std::array<std::uint64_t, n_distance_statuses> distance{};
   void add(const Counters& o) {
     pairs += o.pairs;
     for (int i = 0; i < n_relations; ++i) relation[static_cast<std::size_t>(i)] += o.relation[static_cast<std::size_t>(i)];
     for (int i = 0; i < n_statuses; ++i) contact[static_cast<std::size_t>(i)] += o.contact[static_cast<std::size_t>(i)];
+    for (int i = 0; i < n_distance_statuses; ++i)
+      distance[static_cast<std::size_t>(i)] += o.distance[static_cast<std::size_t>(i)];
   }
 };
 
@@ -55,9 +59,12 @@ template <int N>
 void append_record(std::string& out, Format format, std::uint64_t index, std::uint64_t line, const std::string* a,
                    const std::string* b, const PairResult<N>& r, const Queries& q) {
   const Contact<double, N>& c = r.contact;
-  // Only read when the contact was computed (the fields are set then).
+  const Distance<double, N>& d = r.distance;
+  // Only read when the contact / distance was computed (the fields are set then).
   const bool has_point = q.contact && std::isfinite(c.point[0]);
   const bool has_time = q.contact && std::isfinite(c.time);
+  const bool has_distance = q.distance && std::isfinite(d.distance);
+  const bool has_witness = q.distance && std::isfinite(d.point_a[0]);
   if (format == Format::json) {
     out += "    {\"index\": ";
     out += std::to_string(index);
@@ -85,6 +92,21 @@ void append_record(std::string& out, Format format, std::uint64_t index, std::ui
       if (has_point) append_vec(out, c.normal.data(), N); else out += "null";
       out += ", \"iterations\": ";
       out += std::to_string(c.iterations);
+      out += '}';
+    }
+    if (q.distance) {
+      out += ", \"distance\": {\"status\": \"";
+      out += to_string(d.status);
+      out += "\", \"distance\": ";
+      if (has_distance) append_number(out, d.distance); else out += "null";
+      out += ", \"point_a\": ";
+      if (has_witness) append_vec(out, d.point_a.data(), N); else out += "null";
+      out += ", \"point_b\": ";
+      if (has_witness) append_vec(out, d.point_b.data(), N); else out += "null";
+      out += ", \"normal\": ";
+      if (has_witness) append_vec(out, d.normal.data(), N); else out += "null";
+      out += ", \"iterations\": ";
+      out += std::to_string(d.iterations);
       out += '}';
     }
     out += '}';
@@ -119,6 +141,19 @@ void append_record(std::string& out, Format format, std::uint64_t index, std::ui
     out += ',';
     out += std::to_string(c.iterations);
   }
+  if (q.distance) {
+    out += ',';
+    out += to_string(d.status);
+    out += ',';
+    if (has_distance) append_number(out, d.distance);
+    for (const Vec<double, N>* v : {&d.point_a, &d.point_b, &d.normal})
+      for (int i = 0; i < N; ++i) {
+        out += ',';
+        if (has_witness) append_number(out, (*v)[i]);
+      }
+    out += ',';
+    out += std::to_string(d.iterations);
+  }
   out += '\n';
 }
 
@@ -133,6 +168,13 @@ std::string csv_header(int dim, bool line_column, const Queries& q) {
     for (int i = 0; i < dim; ++i) h += std::string(",contact_") + axes[i];
     for (int i = 0; i < dim; ++i) h += std::string(",normal_") + axes[i];
     h += ",contact_iterations";
+  }
+  if (q.distance) {
+    // normal_x, ... are the contact's normal: the distance's is distance_normal_x, ...
+    h += ",distance_status,distance";
+    for (const char* v : {"point_a_", "point_b_", "distance_normal_"})
+      for (int i = 0; i < dim; ++i) h += std::string(",") + v + axes[i];
+    h += ",distance_iterations";
   }
   h += '\n';
   return h;
@@ -157,7 +199,8 @@ std::string json_header(const Input& in, const Window& w, const Queries& q, cons
   append_window(h, w);
   h += ",\n  \"queries\": [";
   bool first = true;
-  for (const auto& [on, name] : {std::pair{q.relation, "relation"}, std::pair{q.contact, "contact"}}) {
+  for (const auto& [on, name] :
+       {std::pair{q.relation, "relation"}, std::pair{q.contact, "contact"}, std::pair{q.distance, "distance"}}) {
     if (!on) continue;
     if (!first) h += ", ";
     h += std::string("\"") + name + "\"";
@@ -183,6 +226,8 @@ std::string json_footer(bool any, std::uint64_t pairs, std::uint64_t listed, con
   };
   if (q.relation) counts("relation", n_relations, [](int i) { return static_cast<Relation>(i); }, c.relation);
   if (q.contact) counts("contact", n_statuses, [](int i) { return static_cast<ContactStatus>(i); }, c.contact);
+  if (q.distance)
+    counts("distance", n_distance_statuses, [](int i) { return static_cast<DistanceStatus>(i); }, c.distance);
   f += "}\n}\n";
   return f;
 }
@@ -192,6 +237,7 @@ void count(Counters& c, const PairResult<N>& r, const Queries& q) {
   ++c.pairs;
   if (q.relation) ++c.relation[static_cast<std::size_t>(r.relation)];
   if (q.contact) ++c.contact[static_cast<std::size_t>(r.contact.status)];
+  if (q.distance) ++c.distance[static_cast<std::size_t>(r.distance.status)];
 }
 
 Queries resolve_queries(const std::vector<std::string>& names, bool has_velocity) {
@@ -207,8 +253,10 @@ Queries resolve_queries(const std::vector<std::string>& names, bool has_velocity
       q.relation = true;
     } else if (n == "contact") {
       q.contact = true;
+    } else if (n == "distance") {
+      q.distance = true;
     } else {
-      throw UsageError("--query: unknown query \"" + n + "\" (available: relation, contact)");
+      throw UsageError("--query: unknown query \"" + n + "\" (available: relation, contact, distance)");
     }
   }
   return q;
@@ -455,7 +503,12 @@ int check_bodies(const Input& in, const CheckOptions& opt, const Window& w, cons
   append_json_string(extra, pair_mode);
   extra += ",\n";
   RecordWriter writer(out, format, format == Format::json ? json_header(in, w, q, extra) : csv_header(in.dim, false, q));
+  // A pair left out by the broad phase is separated, with no contact; its distance is
+  // computed.
   const PairResult<N> sep = separated_result<N>();
+  Queries distance_only;
+  distance_only.relation = false;
+  distance_only.distance = true;
   std::uint64_t next_index = 0;
   auto read = [&](JobChunk& ch) {
     ch.jobs.clear();
@@ -480,7 +533,8 @@ int check_bodies(const Input& in, const CheckOptions& opt, const Window& w, cons
         const Job& jb = ch.jobs[k];
         const Body<N>& a = bodies[jb.i];
         const Body<N>& b = bodies[jb.j];
-        const PairResult<N> r = jb.deduced ? sep : evaluate<N>(a, b, w, q);
+        PairResult<N> r = jb.deduced ? sep : evaluate<N>(a, b, w, q);
+        if (jb.deduced && q.distance) r.distance = evaluate<N>(a, b, w, distance_only).distance;
         if (format == Format::json && !o.text.empty()) o.text += ",\n";
         append_record<N>(o.text, format, ch.first + k, 0, &a.id, &b.id, r, q);
         count<N>(o.counts, r, q);
@@ -495,6 +549,7 @@ int check_bodies(const Input& in, const CheckOptions& opt, const Window& w, cons
   Counters c = writer.counts;
   c.relation[static_cast<std::size_t>(Relation::separated)] += q.relation ? unlisted : 0;
   c.contact[static_cast<std::size_t>(ContactStatus::no_contact_in_window)] += q.contact ? unlisted : 0;
+  c.distance[static_cast<std::size_t>(DistanceStatus::separated)] += q.distance ? unlisted : 0;
   if (format == Format::json) out.write(json_footer(writer.any(), total_pairs, index, c, q));
   out.commit();
   if (opt.stats) {
@@ -514,6 +569,7 @@ PairResult<N> evaluate(const Body<N>& a, const Body<N>& b, const Window& window,
   if (window.t0 == 0.0) {
     if (queries.relation) r.relation = classify(a.shape, b.shape);
     if (queries.contact) r.contact = first_contact(a.shape, a.velocity, b.shape, b.velocity, window.t1);
+    if (queries.distance) r.distance = signed_distance(a.shape, b.shape);
     return r;
   }
   // Move both bodies to t0; search [t0, t1] as [0, t1 - t0] from there.
@@ -526,6 +582,7 @@ PairResult<N> evaluate(const Body<N>& a, const Body<N>& b, const Window& window,
                    e.what());
   }
   if (queries.relation) r.relation = classify(a0, b0);
+  if (queries.distance) r.distance = signed_distance(a0, b0);
   if (queries.contact) {
     r.contact = first_contact(a0, a.velocity, b0, b.velocity, window.t1 - window.t0);
     r.contact.time += window.t0;

@@ -6,6 +6,7 @@
 
 #include <ellipsect/classify.hpp>
 #include <ellipsect/contact.hpp>
+#include <ellipsect/distance.hpp>
 
 #include <optional>
 #include <string>
@@ -13,25 +14,29 @@
 
 namespace ellipsect::cli {
 
-// Which answers `check` computes per pair. New query families (distance, penetration)
-// add a flag here, a key in the JSON record and columns in the CSV record.
+// Which answers `check` computes per pair. A new query family adds a flag here, a key in
+// the JSON record and columns at the end of the CSV record.
 struct Queries {
   bool relation = true;
   bool contact = false;
+  bool distance = false;  // signed distance: separation, or minus the penetration depth
 };
 
 template <int N>
 struct PairResult {
   Relation relation = Relation::separated;
   Contact<double, N> contact;
+  Distance<double, N> distance;
 };
 
-// Evaluates one pair over the window: the relation at t0, and the first contact in
-// [t0, t1] (bodies move as center + t * velocity; the contact time is absolute).
+// Evaluates one pair over the window: the relation and the signed distance at t0, and the
+// first contact in [t0, t1] (bodies move as center + t * velocity; the contact time is
+// absolute).
 template <int N>
 PairResult<N> evaluate(const Body<N>& a, const Body<N>& b, const Window& window, const Queries& queries);
 
-// The answer the broad phase implies for a pair it left out: separated, no contact.
+// The answer the broad phase implies for a pair it left out: separated, no contact (the
+// distance is not implied; the caller evaluates it when asked).
 template <int N>
 PairResult<N> separated_result();
 
@@ -48,7 +53,7 @@ struct CheckOptions {
   Common common;
   std::string output;                 // "" or "-": stdout
   std::string format = "json";        // json | csv
-  std::vector<std::string> queries;   // empty: relation, plus contact when there are velocities
+  std::vector<std::string> queries;   // empty: relation, plus contact when there are velocities (never distance)
   std::string report = "auto";        // auto | all | candidates
   bool broad_phase = true;
   bool stats = false;
@@ -65,7 +70,7 @@ struct RenderOptions {
 
 struct BenchOptions {
   Common common;
-  std::vector<std::string> queries;  // overlap, classify, contact
+  std::vector<std::string> queries;  // overlap, classify, contact, distance
   double min_time = 0.5;
   std::size_t limit = 100000;
   std::string format = "text";       // text | json

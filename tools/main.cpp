@@ -1,5 +1,5 @@
 // The `ellipsect` command-line program: scenes in, answers and pictures out.
-//   ellipsect check SCENE    relation and first contact of every pair (JSON or CSV)
+//   ellipsect check SCENE    relation, first contact and distance of every pair (JSON or CSV)
 //   ellipsect render SCENE   an SVG or PNG picture of the scene at one time
 //   ellipsect bench SCENE    queries per second on the scene's pairs
 // docs/cli.md documents the commands, docs/scene-format.md the scene files.
@@ -66,7 +66,8 @@ int main(int argc, char** argv) {
   std::vector<double> check_window, render_window, bench_window;
   std::string check_progress = "auto", render_progress = "auto", bench_progress = "auto";
 
-  CLI::App* c = app.add_subcommand("check", "Relation (and, with velocities, first contact) of every pair");
+  CLI::App* c = app.add_subcommand(
+      "check", "Relation (and, with velocities, first contact; on request, signed distance) of every pair");
   add_common(*c, check.common, check_window, check_progress);
   c->add_option("-o,--output", check.output, "Output file (default: stdout); written whole or not at all")
       ->type_name("FILE");
@@ -74,8 +75,8 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"json", "csv"}))
       ->default_str("json");
   c->add_option("--query", check.queries,
-                "Comma-separated answers per pair: relation, contact (default: relation, and contact when the scene "
-                "has velocities)")
+                "Comma-separated answers per pair: relation, contact, distance (the signed distance: minus the "
+                "penetration depth when overlapping); default: relation, and contact when the scene has velocities")
       ->delimiter(',')
       ->type_name("LIST");
   c->add_option("--report", check.report,
@@ -90,6 +91,7 @@ int main(int argc, char** argv) {
       "Examples:\n"
       "  ellipsect check examples/scenes/swept_2d.json\n"
       "  ellipsect check examples/scenes/bodies_10k.csv --format csv -o overlaps.csv\n"
+      "  ellipsect check examples/scenes/swept_3d.json --query relation,distance\n"
       "  ellipsect check pairs.csv --window 0 10 -o results.json --stats");
 
   CLI::App* r = app.add_subcommand("render", "Draw the scene at one time as SVG (or PNG through rsvg-convert)");
@@ -115,8 +117,8 @@ int main(int argc, char** argv) {
   CLI::App* b = app.add_subcommand("bench", "Time the queries on the scene's pairs; prints queries per second");
   add_common(*b, bench.common, bench_window, bench_progress);
   b->add_option("--query", bench.queries,
-                "Comma-separated queries to time: overlap, classify, contact (default: overlap, classify, and contact "
-                "when the scene has velocities)")
+                "Comma-separated queries to time: overlap, classify, contact, distance (signed_distance, as check "
+                "computes it); default: overlap, classify, and contact when the scene has velocities")
       ->delimiter(',')
       ->type_name("LIST");
   b->add_option("--min-time", bench.min_time, "Seconds to run each query (at least one pass over the pairs)")

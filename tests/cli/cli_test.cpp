@@ -1,9 +1,10 @@
 // End-to-end tests of the `ellipsect` program: each test runs the built binary, captures
 // its exit code, stdout and stderr, and checks them.
 //
-// Expected answers come from outside the program: closed forms for circles and spheres,
-// and the 50-digit reference (tests/reference/reference.hpp) for the bundled scenes, with
-// the bodies built here from the scene files by the test's own code.
+// Expected answers come from outside the program: closed forms for circles and spheres
+// (and, for distances, for ellipses facing each other along an axis), and the 50-digit
+// reference (tests/reference/reference.hpp) for the bundled scenes, with the bodies built
+// here from the scene files by the test's own code.
 //
 // The million-pair test streams a generated pairs CSV and measures the child's peak
 // resident set size with wait4(); the pair count is scaled by ELLIPSECT_CASE_SCALE (the
@@ -26,6 +27,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -601,6 +603,301 @@ TEST(CliAnswers, BundledTenThousandBodyFileIsReproducible) {
 }
 
 // ------------------------------------------------------------------------------------------
+// Distance (--query distance): closed forms for circles, spheres and ellipses on an axis
+// ------------------------------------------------------------------------------------------
+
+template <int N>
+using Vector = Eigen::Matrix<double, N, 1>;
+
+// The expected signed distance of a pair, with its accuracy scale (the library's: largest
+// radius of a + largest radius of b + |distance|).
+template <int N>
+struct ExpectedDistance {
+  const char* status;
+  double distance;
+  Vector<N> point_a, point_b, normal;
+  double scale;
+};
+
+// Two balls: with u = (c_b - c_a) / |c_b - c_a| (distinct centers), the signed distance is
+// |c_b - c_a| - r_a - r_b (minus the penetration depth when negative), the witness points
+// c_a + r_a u and c_b - r_b u, the normal u.
+template <int N>
+ExpectedDistance<N> balls(const char* status, const Vector<N>& ca, double ra, const Vector<N>& cb, double rb) {
+  const Vector<N> u = (cb - ca).normalized();
+  const double d = (cb - ca).norm() - ra - rb;
+  return {status, d, ca + ra * u, cb - rb * u, u, ra + rb + std::abs(d)};
+}
+
+// A "distance" record against the expected answer, to the library's stated accuracy
+// (include/ellipsect/distance.hpp): the distance to 1e-12 * scale, the witness points to
+// 1e-10 * scale (unique optima), the unit normal to 1e-10.
+template <int N>
+void expect_distance(const json& d, const ExpectedDistance<N>& e) {
+  SCOPED_TRACE(d.dump());
+  ASSERT_TRUE(d.is_object());
+  EXPECT_EQ(d.at("status"), e.status);
+  EXPECT_NEAR(d.at("distance").get<double>(), e.distance, 1e-12 * e.scale);
+  for (const char* key : {"point_a", "point_b", "normal"}) ASSERT_EQ(d.at(key).size(), static_cast<std::size_t>(N)) << key;
+  for (int i = 0; i < N; ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    EXPECT_NEAR(d.at("point_a")[k].get<double>(), e.point_a[i], 1e-10 * e.scale) << i;
+    EXPECT_NEAR(d.at("point_b")[k].get<double>(), e.point_b[i], 1e-10 * e.scale) << i;
+    EXPECT_NEAR(d.at("normal")[k].get<double>(), e.normal[i], 1e-10) << i;
+  }
+  EXPECT_GE(d.at("iterations").get<int>(), 0);
+}
+
+// The distance columns of a CSV row, looked up by header name, as the JSON record's
+// "distance" object (empty fields as null).
+json distance_from_csv(const std::vector<std::string>& header, const std::vector<std::string>& row, int dim) {
+  auto text = [&](const std::string& name) {
+    const auto i = static_cast<std::size_t>(std::find(header.begin(), header.end(), name) - header.begin());
+    EXPECT_LT(i, row.size()) << "no column " << name;
+    return i < row.size() ? row[i] : std::string();
+  };
+  auto number = [&](const std::string& name) {
+    const std::string t = text(name);
+    return t.empty() ? json() : json(std::stod(t));
+  };
+  auto vec = [&](const std::string& prefix) {
+    json v = json::array();
+    for (int i = 0; i < dim; ++i) v.push_back(number(prefix + "xyz"[i]));
+    return v;
+  };
+  return {{"status", text("distance_status")},
+          {"distance", number("distance")},
+          {"point_a", vec("point_a_")},
+          {"point_b", vec("point_b_")},
+          {"normal", vec("distance_normal_")},
+          {"iterations", std::stoi(text("distance_iterations"))}};
+}
+
+TEST(CliDistance, CirclesMatchClosedForms) {
+  const auto dir = work_dir();
+  write_file(dir / "circles.json", circles_scene);
+  const std::string scene = (dir / "circles.json").string();
+  const Outcome r = run_cli({"check", scene, "--query", "relation,contact,distance"}, dir);
+  ASSERT_EQ(r.code, 0) << describe(r);
+  const json out = parse_json(r.out);
+  EXPECT_EQ(out["queries"], json::parse(R"(["relation", "contact", "distance"])"));
+  const json& res = out["results"];
+  ASSERT_EQ(res.size(), 6u);
+  // The circles of circles_scene at t = 0: A-D is a containment (depth 2.5), A-E overlaps
+  // by 0.5, A-F touches.
+  using V = Vector<2>;
+  const V a(0, 0), b(10, 3), c(0, 10), d(0.5, 0), e(2.5, 0), f(5, 0);
+  const ExpectedDistance<2> expected[] = {balls<2>("separated", a, 2, b, 3),   balls<2>("separated", b, 3, c, 1),
+                                          balls<2>("overlapping", a, 2, d, 1), balls<2>("overlapping", d, 1, a, 2),
+                                          balls<2>("overlapping", a, 2, e, 1), balls<2>("touching", a, 2, f, 3)};
+  for (std::size_t k = 0; k < 6; ++k) {
+    SCOPED_TRACE(k);
+    expect_distance(res[k]["distance"], expected[k]);
+  }
+  EXPECT_NEAR(res[2]["distance"]["distance"].get<double>(), -2.5, 1e-12 * 5.5);
+  EXPECT_EQ(out["summary"]["distance"],
+            json::parse(R"({"separated": 2, "touching": 1, "overlapping": 3, "did_not_converge": 0})"));
+  // Off by default; asking for it changes no other answer.
+  const Outcome plain = run_cli({"check", scene}, dir);
+  ASSERT_EQ(plain.code, 0) << describe(plain);
+  const json p = parse_json(plain.out);
+  EXPECT_EQ(p["queries"], json::parse(R"(["relation", "contact"])"));
+  EXPECT_FALSE(p["summary"].contains("distance"));
+  for (std::size_t k = 0; k < 6; ++k) {
+    EXPECT_FALSE(p["results"][k].contains("distance")) << k;
+    json rec = res[k];
+    rec.erase("distance");
+    EXPECT_EQ(rec, p["results"][k]) << k;
+  }
+}
+
+TEST(CliDistance, SpheresAtTheWindowStart) {
+  const auto dir = work_dir();
+  write_file(dir / "spheres.json", spheres_scene);
+  const std::string scene = (dir / "spheres.json").string();
+  // B's center at t0 is (7 - t0, 2, 2) (spheres_scene); A is the unit sphere at the origin.
+  struct Case {
+    std::vector<std::string> window;
+    double t0;
+    const char* status;
+  };
+  const std::vector<Case> cases = {{{}, 0, "separated"},
+                                   {{"--window", "2", "10"}, 2, "separated"},
+                                   {{"--window", "7", "10"}, 7, "overlapping"}};  // |c| = sqrt(8) < 3
+  for (const auto& c : cases) {
+    SCOPED_TRACE(c.t0);
+    std::vector<std::string> args = {"check", scene, "--query", "distance"};
+    args.insert(args.end(), c.window.begin(), c.window.end());
+    const Outcome r = run_cli(args, dir);
+    ASSERT_EQ(r.code, 0) << describe(r);
+    const json out = parse_json(r.out);
+    EXPECT_EQ(out["queries"], json::parse(R"(["distance"])"));
+    ASSERT_EQ(out["results"].size(), 1u);
+    const json& rec = out["results"][0];
+    EXPECT_FALSE(rec.contains("relation"));
+    EXPECT_FALSE(rec.contains("contact"));
+    expect_distance(rec["distance"], balls<3>(c.status, Vector<3>(0, 0, 0), 1, Vector<3>(7 - c.t0, 2, 2), 2));
+  }
+}
+
+// Ellipses facing each other along a common axis. Separated: the facing vertices are the
+// closest points (the segment joining them is normal to both boundaries, and a critical
+// pair of a convex problem is its minimum), so the distance is the center distance minus
+// the two semi-axes along it. Overlapping: the depth is the least over unit n of
+// h(n) = rho_a(n) + rho_b(n) - n . (c_b - c_a) (rho: support radius about the center);
+// for A (radii 4, 1) and C (radii 3, 2, 6 along x) h(theta) = sqrt(16 cos^2 + sin^2) +
+// sqrt(9 cos^2 + 4 sin^2) - 6 cos = 1 + 0.29 sin^2 + O(sin^4) near theta = 0, and a grid of
+// 10^6 directions finds no other minimum: depth 1 along x, witness points the vertices.
+// The same in 3D for the ellipsoid pairs along z (h = 0.5 + 1.33 y^2 + 2.33 x^2 + ... near
+// the z axis, no other minimum on a 600 x 1200 grid).
+TEST(CliDistance, EllipsesAlongAPrincipalAxis) {
+  const auto dir = work_dir();
+  write_file(dir / "axis2.json", R"({
+    "bodies": [
+      {"id": "A", "center": [0, 0], "radii": [4, 1]},
+      {"id": "B", "center": [10, 0], "radii": [3, 2]},
+      {"id": "C", "center": [6, 0], "radii": [3, 2]},
+      {"id": "V", "center": [0, 0], "radii": [4, 1], "angle": 1.5707963267948966},
+      {"id": "W", "center": [0, -9], "radius": 2}
+    ],
+    "pairs": [["A", "B"], ["B", "A"], ["A", "C"], ["V", "W"]]
+  })");
+  write_file(dir / "axis3.json", R"({
+    "bodies": [
+      {"id": "A", "center": [0, 0, 0], "radii": [3, 1, 2]},
+      {"id": "B", "center": [0, 0, 5], "radii": [1, 2, 1]},
+      {"id": "C", "center": [0, 0, 3], "radii": [1, 2, 1.5]}
+    ],
+    "pairs": [["A", "B"], ["A", "C"]]
+  })");
+  using V2 = Vector<2>;
+  using V3 = Vector<3>;
+  const Outcome r2 = run_cli({"check", (dir / "axis2.json").string(), "--query", "relation,distance"}, dir);
+  ASSERT_EQ(r2.code, 0) << describe(r2);
+  const json o2 = parse_json(r2.out);
+  ASSERT_EQ(o2["results"].size(), 4u);
+  const ExpectedDistance<2> e2[] = {{"separated", 3, V2(4, 0), V2(7, 0), V2(1, 0), 10},
+                                    {"separated", 3, V2(7, 0), V2(4, 0), V2(-1, 0), 10},
+                                    {"overlapping", -1, V2(4, 0), V2(3, 0), V2(1, 0), 8},
+                                    {"separated", 3, V2(0, -4), V2(0, -7), V2(0, -1), 9}};
+  for (std::size_t k = 0; k < 4; ++k) {
+    SCOPED_TRACE(k);
+    expect_distance(o2["results"][k]["distance"], e2[k]);
+  }
+  EXPECT_EQ(o2["results"][2]["relation"], "overlapping");
+  const Outcome r3 = run_cli({"check", (dir / "axis3.json").string(), "--query", "distance"}, dir);
+  ASSERT_EQ(r3.code, 0) << describe(r3);
+  const json o3 = parse_json(r3.out);
+  ASSERT_EQ(o3["results"].size(), 2u);
+  expect_distance(o3["results"][0]["distance"],
+                  ExpectedDistance<3>{"separated", 2, V3(0, 0, 2), V3(0, 0, 4), V3(0, 0, 1), 6});
+  expect_distance(o3["results"][1]["distance"],
+                  ExpectedDistance<3>{"overlapping", -0.5, V3(0, 0, 2), V3(0, 0, 1.5), V3(0, 0, 1), 5.5});
+}
+
+TEST(CliDistance, CsvColumnsComeAfterTheExistingOnes) {
+  const auto dir = work_dir();
+  const std::string scene = (scenes / "swept_2d.json").string();
+  const Outcome plain = run_cli({"check", scene, "--format", "csv"}, dir);
+  const Outcome with = run_cli({"check", scene, "--format", "csv", "--query", "relation,contact,distance"}, dir);
+  const Outcome js = run_cli({"check", scene, "--query", "relation,contact,distance"}, dir);
+  ASSERT_EQ(plain.code, 0) << describe(plain);
+  ASSERT_EQ(with.code, 0) << describe(with);
+  ASSERT_EQ(js.code, 0) << describe(js);
+  const auto p = split_lines(plain.out), w = split_lines(with.out);
+  ASSERT_EQ(p.size(), 4u) << plain.out;
+  ASSERT_EQ(w.size(), p.size()) << with.out;
+  EXPECT_EQ(w[0], p[0] + ",distance_status,distance,point_a_x,point_a_y,point_b_x,point_b_y,distance_normal_x,"
+                         "distance_normal_y,distance_iterations");
+  EXPECT_EQ(p[0], "index,a,b,relation,contact_status,contact_time,contact_x,contact_y,normal_x,normal_y,"
+                  "contact_iterations");
+  const auto header = split_csv_line(w[0]);
+  const json out = parse_json(js.out);
+  for (std::size_t k = 1; k < w.size(); ++k) {
+    SCOPED_TRACE(w[k]);
+    EXPECT_EQ(w[k].rfind(p[k] + ",", 0), 0u) << "the existing columns moved or changed: " << p[k];
+    const auto f = split_csv_line(w[k]);
+    ASSERT_EQ(f.size(), header.size());
+    EXPECT_EQ(distance_from_csv(header, f, 2), out["results"][k - 1]["distance"]);  // the same numbers
+  }
+  // A 3D pairs CSV (with its line column) of spheres, against the closed form.
+  write_file(dir / "spheres.csv",
+             "a_id,a_x,a_y,a_z,a_rx,a_ry,a_rz,b_id,b_x,b_y,b_z,b_rx,b_ry,b_rz\n"
+             "A,0,0,0,1,1,1,B,2,3,6,2,2,2\n"
+             "A,0,0,0,1,1,1,C,1,2,2,3,3,3\n"
+             "D,1,-2,3,0.5,0.5,0.5,E,3,-3,5,1,1,1\n");
+  const Outcome s = run_cli({"check", (dir / "spheres.csv").string(), "--format", "csv", "--query", "relation,distance"},
+                            dir);
+  ASSERT_EQ(s.code, 0) << describe(s);
+  const auto lines = split_lines(s.out);
+  ASSERT_EQ(lines.size(), 4u) << s.out;
+  EXPECT_EQ(lines[0], "index,line,a,b,relation,distance_status,distance,point_a_x,point_a_y,point_a_z,point_b_x,"
+                      "point_b_y,point_b_z,distance_normal_x,distance_normal_y,distance_normal_z,distance_iterations");
+  using V = Vector<3>;
+  const ExpectedDistance<3> expected[] = {balls<3>("separated", V(0, 0, 0), 1, V(2, 3, 6), 2),      // 7 - 3 = 4
+                                          balls<3>("overlapping", V(0, 0, 0), 1, V(1, 2, 2), 3),    // 3 - 4 = -1
+                                          balls<3>("separated", V(1, -2, 3), 0.5, V(3, -3, 5), 1)};  // 3 - 1.5
+  const char* relations[] = {"separated", "overlapping", "separated"};
+  const auto sh = split_csv_line(lines[0]);
+  for (std::size_t k = 0; k < 3; ++k) {
+    SCOPED_TRACE(lines[k + 1]);
+    const auto f = split_csv_line(lines[k + 1]);
+    ASSERT_EQ(f.size(), sh.size());
+    EXPECT_EQ(f[1], std::to_string(k + 2));
+    EXPECT_EQ(f[4], relations[k]);
+    expect_distance(distance_from_csv(sh, f, 3), expected[k]);
+  }
+}
+
+TEST(CliDistance, PairsLeftOutByTheBroadPhaseGetTheirDistance) {
+  const auto dir = work_dir();
+  // Only P-R's boxes meet; the other five pairs are decided by the broad phase.
+  write_file(dir / "bodies.csv", "id,x,y,rx,ry\nP,0,0,1,1\nQ,3,4,1,1\nR,0.5,0,1,1\nS,100,0,2,2\n");
+  const std::string scene = (dir / "bodies.csv").string();
+  const Outcome r = run_cli({"check", scene, "--query", "relation,distance"}, dir);
+  const Outcome exact = run_cli({"check", scene, "--query", "relation,distance", "--no-broad-phase"}, dir);
+  const Outcome cand = run_cli({"check", scene, "--query", "relation,distance", "--report", "candidates"}, dir);
+  ASSERT_EQ(r.code, 0) << describe(r);
+  ASSERT_EQ(exact.code, 0) << describe(exact);
+  ASSERT_EQ(cand.code, 0) << describe(cand);
+  const json out = parse_json(r.out), oe = parse_json(exact.out), oc = parse_json(cand.out);
+  using V = Vector<2>;
+  const V p(0, 0), q(3, 4), rr(0.5, 0), s(100, 0);
+  const ExpectedDistance<2> expected[] = {balls<2>("separated", p, 1, q, 1),   balls<2>("overlapping", p, 1, rr, 1),
+                                          balls<2>("separated", p, 1, s, 2),   balls<2>("separated", q, 1, rr, 1),
+                                          balls<2>("separated", q, 1, s, 2),   balls<2>("separated", rr, 1, s, 2)};
+  ASSERT_EQ(out["results"].size(), 6u);
+  for (std::size_t k = 0; k < 6; ++k) {
+    SCOPED_TRACE(k);
+    expect_distance(out["results"][k]["distance"], expected[k]);
+  }
+  EXPECT_EQ(out["results"], oe["results"]);  // bit for bit
+  const json counts = json::parse(R"({"separated": 5, "touching": 0, "overlapping": 1, "did_not_converge": 0})");
+  EXPECT_EQ(out["summary"]["distance"], counts);
+  // Only the candidate is listed; the summary counts the others as separated.
+  EXPECT_EQ(oc["pair_source"], "broad-phase candidates");
+  ASSERT_EQ(oc["results"].size(), 1u);
+  EXPECT_EQ(oc["results"][0]["a"], "P");
+  EXPECT_EQ(oc["results"][0]["b"], "R");
+  EXPECT_EQ(oc["results"][0]["distance"], out["results"][1]["distance"]);
+  EXPECT_EQ(oc["summary"]["distance"], counts);
+}
+
+TEST(CliDistance, UnknownQueryNamesListTheAvailableOnes) {
+  const auto dir = work_dir();
+  const std::string scene = (scenes / "swept_2d.json").string();
+  const Outcome c = run_cli({"check", scene, "--query", "relation,penetration"}, dir);
+  EXPECT_EQ(c.code, 1) << describe(c);
+  EXPECT_NE(c.err.find("unknown query \"penetration\" (available: relation, contact, distance)"), std::string::npos)
+      << c.err;
+  const Outcome b = run_cli({"bench", scene, "--query", "signed_distance"}, dir);
+  EXPECT_EQ(b.code, 1) << describe(b);
+  EXPECT_NE(b.err.find("unknown query \"signed_distance\" (available: overlap, classify, contact, distance)"),
+            std::string::npos)
+      << b.err;
+}
+
+// ------------------------------------------------------------------------------------------
 // Bad input: message (file, line or JSON path, field), exit code 2, no output file.
 // ------------------------------------------------------------------------------------------
 
@@ -930,6 +1227,17 @@ TEST(CliBench, PrintsQueriesPerSecond) {
   EXPECT_EQ(out["results"][0]["query"], "overlap");
   EXPECT_GT(out["results"][0]["queries_per_second"].get<double>(), 0);
   EXPECT_EQ(out["bodies"], 10000);
+}
+
+TEST(CliBench, TimesTheDistanceQuery) {
+  const auto dir = work_dir();
+  const Outcome r = run_cli({"bench", (scenes / "swept_3d.json").string(), "--min-time", "0.02", "--query",
+                             "classify,distance", "--format", "json", "-j", "1"}, dir);
+  ASSERT_EQ(r.code, 0) << describe(r);
+  const json out = parse_json(r.out);
+  ASSERT_EQ(out["results"].size(), 2u);
+  EXPECT_EQ(out["results"][1]["query"], "distance");
+  EXPECT_GT(out["results"][1]["queries_per_second"].get<double>(), 0);
 }
 
 // ------------------------------------------------------------------------------------------
