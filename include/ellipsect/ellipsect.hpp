@@ -1,6 +1,7 @@
 // ellipsect: exact collision queries between ellipses and ellipsoids.
 #pragma once
 
+#include <ellipsect/batch.hpp>
 #include <ellipsect/classify.hpp>
 #include <ellipsect/contact.hpp>
 #include <ellipsect/distance.hpp>
