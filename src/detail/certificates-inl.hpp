@@ -16,9 +16,10 @@
 //     qa, qb <= 1 - margin                    -> a common interior point
 //   evaluated at the two-ball maximizer l = rho_a / (rho_a + rho_b) (rho: support radii
 //   along r), then at Newton iterates while a lane is open. cond(C) <= (largest aspect
-//   ratio)^2, so F and the quadrics carry a relative rounding of a few eps (aspect^2 +
-//   |c| / r_min); F is used for aspect ratios up to 1e4, with margin = 1e-6 + 1024 eps
-//   (1e8 + |c| / r_min), about 2.4e-5.
+//   ratio)^2; C is solved in closed form up to aspect 100 (rounding ~ eps cond(C)^2 <=
+//   1e8 eps) and by L D L^T beyond (~ eps cond(C) <= 1e8 eps), plus eps |c| / r_min from
+//   the world coordinates. F is used for aspect ratios up to 1e4, with margin = 1e-6 +
+//   1024 eps (1e8 + |c| / r_min), about 2.4e-5.
 //   a's support point away from b, c_a - Sa r / rho_a, has b's quadric >= 1.02 and b's away
 //   from a has a's quadric >= 1.02            -> neither body inside the other
 //   the centers' closest approach over [0, t_max] exceeds the circumscribed radii
@@ -60,6 +61,7 @@ HWY_INLINE double Abs(double x) { return std::abs(x); }
 HWY_INLINE bool And(bool a, bool b) { return a && b; }
 HWY_INLINE bool Or(bool a, bool b) { return a || b; }
 HWY_INLINE bool AndNot(bool not_a, bool b) { return !not_a && b; }
+HWY_INLINE bool Not(bool a) { return !a; }
 HWY_INLINE double IfThenElse(bool m, double yes, double no) { return m ? yes : no; }
 
 template <class V>
@@ -120,17 +122,16 @@ HWY_INLINE V smallest(const V* r) {
   return m;
 }
 
-// S = A diag(r^2) A^T, the inverse of the body's quadric matrix.
+// S = A diag(r^2) A^T = B B^T with B = A diag(r), the inverse of the body's quadric matrix.
 template <class V, int N>
 HWY_INLINE void shape_matrix(const BodyLanes<V, N>& b, V (&s)[N][N]) {
-  V r2[N];
-  for (int k = 0; k < N; ++k) r2[k] = b.r[k] * b.r[k];
+  V w[N][N];
+  for (int i = 0; i < N; ++i)
+    for (int k = 0; k < N; ++k) w[i][k] = b.axes[i][k] * b.r[k];
   for (int i = 0; i < N; ++i)
     for (int j = i; j < N; ++j) {
-      V t = b.axes[i][0] * b.axes[j][0] * r2[0];
-      for (int k = 1; k < N; ++k) t = t + b.axes[i][k] * b.axes[j][k] * r2[k];
-      s[i][j] = t;
-      s[j][i] = t;
+      s[i][j] = dot<V, N>(w[i], w[j]);
+      s[j][i] = s[i][j];
     }
 }
 
@@ -152,17 +153,78 @@ HWY_INLINE V level(const BodyLanes<V, N>& b, const V* w) {
   return q;
 }
 
-// The Perram-Wertheim function at l: C = (1 - l) Sa + l Sb = L D L^T, y = C^-1 r,
-// A = y^T Sa y, B = y^T Sb y, F = l (1 - l) r^T y, and the quadrics of the point x(l):
-// qa = (1 - l)^2 A, qb = l^2 B. F' = qa - qb, so at the maximizer qa = qb = F = mu^2.
+// How C is solved in a vector: in closed form (adjugate over determinant, for aspect ratios
+// up to 100), by L D L^T (beyond), or both with a per-lane choice when a vector mixes them.
+// The two have relative rounding of a few eps cond(C)^2 and eps cond(C); with
+// cond(C) <= (largest aspect)^2 both stay under 1e8 eps.
+enum class Solver { closed_form, ldlt, mixed };
+inline constexpr double closed_form_aspect = 100;
+
+// The Perram-Wertheim function at l: C = (1 - l) Sa + l Sb, y = C^-1 r, A = y^T Sa y,
+// B = y^T Sb y, F = l (1 - l) r^T y, and the quadrics of the point x(l): qa = (1 - l)^2 A,
+// qb = l^2 B. F' = qa - qb, so at the maximizer qa = qb = F = mu^2.
 template <class V, int N>
 struct PerramWertheim {
+  using Mask = decltype(Lt(std::declval<V>(), std::declval<V>()));
+  Solver solver;
+  Mask closed;    // lanes solved in closed form (Solver::mixed)
   V l, f, qa, qb;
-  decltype(Lt(std::declval<V>(), std::declval<V>())) factored;  // D > 0: the values are meaningful
-  V low[N][N], inv[N], a, b, sy_a[N], sy_b[N];                    // for the Newton step
+  Mask factored;  // det > 0 or D > 0: the values are meaningful
+  V adj[N][N], inv_det, low[N][N], inv[N], a, b, sy_a[N], sy_b[N];
 
-  // x = C^-1 rhs with the factors.
+  HWY_INLINE void factor(const V (&sa)[N][N], const V (&sb)[N][N]) {
+    const V one = Splat<V>(1), zero = Splat<V>(0), m = one - l;
+    V c[N][N];
+    for (int i = 0; i < N; ++i)
+      for (int j = 0; j <= i; ++j) c[i][j] = c[j][i] = m * sa[i][j] + l * sb[i][j];
+    auto closed_ok = Gt(l, zero), ldlt_ok = closed_ok;
+    if (solver != Solver::ldlt) {
+      if constexpr (N == 2) {
+        adj[0][0] = c[1][1];
+        adj[1][1] = c[0][0];
+        adj[0][1] = adj[1][0] = zero - c[0][1];
+      } else {
+        static_assert(N == 3, "closed form for 2 and 3 dimensions");
+        adj[0][0] = c[1][1] * c[2][2] - c[1][2] * c[1][2];
+        adj[1][1] = c[0][0] * c[2][2] - c[0][2] * c[0][2];
+        adj[2][2] = c[0][0] * c[1][1] - c[0][1] * c[0][1];
+        adj[0][1] = adj[1][0] = c[0][2] * c[1][2] - c[0][1] * c[2][2];
+        adj[0][2] = adj[2][0] = c[0][1] * c[1][2] - c[0][2] * c[1][1];
+        adj[1][2] = adj[2][1] = c[0][1] * c[0][2] - c[0][0] * c[1][2];
+      }
+      const V det = dot<V, N>(c[0], adj[0]);
+      inv_det = one / det;
+      closed_ok = And(closed_ok, Gt(det, zero));
+    }
+    if (solver != Solver::closed_form) {
+      V dg[N];
+      for (int j = 0; j < N; ++j) {
+        V s = c[j][j];
+        for (int k = 0; k < j; ++k) s = s - low[j][k] * low[j][k] * dg[k];
+        dg[j] = s;
+        inv[j] = one / s;
+        ldlt_ok = And(ldlt_ok, Gt(s, zero));
+        for (int i = j + 1; i < N; ++i) {
+          V t = c[i][j];
+          for (int k = 0; k < j; ++k) t = t - low[i][k] * low[j][k] * dg[k];
+          low[i][j] = t * inv[j];
+        }
+      }
+    }
+    factored = solver == Solver::closed_form ? closed_ok
+               : solver == Solver::ldlt      ? ldlt_ok
+                                             : Or(And(closed, closed_ok), AndNot(closed, ldlt_ok));
+  }
+
+  // x = C^-1 rhs.
   HWY_INLINE void solve(const V* rhs, V* x) const {
+    V xc[N];
+    if (solver != Solver::ldlt)
+      for (int i = 0; i < N; ++i) xc[i] = dot<V, N>(adj[i], rhs) * inv_det;
+    if (solver == Solver::closed_form) {
+      for (int i = 0; i < N; ++i) x[i] = xc[i];
+      return;
+    }
     for (int i = 0; i < N; ++i) {
       V s = rhs[i];
       for (int k = 0; k < i; ++k) s = s - low[i][k] * x[k];
@@ -171,6 +233,8 @@ struct PerramWertheim {
     for (int i = 0; i < N; ++i) x[i] = x[i] * inv[i];
     for (int i = N - 1; i >= 0; --i)
       for (int k = i + 1; k < N; ++k) x[i] = x[i] - low[k][i] * x[k];
+    if (solver == Solver::mixed)
+      for (int i = 0; i < N; ++i) x[i] = IfThenElse(closed, xc[i], x[i]);
   }
 
   // The Newton iterate l - F'/F'' (F'' from z = C^-1 (Sb - Sa) y: A' = -2 (Sa y).z,
@@ -186,25 +250,15 @@ struct PerramWertheim {
   }
 };
 
-template <class V, int N>
-HWY_INLINE PerramWertheim<V, N> perram_wertheim(const V (&sa)[N][N], const V (&sb)[N][N], const V* r, V l) {
-  const V one = Splat<V>(1), zero = Splat<V>(0), m = one - l;
+template <class V, int N, class Mask>
+HWY_INLINE PerramWertheim<V, N> perram_wertheim(const V (&sa)[N][N], const V (&sb)[N][N], const V* r, V l,
+                                                Solver solver, Mask closed) {
+  const V m = Splat<V>(1) - l;
   PerramWertheim<V, N> p;
+  p.solver = solver;
+  p.closed = closed;
   p.l = l;
-  V dg[N];
-  p.factored = Gt(l, zero);
-  for (int j = 0; j < N; ++j) {
-    V s = m * sa[j][j] + l * sb[j][j];
-    for (int k = 0; k < j; ++k) s = s - p.low[j][k] * p.low[j][k] * dg[k];
-    dg[j] = s;
-    p.inv[j] = one / s;
-    p.factored = And(p.factored, Gt(s, zero));
-    for (int i = j + 1; i < N; ++i) {
-      V t = m * sa[i][j] + l * sb[i][j];
-      for (int k = 0; k < j; ++k) t = t - p.low[i][k] * p.low[j][k] * dg[k];
-      p.low[i][j] = t * p.inv[j];
-    }
-  }
+  p.factor(sa, sb);
   V y[N];
   p.solve(r, y);
   times<V, N>(sa, y, p.sy_a);
@@ -262,14 +316,19 @@ HWY_INLINE V certify(const BodyLanes<V, N>& a, const BodyLanes<V, N>& b, V tol) 
   const V rho_a = Sqrt(dot<V, N>(r, ga)), rho_b = Sqrt(dot<V, N>(r, gb));
   // F at the two-ball l, then at Newton iterates towards its maximizer while some lane is
   // open: every l bounds mu from below and gives a candidate common point.
-  auto p = perram_wertheim<V, N>(sa, sb, r, rho_a / (rho_a + rho_b));
+  const auto closed = And(Le(largest<V, N>(a.r), Splat<V>(closed_form_aspect) * smallest<V, N>(a.r)),
+                          Le(largest<V, N>(b.r), Splat<V>(closed_form_aspect) * smallest<V, N>(b.r)));
+  const Solver solver = all_lanes<V>(closed)            ? Solver::closed_form
+                        : all_lanes<V>(Not(closed)) ? Solver::ldlt
+                                                        : Solver::mixed;
+  auto p = perram_wertheim<V, N>(sa, sb, r, rho_a / (rho_a + rho_b), solver, closed);
   gate = And(gate, p.factored);
   const V pass = one + margin, deep = one - margin;
   auto certain = [&](const PerramWertheim<V, N>& q) { return And(gate, q.factored); };
   auto separated = Or(apart, And(certain(p), Ge(p.f, pass)));
   auto shared = AndNot(separated, Or(inside, And(certain(p), And(Le(p.qa, deep), Le(p.qb, deep)))));
   for (int it = 1; it <= newton_steps && !all_lanes<V>(Or(separated, shared)); ++it) {
-    p = perram_wertheim<V, N>(sa, sb, r, p.newton());
+    p = perram_wertheim<V, N>(sa, sb, r, p.newton(), solver, closed);
     separated = Or(separated, And(certain(p), Ge(p.f, pass)));
     shared = AndNot(separated, Or(shared, And(certain(p), And(Le(p.qa, deep), Le(p.qb, deep)))));
   }
