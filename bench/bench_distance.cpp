@@ -19,18 +19,14 @@
 #include <ellipsect/intersect2.hpp>
 
 #include "bench/bench_support.hpp"
+#include "bench/peers.hpp"
 #include "scenarios/scenarios.hpp"
 #include "tests/reference/distance_reference.hpp"
 
 #include <benchmark/benchmark.h>
 
 #ifdef ELLIPSECT_HAVE_FCL
-#include <fcl/geometry/shape/ellipsoid.h>
-#include <fcl/narrowphase/collision_object.h>
 #include <fcl/narrowphase/distance.h>
-#endif
-#ifdef ELLIPSECT_HAVE_CCD
-#include <ccd/ccd.h>
 #endif
 
 #include <algorithm>
@@ -131,13 +127,7 @@ struct FclPair {
   std::shared_ptr<fcl::CollisionObjectd> a, b;
 };
 
-std::shared_ptr<fcl::CollisionObjectd> fcl_object(const Ellipsoid3<double>& e) {
-  fcl::Transform3d tf = fcl::Transform3d::Identity();
-  tf.linear() = e.axes();
-  tf.translation() = e.center();
-  return std::make_shared<fcl::CollisionObjectd>(
-      std::make_shared<fcl::Ellipsoidd>(e.radii()[0], e.radii()[1], e.radii()[2]), tf);
-}
+using bench::fcl_object;
 
 void fcl_distance(benchmark::State& state, int category, Set set, fcl::GJKSolverType solver) {
   const auto& ps = pairs<3>(category, set);
@@ -156,22 +146,9 @@ void fcl_distance(benchmark::State& state, int category, Set set, fcl::GJKSolver
 #endif
 
 #ifdef ELLIPSECT_HAVE_CCD
-struct CcdBody {
-  Mat3<double> axes;
-  Vec3<double> radii, center;
-};
-
-void ccd_support(const void* obj, const ccd_vec3_t* dir, ccd_vec3_t* out) {
-  const auto& b = *static_cast<const CcdBody*>(obj);
-  const Vec3<double> w = b.radii.cwiseProduct(b.axes.transpose() * Vec3<double>(ccdVec3X(dir), ccdVec3Y(dir), ccdVec3Z(dir)));
-  const Vec3<double> p = b.center + b.axes * (b.radii.cwiseProduct(w) / w.norm());
-  ccdVec3Set(out, p.x(), p.y(), p.z());
-}
-
-void ccd_center(const void* obj, ccd_vec3_t* out) {
-  const auto& b = *static_cast<const CcdBody*>(obj);
-  ccdVec3Set(out, b.center.x(), b.center.y(), b.center.z());
-}
+using bench::CcdBody;
+using bench::ccd_center;
+using bench::ccd_support;
 
 using CcdPenetration = int (*)(const void*, const void*, const ccd_t*, ccd_real_t*, ccd_vec3_t*, ccd_vec3_t*);
 

@@ -76,7 +76,8 @@ constexpr std::size_t chunks_per_thread = 8;  // at least ~100 us of work per th
 template <class Work>
 void for_each_chunk(std::size_t n, int threads, const Work& work) {
   const std::size_t chunks = (n + chunk - 1) / chunk;
-  std::size_t workers = threads > 0 ? std::size_t(threads) : std::max(1u, std::thread::hardware_concurrency());
+  static const unsigned hardware = std::max(1u, std::thread::hardware_concurrency());  // reads sysfs: ~8 us
+  std::size_t workers = threads > 0 ? std::size_t(threads) : hardware;
   workers = std::min(workers, (chunks + chunks_per_thread - 1) / chunks_per_thread);
   std::atomic<std::size_t> next{0};
   auto run = [&] {

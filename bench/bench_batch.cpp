@@ -1,0 +1,481 @@
+// Batch queries (include/ellipsect/batch.hpp: SIMD filter, threads) side by side with the
+// scalar functions, FCL 0.7 and libccd 2.1, on the same seeded cases, with the answers
+// that disagree with the 50-digit reference (tests/reference/reference.hpp) counted.
+//
+// Cases: make_case<N>(category, 800000 + i), i < 1024, for the categories random,
+// high_aspect, near_tangent, containment and far_apart (scenarios/scenarios.hpp); 3D for
+// every method, 2D also for ellipsect's classify. The last name component is the category.
+//
+// BM_overlap3/*
+//   ellipsect_scalar          overlap(a, b), one pair per call
+//   ellipsect_batch_1thread   overlap(pairs, out, options) over the category's 1024 pairs,
+//   ellipsect_batch_allcores  options.threads = 1, or 0 (every hardware thread; real time;
+//                             arrays this short get no extra thread, see BM_overlap3_large)
+//   fcl_collide               fcl::collide on two fcl::CollisionObjectd holding fcl::Ellipsoidd
+//                             (rotation = axes, translation = center; bench/peers.hpp), default
+//                             CollisionRequestd: GST_LIBCCD, i.e. ccdMPRIntersect with
+//                             max_iterations 500 and mpr_tolerance eps^(7/8) = 2e-14
+//   fcl_collide_indep         the same with gjk_solver_type = GST_INDEP: FCL's own GJK,
+//                             128 iterations, tolerance 2e-14
+//   ccd_gjk, ccd_mpr          ccdGJKIntersect, ccdMPRIntersect with the support point
+//                             c + A diag(r^2) A^T d / |diag(r) A^T d| and the center c
+//                             (bench/peers.hpp); ccd_t as CCD_INIT leaves it: max_iterations
+//                             (unsigned long)-1, epa_tolerance 1e-4, mpr_tolerance 1e-4,
+//                             dist_tolerance 1e-6, first_dir ccdFirstDirDefault
+// BM_classify3/*, BM_classify2/*
+//   ellipsect scalar, batch 1 thread, batch all cores (no peer classifies)
+// BM_first_contact3/*
+//   ellipsect scalar, batch 1 thread, batch all cores
+//   fcl_naive_trans,          fcl::continuousCollide from the poses at t = 0 to those at
+//   fcl_naive_linear          t = T, default ContinuousCollisionRequestd: CCDC_NAIVE, i.e.
+//                             fcl::collide (default request) at t = T i / 9, i = 0..9
+//                             (num_max_iterations 10, toc_err 1e-4); motion CCDM_TRANS or
+//                             CCDM_LINEAR. T = t_max; for t_max = inf, T = t_c + (Ra + Rb) / |v|
+//                             with t_c >= 0 the closest approach of the centers, Ra, Rb the
+//                             largest radii, v the relative velocity: no contact can happen
+//                             later (a tighter window than any fixed clamp). Answer: no
+//                             contact if !is_collide, contact at the start if
+//                             time_of_contact = 0, else a hit at time_of_contact * T.
+//   Not usable on ellipsoids in FCL 0.7: CCDC_CONSERVATIVE_ADVANCEMENT (no ellipsoid entry
+//   in its function table: a warning and no answer), CCDC_RAY_SHOOTING (not implemented:
+//   returns -1), CCDC_POLYNOMIAL_SOLVER (BVH meshes only). CCDC_NAIVE ignores
+//   gjk_solver_type, so there is no separate indep mode.
+// BM_overlap3_large/*   batch overlap over 1 << 20 pairs (the random cases cycled, static)
+// BM_overlap3_simd/TARGET/random
+//   batch overlap, 1 thread, pinned to each instruction set of simd_targets()
+//   (set_simd_target; the widest is restored afterwards)
+//
+// Counters: items_per_second (pairs per second) and time_per_pair, from Google Benchmark's
+// time (real time for all cores); median_ns (scalar and peers): the median over pairs of
+// one query's time (bench/bench_support.hpp); n: the pairs the reference decides; wrong:
+// the answers among them that disagree with it. Not counted, as in tests/property: pairs
+// within the band 2 * Options::tolerance = 2e-12 of a tangency, i.e. |mu - 1| <= 2e-12
+// for overlap (mu: the Perram-Wertheim contact scale factor), any of the reference's
+// tangency measures for classify (except equal bodies), and for first_contact mu at t = 0,
+// or the smallest mu over the window when the reference says hit or no contact. A
+// first_contact answer is wrong when it differs from the reference in hit / contact at
+// the start / no contact, or when a hit's time t has |t - t_ref| >
+// 1e-6 * max(t_ref, scale / |v|), scale = the largest radius; the time is not judged on
+// grazing paths (relative velocity within asin(1e-3) of the contact plane), where it is
+// ill-conditioned. The reference of a category is computed on its first use (time on
+// stderr).
+//
+// Run:
+//   cmake -S . -B build/release -DCMAKE_BUILD_TYPE=Release && cmake --build build/release
+//   build/release/bench/bench_batch --benchmark_min_time=0.2
+#include <ellipsect/batch.hpp>
+#include <ellipsect/classify.hpp>
+#include <ellipsect/contact.hpp>
+
+#include "bench/bench_support.hpp"
+#include "bench/peers.hpp"
+#include "scenarios/scenarios.hpp"
+#include "tests/reference/reference.hpp"
+
+#include <benchmark/benchmark.h>
+
+#ifdef ELLIPSECT_HAVE_FCL
+#include <fcl/narrowphase/collision.h>
+#include <fcl/narrowphase/continuous_collision.h>
+#endif
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <map>
+#include <memory>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace {
+
+using namespace ellipsect;
+namespace ref = ellipsect::reference;
+using scenarios::Category;
+
+constexpr int cases_per_category = 1024;
+constexpr std::size_t large_size = std::size_t{1} << 20;
+constexpr double band = 2 * Options{}.tolerance;
+constexpr double inf = std::numeric_limits<double>::infinity();
+constexpr std::array categories = {Category::random, Category::high_aspect, Category::near_tangent,
+                                   Category::containment, Category::far_apart};
+
+// ---- cases ------------------------------------------------------------------------------
+
+template <int N>
+struct Cases {
+  std::vector<scenarios::Case<N>> list;  // scalar functions and peers
+  Pairs<double, N> pairs;                // the same, for the batch functions
+};
+
+template <int N>
+const Cases<N>& cases(int k) {
+  static const auto all = [] {
+    std::vector<Cases<N>> out(categories.size());
+    for (std::size_t j = 0; j < categories.size(); ++j)
+      for (int i = 0; i < cases_per_category; ++i) {
+        const auto c = scenarios::make_case<N>(categories[j], 800000 + i);
+        out[j].list.push_back(c);
+        out[j].pairs.push_back(c.a, c.va, c.b, c.vb, c.t_max);
+      }
+    return out;
+  }();
+  return all[static_cast<std::size_t>(k)];
+}
+
+std::string category_name(int k) { return std::string(scenarios::name(categories[static_cast<std::size_t>(k)])); }
+
+// ---- reference answers (nullopt: inside the tolerance band, not counted) ----------------
+
+template <int N>
+ref::Body<N> to_ref(const Ellipsoid<double, N>& e) {
+  return {e.center(), e.axes(), e.radii()};
+}
+
+Relation from_ref(ref::Relation r) {
+  switch (r) {
+    case ref::Relation::separated: return Relation::separated;
+    case ref::Relation::touching: return Relation::touching;
+    case ref::Relation::overlapping: return Relation::overlapping;
+    case ref::Relation::a_contains_b: return Relation::a_contains_b;
+    case ref::Relation::b_contains_a: return Relation::b_contains_a;
+    case ref::Relation::equal: return Relation::equal;
+  }
+  return Relation::overlapping;
+}
+
+enum class Outcome { at_start, hit, none, failed };
+
+struct Answer {
+  Outcome outcome;
+  double time;
+};
+
+struct ContactTruth {
+  Answer expected;
+  double time_tolerance;  // inf: status only (grazing path)
+};
+
+template <class T>
+using Truth = std::vector<std::optional<T>>;
+
+struct StaticTruth {
+  Truth<Relation> relation;
+  Truth<bool> overlap;
+};
+
+template <class Compute>
+auto timed(const char* what, int k, Compute compute) {
+  const auto t0 = std::chrono::steady_clock::now();
+  auto out = compute();
+  const std::chrono::duration<double> s = std::chrono::steady_clock::now() - t0;
+  std::fprintf(stderr, "reference %s/%s: %d cases in %.1f s\n", what, category_name(k).c_str(), cases_per_category,
+               s.count());
+  return out;
+}
+
+template <int N>
+const StaticTruth& static_truth(int k) {
+  static std::map<int, StaticTruth> cache;
+  if (const auto it = cache.find(k); it != cache.end()) return it->second;
+  return cache[k] = timed(N == 2 ? "classify2" : "classify3", k, [k] {
+           StaticTruth t;
+           for (const auto& c : cases<N>(k).list) {
+             const auto r = ref::classify<N>(to_ref(c.a), to_ref(c.b), band);
+             const Relation want = from_ref(r.relation);
+             const bool mu_decided = ref::to_double(abs(r.mu - 1)) > band;
+             t.relation.push_back(r.margin > band || want == Relation::equal ? std::optional(want) : std::nullopt);
+             t.overlap.push_back(mu_decided ? std::optional(want != Relation::separated) : std::nullopt);
+           }
+           return t;
+         });
+}
+
+const Truth<ContactTruth>& contact_truth(int k) {
+  static std::map<int, Truth<ContactTruth>> cache;
+  if (const auto it = cache.find(k); it != cache.end()) return it->second;
+  return cache[k] = timed("first_contact3", k, [k] {
+           Truth<ContactTruth> t;
+           for (const auto& c : cases<3>(k).list) {
+             const auto r = ref::first_contact<3>(to_ref(c.a), c.va, to_ref(c.b), c.vb, c.t_max, band);
+             const bool grazing_band = std::abs(ref::to_double(r.min_mu) - 1) <= band;
+             if (r.kind == ref::ContactKind::touching_at_start) {
+               t.emplace_back();
+             } else if (r.kind == ref::ContactKind::overlapping_at_start) {
+               t.push_back(ContactTruth{{Outcome::at_start, 0}, inf});
+             } else if (grazing_band) {
+               t.emplace_back();
+             } else if (r.kind == ref::ContactKind::none) {
+               t.push_back(ContactTruth{{Outcome::none, inf}, inf});
+             } else {
+               const Vec3<double> v = c.vb - c.va;
+               const double t_ref = ref::to_double(r.time);
+               const double sin_angle = std::abs(ref::to_double<3>(r.normal).dot(v.normalized()));
+               const double scale = std::max(c.a.radii().maxCoeff(), c.b.radii().maxCoeff());
+               const double tol = sin_angle < 1e-3 ? inf : 1e-6 * std::max(t_ref, scale / v.norm());
+               t.push_back(ContactTruth{{Outcome::hit, t_ref}, tol});
+             }
+           }
+           return t;
+         });
+}
+
+Answer answer(const Contact<double, 3>& c) {
+  switch (c.status) {
+    case ContactStatus::hit: return {Outcome::hit, c.time};
+    case ContactStatus::touching_at_start:
+    case ContactStatus::overlapping_at_start: return {Outcome::at_start, 0};
+    case ContactStatus::no_contact_in_window: return {Outcome::none, inf};
+    default: return {Outcome::failed, NAN};
+  }
+}
+
+bool disagrees(bool want, bool got) { return want != got; }
+bool disagrees(Relation want, Relation got) { return want != got; }
+bool disagrees(const ContactTruth& want, const Answer& got) {
+  return got.outcome != want.expected.outcome ||
+         (got.outcome == Outcome::hit && !(std::abs(got.time - want.expected.time) <= want.time_tolerance));
+}
+bool disagrees(const ContactTruth& want, const Contact<double, 3>& got) { return disagrees(want, answer(got)); }
+
+// ---- timing and counters ----------------------------------------------------------------
+
+template <class T, class Answers>
+void count_wrong(benchmark::State& state, const Truth<T>& truth, const Answers& got) {
+  int n = 0, wrong = 0;
+  for (std::size_t i = 0; i < truth.size(); ++i)
+    if (truth[i]) {
+      ++n;
+      wrong += disagrees(*truth[i], got[i]);
+    }
+  state.counters["n"] = n;
+  state.counters["wrong"] = wrong;
+}
+
+// items_per_second (pairs/s) and time_per_pair, from Google Benchmark's time (the real
+// time for benchmarks marked UseRealTime).
+void per_pair(benchmark::State& state, std::size_t pairs_per_iteration) {
+  const auto items = state.iterations() * static_cast<std::int64_t>(pairs_per_iteration);
+  state.SetItemsProcessed(items);
+  state.counters["time_per_pair"] =
+      benchmark::Counter(static_cast<double>(items), benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+}
+
+// One pair per call: every item answered once for the counters, then the timing loop.
+template <class T, class Items, class Query>
+void run_queries(benchmark::State& state, const Truth<T>& truth, const Items& items, Query query) {
+  std::vector<decltype(query(items[0]))> got;
+  for (const auto& item : items) got.push_back(query(item));
+  count_wrong(state, truth, got);
+  bench::time_cases(state, items, query);
+  per_pair(state, 1);
+}
+
+// The whole array per call (answers of the first call for the counters).
+template <class Out, class T, class P, class Batch>
+void run_batch(benchmark::State& state, const Truth<T>& truth, const P& pairs, int threads, Batch batch) {
+  const auto out = std::make_unique<Out[]>(pairs.size());
+  const std::span<Out> span(out.get(), pairs.size());
+  const BatchOptions options{.query = {}, .threads = threads};
+  batch(pairs, span, options);
+  count_wrong(state, truth, out.get());
+  for (auto _ : state) batch(pairs, span, options);
+  per_pair(state, pairs.size());
+}
+
+constexpr auto batch_overlap = [](const auto& p, auto out, const BatchOptions& o) { overlap(p, out, o); };
+constexpr auto batch_classify = [](const auto& p, auto out, const BatchOptions& o) { classify(p, out, o); };
+constexpr auto batch_first_contact = [](const auto& p, auto out, const BatchOptions& o) { first_contact(p, out, o); };
+
+// ---- ellipsect --------------------------------------------------------------------------
+
+void overlap_scalar(benchmark::State& state, int k) {
+  run_queries(state, static_truth<3>(k).overlap, cases<3>(k).list,
+              [](const scenarios::Case<3>& c) { return overlap(c.a, c.b); });
+}
+
+void overlap_batch(benchmark::State& state, int k, int threads) {
+  run_batch<bool>(state, static_truth<3>(k).overlap, cases<3>(k).pairs, threads, batch_overlap);
+}
+
+template <int N>
+void classify_scalar(benchmark::State& state, int k) {
+  run_queries(state, static_truth<N>(k).relation, cases<N>(k).list,
+              [](const scenarios::Case<N>& c) { return classify(c.a, c.b); });
+}
+
+template <int N>
+void classify_batch(benchmark::State& state, int k, int threads) {
+  run_batch<Relation>(state, static_truth<N>(k).relation, cases<N>(k).pairs, threads, batch_classify);
+}
+
+void contact_scalar(benchmark::State& state, int k) {
+  run_queries(state, contact_truth(k), cases<3>(k).list,
+              [](const scenarios::Case<3>& c) { return first_contact(c.a, c.va, c.b, c.vb, c.t_max); });
+}
+
+void contact_batch(benchmark::State& state, int k, int threads) {
+  run_batch<Contact<double, 3>>(state, contact_truth(k), cases<3>(k).pairs, threads, batch_first_contact);
+}
+
+// The random cases cycled to large_size pairs (static: no motion).
+void overlap_large(benchmark::State& state, int threads) {
+  static const auto large = [] {
+    std::pair<Pairs<double, 3>, Truth<bool>> out;
+    out.first.reserve(large_size);
+    for (std::size_t i = 0; i < large_size; ++i) {
+      const auto& c = cases<3>(0).list[i % cases_per_category];
+      out.first.push_back(c.a, c.b);
+      out.second.push_back(static_truth<3>(0).overlap[i % cases_per_category]);
+    }
+    return out;
+  }();
+  run_batch<bool>(state, large.second, large.first, threads, batch_overlap);
+}
+
+void overlap_simd(benchmark::State& state, const std::string& target) {
+  set_simd_target(target);
+  overlap_batch(state, 0, 1);
+  set_simd_target("");
+}
+
+// ---- FCL --------------------------------------------------------------------------------
+
+#ifdef ELLIPSECT_HAVE_FCL
+struct FclPair {
+  std::shared_ptr<fcl::CollisionObjectd> a, b;
+};
+
+void fcl_overlap(benchmark::State& state, int k, fcl::GJKSolverType solver) {
+  std::vector<FclPair> items;
+  for (const auto& c : cases<3>(k).list) items.push_back({bench::fcl_object(c.a), bench::fcl_object(c.b)});
+  fcl::CollisionRequestd request;
+  request.gjk_solver_type = solver;
+  run_queries(state, static_truth<3>(k).overlap, items, [&request](const FclPair& p) {
+    fcl::CollisionResultd result;
+    fcl::collide(p.a.get(), p.b.get(), request, result);
+    return result.isCollision();
+  });
+}
+
+struct FclMotion {
+  std::shared_ptr<fcl::Ellipsoidd> a, b;
+  fcl::Transform3d a0, a1, b0, b1;  // poses at t = 0 and t = window
+  double window;
+};
+
+FclMotion fcl_motion(const scenarios::Case<3>& c) {
+  double window = c.t_max;
+  if (std::isinf(window)) {
+    const Vec3<double> r = c.b.center() - c.a.center(), v = c.vb - c.va;
+    const double reach = c.a.radii().maxCoeff() + c.b.radii().maxCoeff();
+    window = v.squaredNorm() > 0 ? std::max(0.0, -r.dot(v)) / v.squaredNorm() + reach / v.norm() : 1.0;
+  }
+  return {bench::fcl_shape(c.a),
+          bench::fcl_shape(c.b),
+          bench::fcl_pose(c.a),
+          bench::fcl_pose(c.a, c.va * window),
+          bench::fcl_pose(c.b),
+          bench::fcl_pose(c.b, c.vb * window),
+          window};
+}
+
+void fcl_contact(benchmark::State& state, int k, fcl::CCDMotionType motion) {
+  std::vector<FclMotion> items;
+  for (const auto& c : cases<3>(k).list) items.push_back(fcl_motion(c));
+  fcl::ContinuousCollisionRequestd request;
+  request.ccd_motion_type = motion;
+  run_queries(state, contact_truth(k), items, [&request](const FclMotion& m) {
+    fcl::ContinuousCollisionResultd result;
+    fcl::continuousCollide(m.a.get(), m.a0, m.a1, m.b.get(), m.b0, m.b1, request, result);
+    if (!result.is_collide) return Answer{Outcome::none, inf};
+    if (result.time_of_contact == 0) return Answer{Outcome::at_start, 0};
+    return Answer{Outcome::hit, result.time_of_contact * m.window};
+  });
+}
+#endif
+
+// ---- libccd -----------------------------------------------------------------------------
+
+#ifdef ELLIPSECT_HAVE_CCD
+using CcdIntersect = int (*)(const void*, const void*, const ccd_t*);
+
+using CcdPair = std::pair<bench::CcdBody, bench::CcdBody>;
+
+void ccd_overlap(benchmark::State& state, int k, CcdIntersect method) {
+  std::vector<CcdPair> items;
+  for (const auto& c : cases<3>(k).list) items.emplace_back(bench::ccd_body(c.a), bench::ccd_body(c.b));
+  ccd_t ccd;
+  CCD_INIT(&ccd);
+  ccd.support1 = ccd.support2 = bench::ccd_support;
+  ccd.center1 = ccd.center2 = bench::ccd_center;
+  run_queries(state, static_truth<3>(k).overlap, items,
+              [&](const CcdPair& b) { return method(&b.first, &b.second, &ccd) == 1; });
+}
+#endif
+
+// ---- registration -----------------------------------------------------------------------
+
+template <class Fn, class... Args>
+benchmark::internal::Benchmark* add(const std::string& name, Fn fn, Args... args) {
+  return benchmark::RegisterBenchmark(name.c_str(), [=](benchmark::State& state) { fn(state, args...); });
+}
+
+void register_all() {
+  const int n = static_cast<int>(categories.size());
+  for (int k = 0; k < n; ++k) {
+    const std::string cat = "/" + category_name(k);
+    add("BM_overlap3/ellipsect_scalar" + cat, overlap_scalar, k);
+    add("BM_overlap3/ellipsect_batch_1thread" + cat, overlap_batch, k, 1);
+    add("BM_overlap3/ellipsect_batch_allcores" + cat, overlap_batch, k, 0)->UseRealTime();
+#ifdef ELLIPSECT_HAVE_FCL
+    add("BM_overlap3/fcl_collide" + cat, fcl_overlap, k, fcl::GST_LIBCCD);
+    add("BM_overlap3/fcl_collide_indep" + cat, fcl_overlap, k, fcl::GST_INDEP);
+#endif
+#ifdef ELLIPSECT_HAVE_CCD
+    add("BM_overlap3/ccd_gjk" + cat, ccd_overlap, k, &ccdGJKIntersect);
+    add("BM_overlap3/ccd_mpr" + cat, ccd_overlap, k, &ccdMPRIntersect);
+#endif
+  }
+  for (int k = 0; k < n; ++k) {
+    const std::string cat = "/" + category_name(k);
+    add("BM_classify3/ellipsect_scalar" + cat, classify_scalar<3>, k);
+    add("BM_classify3/ellipsect_batch_1thread" + cat, classify_batch<3>, k, 1);
+    add("BM_classify3/ellipsect_batch_allcores" + cat, classify_batch<3>, k, 0)->UseRealTime();
+  }
+  for (int k = 0; k < n; ++k) {
+    const std::string cat = "/" + category_name(k);
+    add("BM_classify2/ellipsect_scalar" + cat, classify_scalar<2>, k);
+    add("BM_classify2/ellipsect_batch_1thread" + cat, classify_batch<2>, k, 1);
+    add("BM_classify2/ellipsect_batch_allcores" + cat, classify_batch<2>, k, 0)->UseRealTime();
+  }
+  for (int k = 0; k < n; ++k) {
+    const std::string cat = "/" + category_name(k);
+    add("BM_first_contact3/ellipsect_scalar" + cat, contact_scalar, k);
+    add("BM_first_contact3/ellipsect_batch_1thread" + cat, contact_batch, k, 1);
+    add("BM_first_contact3/ellipsect_batch_allcores" + cat, contact_batch, k, 0)->UseRealTime();
+#ifdef ELLIPSECT_HAVE_FCL
+    add("BM_first_contact3/fcl_naive_trans" + cat, fcl_contact, k, fcl::CCDM_TRANS);
+    add("BM_first_contact3/fcl_naive_linear" + cat, fcl_contact, k, fcl::CCDM_LINEAR);
+#endif
+  }
+  add("BM_overlap3_large/ellipsect_batch_1thread/random", overlap_large, 1);
+  add("BM_overlap3_large/ellipsect_batch_allcores/random", overlap_large, 0)->UseRealTime();
+  for (const auto& target : simd_targets()) add("BM_overlap3_simd/" + target + "/random", overlap_simd, target);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  register_all();
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}
