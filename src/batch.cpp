@@ -3,6 +3,7 @@
 #include <ellipsect/batch.hpp>
 
 #include "detail/batch_kernels.hpp"
+#include "detail/certificates-inl.hpp"
 #include "detail/instantiate.hpp"
 
 #include <algorithm>
@@ -12,6 +13,9 @@
 #include <thread>
 
 namespace ellipsect {
+
+static_assert(Pairs<double, 2>::body_columns == detail::BodyLayout{2}.size());
+static_assert(Pairs<double, 3>::body_columns == detail::BodyLayout{3}.size());
 
 template <class T, int N>
 void Pairs<T, N>::reserve(std::size_t n) {
@@ -28,12 +32,19 @@ void Pairs<T, N>::push_back(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b) 
 template <class T, int N>
 void Pairs<T, N>::push_back(const Ellipsoid<T, N>& a, const Vec<T, N>& velocity_a, const Ellipsoid<T, N>& b,
                             const Vec<T, N>& velocity_b, T t_max) {
+  constexpr detail::BodyLayout layout{N};
   auto put = [&](int first, const Ellipsoid<T, N>& e) {
+    const auto lanes = detail::HWY_NAMESPACE::lanes_of(e, true);
+    auto column = [&](int k) -> std::vector<double>& { return columns_[static_cast<std::size_t>(first + k)]; };
     for (int i = 0; i < N; ++i) {
-      columns_[static_cast<std::size_t>(first + i)].push_back(double(e.center()[i]));
-      columns_[static_cast<std::size_t>(first + N + N * N + i)].push_back(double(e.radii()[i]));
-      for (int j = 0; j < N; ++j) columns_[static_cast<std::size_t>(first + N + i * N + j)].push_back(double(e.axes()(i, j)));
+      column(layout.center(i)).push_back(lanes.c[i]);
+      for (int j = i; j < N; ++j) {
+        column(layout.s(i, j)).push_back(lanes.s[i][j]);
+        column(layout.m(i, j)).push_back(lanes.m[i][j]);
+      }
     }
+    column(layout.rmax()).push_back(lanes.rmax);
+    column(layout.rmin()).push_back(lanes.rmin);
   };
   put(0, a);
   put(body_columns, b);

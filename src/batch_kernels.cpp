@@ -18,26 +18,34 @@ namespace hn = hwy::HWY_NAMESPACE;
 
 template <int N>
 struct Layout {
-  static constexpr int body = N + N * N + N;       // center, axes (row-major), radii
-  static constexpr int columns = 2 * body + 2 * N + 1;  // a, b, velocity_a, velocity_b, t_max
+  static constexpr BodyLayout body{N};
+  static constexpr int columns = 2 * body.size() + 2 * N + 1;  // a, b, velocity_a, velocity_b, t_max
 };
 
+// `quadric`: also load M (classify).
 template <int N, class D>
-BodyLanes<hn::Vec<D>, N> load_body(D d, const double* const* src, std::size_t i, int first) {
+BodyLanes<hn::Vec<D>, N> load_body(D d, const double* const* src, std::size_t i, int first, bool quadric) {
+  constexpr BodyLayout layout = Layout<N>::body;
+  auto load = [&](int k) { return hn::LoadU(d, src[first + k] + i); };
   BodyLanes<hn::Vec<D>, N> b;
-  for (int k = 0; k < N; ++k) {
-    b.c[k] = hn::LoadU(d, src[first + k] + i);
-    b.r[k] = hn::LoadU(d, src[first + N + N * N + k] + i);
-    for (int j = 0; j < N; ++j) b.axes[k][j] = hn::LoadU(d, src[first + N + k * N + j] + i);
+  for (int r = 0; r < N; ++r) {
+    b.c[r] = load(layout.center(r));
+    for (int c = r; c < N; ++c) {
+      b.s[r][c] = b.s[c][r] = load(layout.s(r, c));
+      if (quadric) b.m[r][c] = b.m[c][r] = load(layout.m(r, c));
+    }
   }
+  b.rmax = load(layout.rmax());
+  b.rmin = load(layout.rmin());
   return b;
 }
 
 template <int N, class D>
 hn::Vec<D> certify_lanes(D d, BatchQuery query, const double* const* src, std::size_t i, double tol) {
   using V = hn::Vec<D>;
-  constexpr int body = Layout<N>::body;
-  const auto a = load_body<N>(d, src, i, 0), b = load_body<N>(d, src, i, body);
+  constexpr int body = Layout<N>::body.size();
+  const bool quadric = query == BatchQuery::classify;
+  const auto a = load_body<N>(d, src, i, 0, quadric), b = load_body<N>(d, src, i, body, quadric);
   const V vtol = hn::Set(d, tol);
   if (query == BatchQuery::overlap) return overlap_code<V, N>(a, b, vtol);
   if (query == BatchQuery::classify) return classify_code<V, N>(a, b, vtol);

@@ -41,13 +41,15 @@ struct BatchOptions {
 };
 
 // Pairs (a_i, b_i), with velocities and a time window for first_contact, stored as
-// structure of arrays: one contiguous column per coordinate (centers, axes, radii,
-// velocities) in double, plus the bodies themselves for the scalar fallback.
+// structure of arrays: one contiguous column of doubles per quantity the filter reads,
+// computed once per body when the pair is added (center, S = A diag(r^2) A^T and its
+// inverse, the quadric matrix, as packed upper triangles, largest and smallest radius),
+// plus the bodies themselves for the scalar fallback.
 template <class T, int N>
 class Pairs {
 public:
-  // Column order of one body: center[0..N), axes (i, j) at N + i * N + j, radii[0..N).
-  static constexpr int body_columns = N + N * N + N;
+  // Columns of one body: N center, 2 * N (N + 1) / 2 for S and M, 2 radii.
+  static constexpr int body_columns = N + N * (N + 1) + 2;
   // a's columns, b's columns, velocity_a, velocity_b, t_max.
   static constexpr int columns = 2 * body_columns + 2 * N + 1;
 
@@ -66,7 +68,7 @@ public:
   Vec<T, N> velocity_a(std::size_t i) const;
   Vec<T, N> velocity_b(std::size_t i) const;
   T t_max(std::size_t i) const { return T(columns_[columns - 1][i]); }
-  // Column k (see the order above), size() values.
+  // Column k (see the order above; src/detail/batch_kernels.hpp), size() values.
   const double* column(int k) const noexcept { return columns_[static_cast<std::size_t>(k)].data(); }
 
 private:

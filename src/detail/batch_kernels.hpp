@@ -8,6 +8,20 @@ namespace ellipsect::detail {
 
 enum class BatchQuery { overlap, classify, contact };
 
+// Column layout of one body in Pairs<T, n> (certificates-inl.hpp's BodyLanes): center,
+// S and M as packed upper triangles (row by row), largest and smallest radius.
+struct BodyLayout {
+  int n;
+  constexpr int packed(int i, int j) const { return i * n - i * (i - 1) / 2 + (j - i); }  // i <= j
+  constexpr int triangle() const { return n * (n + 1) / 2; }
+  constexpr int center(int i) const { return i; }
+  constexpr int s(int i, int j) const { return n + packed(i, j); }
+  constexpr int m(int i, int j) const { return n + triangle() + packed(i, j); }
+  constexpr int rmax() const { return n + 2 * triangle(); }
+  constexpr int rmin() const { return rmax() + 1; }
+  constexpr int size() const { return rmin() + 1; }
+};
+
 // codes[i - begin] = the certificate code (detail/certificates-inl.hpp) of pairs
 // [begin, end), read from columns laid out as in Pairs<T, dim>.
 void certify_pairs(int dim, BatchQuery query, const double* const* columns, std::size_t begin, std::size_t end,

@@ -82,25 +82,6 @@ HWY_INLINE bool all_lanes(M m) {
   }
 }
 
-// One body per lane: center, principal directions (axes[i][j]: component i of axis j), radii.
-template <class V, int N>
-struct BodyLanes {
-  V c[N];
-  V axes[N][N];
-  V r[N];
-};
-
-template <class T, int N>
-BodyLanes<double, N> lanes_of(const Ellipsoid<T, N>& e) noexcept {
-  BodyLanes<double, N> b;
-  for (int i = 0; i < N; ++i) {
-    b.c[i] = double(e.center()[i]);
-    b.r[i] = double(e.radii()[i]);
-    for (int j = 0; j < N; ++j) b.axes[i][j] = double(e.axes()(i, j));
-  }
-  return b;
-}
-
 template <class V, int N>
 HWY_INLINE V dot(const V* x, const V* y) {
   V s = x[0] * y[0];
@@ -122,35 +103,52 @@ HWY_INLINE V smallest(const V* r) {
   return m;
 }
 
-// S = A diag(r^2) A^T = B B^T with B = A diag(r), the inverse of the body's quadric matrix.
-template <class V, int N>
-HWY_INLINE void shape_matrix(const BodyLanes<V, N>& b, V (&s)[N][N]) {
-  V w[N][N];
-  for (int i = 0; i < N; ++i)
-    for (int k = 0; k < N; ++k) w[i][k] = b.axes[i][k] * b.r[k];
-  for (int i = 0; i < N; ++i)
-    for (int j = i; j < N; ++j) {
-      s[i][j] = dot<V, N>(w[i], w[j]);
-      s[j][i] = s[i][j];
-    }
-}
-
 template <class V, int N>
 HWY_INLINE void times(const V (&s)[N][N], const V* w, V* g) {
   for (int i = 0; i < N; ++i) g[i] = dot<V, N>(s[i], w);
 }
 
-// The body's quadric at offset w from its center: sum_k ((A^T w)_k / r_k)^2.
+// One body per lane, in the form the certificates use: center, S = A diag(r^2) A^T (the
+// inverse of the quadric matrix), the quadric matrix M = A diag(r^-2) A^T (classify
+// only), largest and smallest radius. Pairs stores these per body, so the batch filter
+// reads the values the scalar functions compute here.
+template <class V, int N>
+struct BodyLanes {
+  V c[N];
+  V s[N][N];
+  V m[N][N];
+  V rmax, rmin;
+};
+
+// `quadric`: also M (classify needs it; overlap and first_contact do not).
+template <class T, int N>
+BodyLanes<double, N> lanes_of(const Ellipsoid<T, N>& e, bool quadric) noexcept {
+  BodyLanes<double, N> b;
+  double w[N][N], r[N];
+  for (int k = 0; k < N; ++k) r[k] = double(e.radii()[k]);
+  for (int i = 0; i < N; ++i) {
+    b.c[i] = double(e.center()[i]);
+    for (int k = 0; k < N; ++k) w[i][k] = double(e.axes()(i, k)) * r[k];
+  }
+  for (int i = 0; i < N; ++i)
+    for (int j = i; j < N; ++j) b.s[i][j] = b.s[j][i] = dot<double, N>(w[i], w[j]);
+  if (quadric) {
+    for (int i = 0; i < N; ++i)
+      for (int k = 0; k < N; ++k) w[i][k] = double(e.axes()(i, k)) / r[k];
+    for (int i = 0; i < N; ++i)
+      for (int j = i; j < N; ++j) b.m[i][j] = b.m[j][i] = dot<double, N>(w[i], w[j]);
+  }
+  b.rmax = largest<double, N>(r);
+  b.rmin = smallest<double, N>(r);
+  return b;
+}
+
+// The body's quadric at offset w from its center, w^T M w.
 template <class V, int N>
 HWY_INLINE V level(const BodyLanes<V, N>& b, const V* w) {
-  V q = Splat<V>(0);
-  for (int k = 0; k < N; ++k) {
-    V s = b.axes[0][k] * w[0];
-    for (int i = 1; i < N; ++i) s = s + b.axes[i][k] * w[i];
-    const V t = s / b.r[k];
-    q = q + t * t;
-  }
-  return q;
+  V mw[N];
+  times<V, N>(b.m, w, mw);
+  return dot<V, N>(w, mw);
 }
 
 // How C is solved in a vector: in closed form (adjugate over determinant, for aspect ratios
@@ -274,7 +272,7 @@ HWY_INLINE PerramWertheim<V, N> perram_wertheim(const V (&sa)[N][N], const V (&s
 // Circumscribed-ball reach of the pair, with the band and the 1e-9 rounding margin.
 template <class V, int N>
 HWY_INLINE V outer_reach(const BodyLanes<V, N>& a, const BodyLanes<V, N>& b, V tol) {
-  return (largest<V, N>(a.r) + largest<V, N>(b.r)) * (Splat<V>(1) + Splat<V>(2) * tol + Splat<V>(1e-9));
+  return (a.rmax + b.rmax) * (Splat<V>(1) + Splat<V>(2) * tol + Splat<V>(1e-9));
 }
 
 // Newton steps on the Perram-Wertheim parameter (quadratic convergence: three leave
@@ -290,7 +288,7 @@ HWY_INLINE V certify(const BodyLanes<V, N>& a, const BodyLanes<V, N>& b, V tol) 
   for (int i = 0; i < N; ++i) r[i] = b.c[i] - a.c[i];
   const V d2 = dot<V, N>(r, r);
   const V outer = outer_reach<V, N>(a, b, tol);
-  const V inner = (smallest<V, N>(a.r) + smallest<V, N>(b.r)) * Splat<V>(1 - 1e-9);
+  const V inner = (a.rmin + b.rmin) * Splat<V>(1 - 1e-9);
   const auto apart = Gt(d2, outer * outer);
   const auto inside = Lt(d2, inner * inner);
   if constexpr (containment) {
@@ -301,23 +299,23 @@ HWY_INLINE V certify(const BodyLanes<V, N>& a, const BodyLanes<V, N>& b, V tol) 
   // F is used for aspect ratios up to 1e4, so cond(C) <= 1e8; its margin is 1e-6 above
   // 1024 times the rounding estimate eps (cond(C) + |c| / r_min) of F and the quadrics.
   const V aspect = Splat<V>(1e4);
-  auto gate = And(Le(largest<V, N>(a.r), aspect * smallest<V, N>(a.r)), Le(largest<V, N>(b.r), aspect * smallest<V, N>(b.r)));
+  auto gate = And(Le(a.rmax, aspect * a.rmin), Le(b.rmax, aspect * b.rmin));
   V world = zero;
   for (int i = 0; i < N; ++i) world = world + Abs(a.c[i]) + Abs(b.c[i]);
-  world = world / Min(smallest<V, N>(a.r), smallest<V, N>(b.r));
+  world = world / Min(a.rmin, b.rmin);
   constexpr double ulp_scale = 1024 * std::numeric_limits<double>::epsilon();
   const V margin = Splat<V>(1e-6 + ulp_scale * 1e8) + Splat<V>(ulp_scale) * world;
 
-  V sa[N][N], sb[N][N], ga[N], gb[N];
-  shape_matrix<V, N>(a, sa);
-  shape_matrix<V, N>(b, sb);
+  const auto& sa = a.s;
+  const auto& sb = b.s;
+  V ga[N], gb[N];
   times<V, N>(sa, r, ga);
   times<V, N>(sb, r, gb);
   const V rho_a = Sqrt(dot<V, N>(r, ga)), rho_b = Sqrt(dot<V, N>(r, gb));
   // F at the two-ball l, then at Newton iterates towards its maximizer while some lane is
   // open: every l bounds mu from below and gives a candidate common point.
-  const auto closed = And(Le(largest<V, N>(a.r), Splat<V>(closed_form_aspect) * smallest<V, N>(a.r)),
-                          Le(largest<V, N>(b.r), Splat<V>(closed_form_aspect) * smallest<V, N>(b.r)));
+  const V closed_aspect = Splat<V>(closed_form_aspect);
+  const auto closed = And(Le(a.rmax, closed_aspect * a.rmin), Le(b.rmax, closed_aspect * b.rmin));
   const Solver solver = all_lanes<V>(closed)            ? Solver::closed_form
                         : all_lanes<V>(Not(closed)) ? Solver::ldlt
                                                         : Solver::mixed;

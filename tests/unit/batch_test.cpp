@@ -107,7 +107,8 @@ void codes_equal_scalar() {
       detail::certify_pairs(N, query, columns.data(), 0, n, 1e-12, codes.data());
       std::size_t random = 0, decided = 0;
       for (std::size_t i = 0; i < n; ++i) {
-        const auto a = hw::lanes_of(pairs.a(i)), b = hw::lanes_of(pairs.b(i));
+        const bool quadric = query == detail::BatchQuery::classify;
+        const auto a = hw::lanes_of(pairs.a(i), quadric), b = hw::lanes_of(pairs.b(i), quadric);
         double va[N], vb[N];
         for (int k = 0; k < N; ++k) {
           va[k] = pairs.velocity_a(i)[k];
