@@ -10,7 +10,7 @@
 //   ellipsect_scalar          overlap(a, b), one pair per call
 //   ellipsect_batch_1thread   overlap(pairs, out, options) over the category's 1024 pairs,
 //   ellipsect_batch_allcores  options.threads = 1, or 0 (every hardware thread; real time;
-//                             arrays this short get no extra thread, see BM_overlap3_large)
+//                             arrays this short get no extra thread, see BM_overlap3_cached)
 //   fcl_collide               fcl::collide on two fcl::CollisionObjectd holding fcl::Ellipsoidd
 //                             (rotation = axes, translation = center; bench/peers.hpp), default
 //                             CollisionRequestd: GST_LIBCCD, i.e. ccdMPRIntersect with
@@ -40,7 +40,9 @@
 //   in its function table: a warning and no answer), CCDC_RAY_SHOOTING (not implemented:
 //   returns -1), CCDC_POLYNOMIAL_SOLVER (BVH meshes only). CCDC_NAIVE ignores
 //   gjk_solver_type, so there is no separate indep mode.
-// BM_overlap3_large/*   batch overlap over 1 << 20 pairs (the random cases cycled, static)
+// BM_overlap3_cached/*  batch overlap over 1 << 14 pairs (the random cases cycled, static;
+//                       16 chunks: two threads), 4.5 MB of columns, in the L3 cache
+// BM_overlap3_large/*   the same over 1 << 20 pairs, 285 MB, streamed from memory
 // BM_overlap3_simd/TARGET/random
 //   batch overlap, 1 thread, pinned to each instruction set of simd_targets()
 //   (set_simd_target; the widest is restored afterwards)
@@ -99,7 +101,8 @@ namespace ref = ellipsect::reference;
 using scenarios::Category;
 
 constexpr int cases_per_category = 1024;
-constexpr std::size_t large_size = std::size_t{1} << 20;
+constexpr std::size_t cached_size = std::size_t{1} << 14;  // 4.5 MB of columns: in the L3 cache
+constexpr std::size_t large_size = std::size_t{1} << 20;   // 285 MB: streamed from memory
 constexpr double band = 2 * Options{}.tolerance;
 constexpr double inf = std::numeric_limits<double>::infinity();
 constexpr std::array categories = {Category::random, Category::high_aspect, Category::near_tangent,
@@ -323,19 +326,20 @@ void contact_batch(benchmark::State& state, int k, int threads) {
   run_batch<Contact<double, 3>>(state, contact_truth(k), cases<3>(k).pairs, threads, batch_first_contact);
 }
 
-// The random cases cycled to large_size pairs (static: no motion).
-void overlap_large(benchmark::State& state, int threads) {
-  static const auto large = [] {
+// The random cases cycled to `size` pairs (static: no motion).
+template <std::size_t size>
+void overlap_cycled(benchmark::State& state, int threads) {
+  static const auto cycled = [] {
     std::pair<Pairs<double, 3>, Truth<bool>> out;
-    out.first.reserve(large_size);
-    for (std::size_t i = 0; i < large_size; ++i) {
+    out.first.reserve(size);
+    for (std::size_t i = 0; i < size; ++i) {
       const auto& c = cases<3>(0).list[i % cases_per_category];
       out.first.push_back(c.a, c.b);
       out.second.push_back(static_truth<3>(0).overlap[i % cases_per_category]);
     }
     return out;
   }();
-  run_batch<bool>(state, large.second, large.first, threads, batch_overlap);
+  run_batch<bool>(state, cycled.second, cycled.first, threads, batch_overlap);
 }
 
 void overlap_simd(benchmark::State& state, const std::string& target) {
@@ -464,8 +468,10 @@ void register_all() {
     add("BM_first_contact3/fcl_naive_linear" + cat, fcl_contact, k, fcl::CCDM_LINEAR);
 #endif
   }
-  add("BM_overlap3_large/ellipsect_batch_1thread/random", overlap_large, 1);
-  add("BM_overlap3_large/ellipsect_batch_allcores/random", overlap_large, 0)->UseRealTime();
+  add("BM_overlap3_cached/ellipsect_batch_1thread/random", overlap_cycled<cached_size>, 1);
+  add("BM_overlap3_cached/ellipsect_batch_allcores/random", overlap_cycled<cached_size>, 0)->UseRealTime();
+  add("BM_overlap3_large/ellipsect_batch_1thread/random", overlap_cycled<large_size>, 1);
+  add("BM_overlap3_large/ellipsect_batch_allcores/random", overlap_cycled<large_size>, 0)->UseRealTime();
   for (const auto& target : simd_targets()) add("BM_overlap3_simd/" + target + "/random", overlap_simd, target);
 }
 

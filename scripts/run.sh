@@ -4,7 +4,8 @@
 #                                 `ellipsect render` on a bundled scene
 #   bash scripts/run.sh test      install what is missing, build, run the whole test suite
 #                                 (Release build, then an ASan+UBSan build)
-#   bash scripts/run.sh bench     install what is missing, build, run the benchmarks
+#   bash scripts/run.sh bench [NAME [ARGS]]   install what is missing, build, run
+#                                 bench/bench_NAME (default: batch, ellipsect vs FCL and libccd)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -51,10 +52,14 @@ case "${1:-}" in
   bench)
     install_missing
     build build/release -DCMAKE_BUILD_TYPE=Release
-    ./build/release/bench/bench_queries --benchmark_repetitions=5 --benchmark_report_aggregates_only=true "${@:2}"
+    # bench [NAME [ARGS...]]: bench/bench_NAME.cpp (default: batch, the side-by-side with
+    # FCL and libccd), with Google Benchmark's ARGS.
+    program=build/release/bench/bench_${2:-batch}
+    [[ -x $program ]] || { echo "no benchmark $program (see bench/)" >&2; exit 2; }
+    "$program" --benchmark_repetitions=3 --benchmark_report_aggregates_only=true "${@:3}"
     ;;
   *)
-    echo "usage: bash scripts/run.sh example|test|bench" >&2
+    echo "usage: bash scripts/run.sh example|test|bench [NAME [ARGS...]]" >&2
     exit 2
     ;;
 esac
