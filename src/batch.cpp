@@ -34,7 +34,7 @@ void Pairs<T, N>::push_back(const Ellipsoid<T, N>& a, const Vec<T, N>& velocity_
                             const Vec<T, N>& velocity_b, T t_max) {
   constexpr detail::BodyLayout layout{N};
   auto put = [&](int first, const Ellipsoid<T, N>& e) {
-    const auto lanes = detail::HWY_NAMESPACE::lanes_of(e, true);
+    const auto lanes = detail::HWY_NAMESPACE::lanes_of(e, detail::HWY_NAMESPACE::Fill::quadric);
     auto column = [&](int k) -> std::vector<double>& { return columns_[static_cast<std::size_t>(first + k)]; };
     for (int i = 0; i < N; ++i) {
       column(layout.center(i)).push_back(lanes.c[i]);

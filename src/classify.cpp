@@ -40,7 +40,7 @@ template <class T, int N>
 Relation classify(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b, const Options& options) noexcept {
   using R = detail::Work<T>;
   namespace hw = detail::HWY_NAMESPACE;
-  const double code = hw::classify_code<double, N>(hw::lanes_of(a, true), hw::lanes_of(b, true), options.tolerance);
+  const double code = hw::certificate_code<true>(a, b, options.tolerance);
   if (code < 0) return Relation::separated;
   if (code > 0) return Relation::overlapping;
   const auto [s, o, a_is_s] = detail::order_pair(a, b);
@@ -60,7 +60,7 @@ template <class T, int N>
 bool overlap(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b, const Options& options) noexcept {
   using R = detail::Work<T>;
   namespace hw = detail::HWY_NAMESPACE;
-  const double code = hw::overlap_code<double, N>(hw::lanes_of(a, false), hw::lanes_of(b, false), options.tolerance);
+  const double code = hw::certificate_code<false>(a, b, options.tolerance);
   if (code != 0) return code > 0;
   const auto [s, o, a_is_s] = detail::order_pair(a, b);
   const R tol = R(options.tolerance);

@@ -174,7 +174,7 @@ Contact<T, N> first_contact(const Ellipsoid<T, N>& a, const Vec<T, N>& velocity_
     va[i] = double(velocity_a[i]);
     vb[i] = double(velocity_b[i]);
   }
-  if (hw::swept_code<double, N>(hw::lanes_of(a, false), va, hw::lanes_of(b, false), vb, double(t_max), options.tolerance) > 0) {
+  if (hw::swept_code<double, N>(hw::lanes_of(a, hw::Fill::balls), va, hw::lanes_of(b, hw::Fill::balls), vb, double(t_max), options.tolerance) > 0) {
     out.status = ContactStatus::no_contact_in_window;
     return out;
   }

@@ -95,7 +95,7 @@ QuickStart<R, N> quick_start(const Ellipsoid<T, N>& s, const Ellipsoid<T, N>& o,
   // F >= 1.01^2 puts y, and then n, in {g > 0}.
   if (pw.f >= R(1.01 * 1.01)) return {DistanceStatus::separated, n};
   namespace hw = detail::HWY_NAMESPACE;  // a certain common point
-  if (hw::overlap_code<double, N>(hw::lanes_of(s, false), hw::lanes_of(o, false), 0.0) > 0) return {DistanceStatus::overlapping, n};
+  if (hw::certificate_code<false>(s, o, 0.0) > 0) return {DistanceStatus::overlapping, n};
   return {std::nullopt, n};
 }
 

@@ -120,26 +120,29 @@ struct BodyLanes {
   V rmax, rmin;
 };
 
-// `quadric`: also M (classify needs it; overlap and first_contact do not).
+// What lanes_of fills: the ball tests need the center and the radii only, overlap and
+// first_contact S, classify also M.
+enum class Fill { balls, shape, quadric };
+
 template <class T, int N>
-BodyLanes<double, N> lanes_of(const Ellipsoid<T, N>& e, bool quadric) noexcept {
+BodyLanes<double, N> lanes_of(const Ellipsoid<T, N>& e, Fill fill) noexcept {
   BodyLanes<double, N> b;
   double w[N][N], r[N];
   for (int k = 0; k < N; ++k) r[k] = double(e.radii()[k]);
-  for (int i = 0; i < N; ++i) {
-    b.c[i] = double(e.center()[i]);
+  for (int i = 0; i < N; ++i) b.c[i] = double(e.center()[i]);
+  b.rmax = largest<double, N>(r);
+  b.rmin = smallest<double, N>(r);
+  if (fill == Fill::balls) return b;
+  for (int i = 0; i < N; ++i)
     for (int k = 0; k < N; ++k) w[i][k] = double(e.axes()(i, k)) * r[k];
-  }
   for (int i = 0; i < N; ++i)
     for (int j = i; j < N; ++j) b.s[i][j] = b.s[j][i] = dot<double, N>(w[i], w[j]);
-  if (quadric) {
+  if (fill == Fill::quadric) {
     for (int i = 0; i < N; ++i)
       for (int k = 0; k < N; ++k) w[i][k] = double(e.axes()(i, k)) / r[k];
     for (int i = 0; i < N; ++i)
       for (int j = i; j < N; ++j) b.m[i][j] = b.m[j][i] = dot<double, N>(w[i], w[j]);
   }
-  b.rmax = largest<double, N>(r);
-  b.rmin = smallest<double, N>(r);
   return b;
 }
 
@@ -275,6 +278,17 @@ HWY_INLINE V outer_reach(const BodyLanes<V, N>& a, const BodyLanes<V, N>& b, V t
   return (a.rmax + b.rmax) * (Splat<V>(1) + Splat<V>(2) * tol + Splat<V>(1e-9));
 }
 
+// The circumscribed balls are apart; the inscribed balls meet (both with a 1e-9 margin).
+template <class V, int N>
+HWY_INLINE auto ball_tests(const BodyLanes<V, N>& a, const BodyLanes<V, N>& b, V tol) {
+  V r[N];
+  for (int i = 0; i < N; ++i) r[i] = b.c[i] - a.c[i];
+  const V d2 = dot<V, N>(r, r);
+  const V outer = outer_reach<V, N>(a, b, tol);
+  const V inner = (a.rmin + b.rmin) * Splat<V>(1 - 1e-9);
+  return std::pair(Gt(d2, outer * outer), Lt(d2, inner * inner));
+}
+
 // Newton steps on the Perram-Wertheim parameter (quadratic convergence: three leave
 // 0.25% of random pairs open).
 inline constexpr int newton_steps = 3;
@@ -286,11 +300,7 @@ HWY_INLINE V certify(const BodyLanes<V, N>& a, const BodyLanes<V, N>& b, V tol) 
   const V one = Splat<V>(1), zero = Splat<V>(0), minus_one = zero - one;
   V r[N];
   for (int i = 0; i < N; ++i) r[i] = b.c[i] - a.c[i];
-  const V d2 = dot<V, N>(r, r);
-  const V outer = outer_reach<V, N>(a, b, tol);
-  const V inner = (a.rmin + b.rmin) * Splat<V>(1 - 1e-9);
-  const auto apart = Gt(d2, outer * outer);
-  const auto inside = Lt(d2, inner * inner);
+  const auto [apart, inside] = ball_tests<V, N>(a, b, tol);
   if constexpr (containment) {
     if (all_lanes<V>(apart)) return minus_one;
   } else {
@@ -376,6 +386,17 @@ HWY_INLINE V swept_code(const BodyLanes<V, N>& a, const V* va, const BodyLanes<V
   for (int i = 0; i < N; ++i) p[i] = c0[i] + t * v[i];
   const V reach = outer_reach<V, N>(a, b, tol);
   return IfThenElse(And(valid, Gt(dot<V, N>(p, p), reach * reach)), one, zero);
+}
+
+// One pair: classify's code (`containment`) or overlap's, with the balls tested before S
+// and M are formed (the same decisions as certify's, which tests them first too).
+template <bool containment, class T, int N>
+double certificate_code(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b, double tol) noexcept {
+  const auto [apart, inside] = ball_tests<double, N>(lanes_of(a, Fill::balls), lanes_of(b, Fill::balls), tol);
+  if (apart) return -1;
+  if (inside && !containment) return 1;
+  const Fill fill = containment ? Fill::quadric : Fill::shape;
+  return certify<double, N, containment>(lanes_of(a, fill), lanes_of(b, fill), tol);
 }
 
 }  // namespace ellipsect::detail::HWY_NAMESPACE

@@ -107,15 +107,14 @@ void codes_equal_scalar() {
       detail::certify_pairs(N, query, columns.data(), 0, n, 1e-12, codes.data());
       std::size_t random = 0, decided = 0;
       for (std::size_t i = 0; i < n; ++i) {
-        const bool quadric = query == detail::BatchQuery::classify;
-        const auto a = hw::lanes_of(pairs.a(i), quadric), b = hw::lanes_of(pairs.b(i), quadric);
+        const auto a = hw::lanes_of(pairs.a(i), hw::Fill::balls), b = hw::lanes_of(pairs.b(i), hw::Fill::balls);
         double va[N], vb[N];
         for (int k = 0; k < N; ++k) {
           va[k] = pairs.velocity_a(i)[k];
           vb[k] = pairs.velocity_b(i)[k];
         }
-        const double scalar = query == detail::BatchQuery::overlap    ? hw::overlap_code<double, N>(a, b, 1e-12)
-                              : query == detail::BatchQuery::classify ? hw::classify_code<double, N>(a, b, 1e-12)
+        const double scalar = query == detail::BatchQuery::overlap    ? hw::certificate_code<false>(pairs.a(i), pairs.b(i), 1e-12)
+                              : query == detail::BatchQuery::classify ? hw::certificate_code<true>(pairs.a(i), pairs.b(i), 1e-12)
                                                                       : hw::swept_code<double, N>(a, va, b, vb, pairs.t_max(i), 1e-12);
         ASSERT_EQ(codes[i], static_cast<signed char>(scalar)) << "pair " << i;
         if (i < n / scenarios::all_categories.size()) {  // the random category comes first
