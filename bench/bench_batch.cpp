@@ -43,6 +43,8 @@
 // BM_overlap3_cached/*  batch overlap over 1 << 14 pairs (the random cases cycled, static;
 //                       16 chunks: two threads), 4.5 MB of columns, in the L3 cache
 // BM_overlap3_large/*   the same over 1 << 20 pairs, 285 MB, streamed from memory
+// BM_overlap3_filter/random  the SIMD certificate pass alone over the 1024 random pairs
+//                             (counter undecided: the share left to the exact path)
 // BM_overlap3_simd/TARGET/random
 //   batch overlap, 1 thread, pinned to each instruction set of simd_targets()
 //   (set_simd_target; the widest is restored afterwards)
@@ -70,6 +72,7 @@
 #include <ellipsect/contact.hpp>
 
 #include "bench/bench_support.hpp"
+#include "detail/batch_kernels.hpp"
 #include "bench/peers.hpp"
 #include "scenarios/scenarios.hpp"
 #include "tests/reference/reference.hpp"
@@ -342,6 +345,21 @@ void overlap_cycled(benchmark::State& state, int threads) {
   run_batch<bool>(state, cycled.second, cycled.first, threads, batch_overlap);
 }
 
+// The vector certificate pass alone (no scalar fallback, no thread), on the random pairs:
+// `undecided` is the share it leaves to the exact path.
+void overlap_filter(benchmark::State& state) {
+  const auto& pairs = cases<3>(0).pairs;
+  std::vector<const double*> columns;
+  for (int k = 0; k < Pairs<double, 3>::columns; ++k) columns.push_back(pairs.column(k));
+  std::vector<signed char> codes(pairs.size());
+  for (auto _ : state) {
+    detail::certify_pairs(3, detail::BatchQuery::overlap, columns.data(), 0, pairs.size(), 1e-12, codes.data());
+    benchmark::DoNotOptimize(codes.data());
+  }
+  state.counters["undecided"] = double(std::count(codes.begin(), codes.end(), 0)) / double(codes.size());
+  per_pair(state, pairs.size());
+}
+
 void overlap_simd(benchmark::State& state, const std::string& target) {
   set_simd_target(target);
   overlap_batch(state, 0, 1);
@@ -473,6 +491,7 @@ void register_all() {
   add("BM_overlap3_large/ellipsect_batch_1thread/random", overlap_cycled<large_size>, 1);
   add("BM_overlap3_large/ellipsect_batch_allcores/random", overlap_cycled<large_size>, 0)->UseRealTime();
   for (const auto& target : simd_targets()) add("BM_overlap3_simd/" + target + "/random", overlap_simd, target);
+  benchmark::RegisterBenchmark("BM_overlap3_filter/random", overlap_filter);
 }
 
 }  // namespace
