@@ -11,6 +11,7 @@
 #include "detail/certificates-inl.hpp"
 
 #include <algorithm>
+#include <vector>
 
 HWY_BEFORE_NAMESPACE();
 namespace ellipsect::detail::HWY_NAMESPACE {
@@ -40,15 +41,15 @@ BodyLanes<hn::Vec<D>, N> load_body(D d, const double* const* src, std::size_t i,
   return b;
 }
 
-template <int N, class D>
+template <int N, int rounds, class D>
 hn::Vec<D> certify_lanes(D d, BatchQuery query, const double* const* src, std::size_t i, double tol) {
   using V = hn::Vec<D>;
   constexpr int body = Layout<N>::body.size();
   const bool quadric = query == BatchQuery::classify;
   const auto a = load_body<N>(d, src, i, 0, quadric), b = load_body<N>(d, src, i, body, quadric);
   const V vtol = hn::Set(d, tol);
-  if (query == BatchQuery::overlap) return overlap_code<V, N>(a, b, vtol);
-  if (query == BatchQuery::classify) return classify_code<V, N>(a, b, vtol);
+  if (query == BatchQuery::overlap) return overlap_code<V, N, rounds>(a, b, vtol);
+  if (query == BatchQuery::classify) return classify_code<V, N, rounds>(a, b, vtol);
   V va[N], vb[N];
   for (int k = 0; k < N; ++k) {
     va[k] = hn::LoadU(d, src[2 * body + k] + i);
@@ -57,6 +58,9 @@ hn::Vec<D> certify_lanes(D d, BatchQuery query, const double* const* src, std::s
   return swept_code<V, N>(a, va, b, vb, hn::LoadU(d, src[2 * body + 2 * N] + i), vtol);
 }
 
+// Two passes: every pair without Newton rounds, then the pairs left open, gathered into
+// full vectors, with them. The rounds then run on open lanes only instead of on every
+// vector that has one (about a third of them on random pairs); the codes are the same.
 template <int N>
 void certify(BatchQuery query, const double* const* columns, std::size_t begin, std::size_t end, double tol,
              signed char* codes) {
@@ -64,25 +68,49 @@ void certify(BatchQuery query, const double* const* columns, std::size_t begin, 
   constexpr int n_columns = Layout<N>::columns;
   const std::size_t lanes = hn::Lanes(d);
   HWY_ALIGN double out[HWY_LANES(double)];
-  auto emit = [&](std::size_t at, std::size_t count) {
-    for (std::size_t k = 0; k < count; ++k) codes[at - begin + k] = static_cast<signed char>(out[k]);
+  HWY_ALIGN double gathered[n_columns][HWY_LANES(double)];
+  const double* src[n_columns] = {};
+  // Rows `rows[0..count)` as one vector, padded by repeating the last; only the columns
+  // the query reads (M for classify, velocities and t_max for contact).
+  constexpr BodyLayout body = Layout<N>::body;
+  auto used = [&](int k) {
+    if (k >= 2 * body.size()) return query == BatchQuery::contact;
+    const int within = k % body.size();
+    return query == BatchQuery::classify || within < body.m(0, 0) || within >= body.rmax();
+  };
+  auto gather = [&](const std::size_t* rows, std::size_t count) {
+    for (int k = 0; k < n_columns; ++k) {
+      if (!used(k)) continue;
+      for (std::size_t j = 0; j < lanes; ++j) gathered[k][j] = columns[k][rows[std::min(j, count - 1)]];
+      src[k] = gathered[k];
+    }
+  };
+  const bool rounds = query != BatchQuery::contact;
+  std::vector<std::size_t> open;
+  auto first_pass = [&](std::size_t at, std::size_t count) {
+    for (std::size_t k = 0; k < count; ++k) {
+      codes[at - begin + k] = static_cast<signed char>(out[k]);
+      if (rounds && out[k] == 0) open.push_back(at + k);
+    }
   };
   std::size_t i = begin;
   for (; i + lanes <= end; i += lanes) {
-    hn::Store(certify_lanes<N>(d, query, columns, i, tol), d, out);
-    emit(i, lanes);
+    hn::Store(certify_lanes<N, 0>(d, query, columns, i, tol), d, out);
+    first_pass(i, lanes);
   }
-  if (i == end) return;
-  // The last partial vector: the remaining pairs, padded by repeating the last one.
-  const std::size_t rest = end - i;
-  HWY_ALIGN double tail[n_columns][HWY_LANES(double)];
-  const double* src[n_columns];
-  for (int k = 0; k < n_columns; ++k) {
-    for (std::size_t j = 0; j < lanes; ++j) tail[k][j] = columns[k][i + std::min(j, rest - 1)];
-    src[k] = tail[k];
+  if (i < end) {
+    std::size_t rows[HWY_LANES(double)];
+    for (std::size_t j = 0; j < end - i; ++j) rows[j] = i + j;
+    gather(rows, end - i);
+    hn::Store(certify_lanes<N, 0>(d, query, src, 0, tol), d, out);
+    first_pass(i, end - i);
   }
-  hn::Store(certify_lanes<N>(d, query, src, 0, tol), d, out);
-  emit(i, rest);
+  for (std::size_t g = 0; g < open.size(); g += lanes) {
+    const std::size_t count = std::min(lanes, open.size() - g);
+    gather(open.data() + g, count);
+    hn::Store(certify_lanes<N, newton_steps>(d, query, src, 0, tol), d, out);
+    for (std::size_t k = 0; k < count; ++k) codes[open[g + k] - begin] = static_cast<signed char>(out[k]);
+  }
 }
 
 void Certify2(BatchQuery query, const double* const* columns, std::size_t begin, std::size_t end, double tol,

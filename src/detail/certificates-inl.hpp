@@ -294,8 +294,10 @@ HWY_INLINE auto ball_tests(const BodyLanes<V, N>& a, const BodyLanes<V, N>& b, V
 inline constexpr int newton_steps = 3;
 
 // Codes: -1 separated, +1 decided otherwise (overlap: a common point; classify: relation
-// overlapping, neither body inside the other), 0 undecided.
-template <class V, int N, bool containment>
+// overlapping, neither body inside the other), 0 undecided. `rounds`: Newton rounds at
+// most; a lane's code does not depend on the other lanes, nor on whether the rounds are
+// run at once or after a first call with none (the rounds start from the same iterate).
+template <class V, int N, bool containment, int rounds = newton_steps>
 HWY_INLINE V certify(const BodyLanes<V, N>& a, const BodyLanes<V, N>& b, V tol) {
   const V one = Splat<V>(1), zero = Splat<V>(0), minus_one = zero - one;
   V r[N];
@@ -335,7 +337,7 @@ HWY_INLINE V certify(const BodyLanes<V, N>& a, const BodyLanes<V, N>& b, V tol) 
   auto certain = [&](const PerramWertheim<V, N>& q) { return And(gate, q.factored); };
   auto separated = Or(apart, And(certain(p), Ge(p.f, pass)));
   auto shared = AndNot(separated, Or(inside, And(certain(p), And(Le(p.qa, deep), Le(p.qb, deep)))));
-  for (int it = 1; it <= newton_steps && !all_lanes<V>(Or(separated, shared)); ++it) {
+  for (int it = 1; it <= rounds && !all_lanes<V>(Or(separated, shared)); ++it) {
     p = perram_wertheim<V, N>(sa, sb, r, p.newton(), solver, closed);
     separated = Or(separated, And(certain(p), Ge(p.f, pass)));
     shared = AndNot(separated, Or(shared, And(certain(p), And(Le(p.qa, deep), Le(p.qb, deep)))));
@@ -354,14 +356,14 @@ HWY_INLINE V certify(const BodyLanes<V, N>& a, const BodyLanes<V, N>& b, V tol) 
   }
 }
 
-template <class V, int N>
+template <class V, int N, int rounds = newton_steps>
 HWY_INLINE V overlap_code(const BodyLanes<V, N>& a, const BodyLanes<V, N>& b, V tol) {
-  return certify<V, N, false>(a, b, tol);
+  return certify<V, N, false, rounds>(a, b, tol);
 }
 
-template <class V, int N>
+template <class V, int N, int rounds = newton_steps>
 HWY_INLINE V classify_code(const BodyLanes<V, N>& a, const BodyLanes<V, N>& b, V tol) {
-  return certify<V, N, true>(a, b, tol);
+  return certify<V, N, true, rounds>(a, b, tol);
 }
 
 // +1 when the velocities and t_max are valid and the circumscribed balls stay apart over
