@@ -75,7 +75,7 @@
 #include "detail/batch_kernels.hpp"
 #include "bench/peers.hpp"
 #include "scenarios/scenarios.hpp"
-#include "tests/reference/reference.hpp"
+#include "tests/reference/bridge.hpp"
 
 #include <benchmark/benchmark.h>
 
@@ -138,22 +138,8 @@ std::string category_name(int k) { return std::string(scenarios::name(categories
 
 // ---- reference answers (nullopt: inside the tolerance band, not counted) ----------------
 
-template <int N>
-ref::Body<N> to_ref(const Ellipsoid<double, N>& e) {
-  return {e.center(), e.axes(), e.radii()};
-}
-
-Relation from_ref(ref::Relation r) {
-  switch (r) {
-    case ref::Relation::separated: return Relation::separated;
-    case ref::Relation::touching: return Relation::touching;
-    case ref::Relation::overlapping: return Relation::overlapping;
-    case ref::Relation::a_contains_b: return Relation::a_contains_b;
-    case ref::Relation::b_contains_a: return Relation::b_contains_a;
-    case ref::Relation::equal: return Relation::equal;
-  }
-  return Relation::overlapping;
-}
+using ref::from_ref;
+using ref::to_ref;
 
 enum class Outcome { at_start, hit, none, failed };
 
@@ -448,6 +434,17 @@ benchmark::internal::Benchmark* add(const std::string& name, Fn fn, Args... args
   return benchmark::RegisterBenchmark(name.c_str(), [=](benchmark::State& state) { fn(state, args...); });
 }
 
+template <int N>
+void add_classify(int n) {
+  const std::string family = "BM_classify" + std::to_string(N);
+  for (int k = 0; k < n; ++k) {
+    const std::string cat = "/" + category_name(k);
+    add(family + "/ellipsect_scalar" + cat, classify_scalar<N>, k);
+    add(family + "/ellipsect_batch_1thread" + cat, classify_batch<N>, k, 1);
+    add(family + "/ellipsect_batch_allcores" + cat, classify_batch<N>, k, 0)->UseRealTime();
+  }
+}
+
 void register_all() {
   const int n = static_cast<int>(categories.size());
   for (int k = 0; k < n; ++k) {
@@ -464,18 +461,8 @@ void register_all() {
     add("BM_overlap3/ccd_mpr" + cat, ccd_overlap, k, &ccdMPRIntersect);
 #endif
   }
-  for (int k = 0; k < n; ++k) {
-    const std::string cat = "/" + category_name(k);
-    add("BM_classify3/ellipsect_scalar" + cat, classify_scalar<3>, k);
-    add("BM_classify3/ellipsect_batch_1thread" + cat, classify_batch<3>, k, 1);
-    add("BM_classify3/ellipsect_batch_allcores" + cat, classify_batch<3>, k, 0)->UseRealTime();
-  }
-  for (int k = 0; k < n; ++k) {
-    const std::string cat = "/" + category_name(k);
-    add("BM_classify2/ellipsect_scalar" + cat, classify_scalar<2>, k);
-    add("BM_classify2/ellipsect_batch_1thread" + cat, classify_batch<2>, k, 1);
-    add("BM_classify2/ellipsect_batch_allcores" + cat, classify_batch<2>, k, 0)->UseRealTime();
-  }
+  add_classify<3>(n);
+  add_classify<2>(n);
   for (int k = 0; k < n; ++k) {
     const std::string cat = "/" + category_name(k);
     add("BM_first_contact3/ellipsect_scalar" + cat, contact_scalar, k);
@@ -496,11 +483,4 @@ void register_all() {
 
 }  // namespace
 
-int main(int argc, char** argv) {
-  benchmark::Initialize(&argc, argv);
-  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
-  register_all();
-  benchmark::RunSpecifiedBenchmarks();
-  benchmark::Shutdown();
-  return 0;
-}
+int main(int argc, char** argv) { return ellipsect::bench::run_main(argc, argv, register_all); }

@@ -29,4 +29,14 @@ void time_cases(benchmark::State& state, const Cases& cases, Query&& query) {
   state.counters["median_ns"] = ns[ns.size() / 2];
 }
 
+// main() of a program whose benchmarks `register_all` registers at run time.
+inline int run_main(int argc, char** argv, void (*register_all)()) {
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  register_all();
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}
+
 }  // namespace ellipsect::bench

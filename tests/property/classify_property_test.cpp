@@ -26,14 +26,17 @@ void check_against_reference(int per_category) {
       const Relation want = from_ref(r.relation);
       const bool decidable = r.margin > band;
       // Equal bodies sit on every tangency at once (margin 0): the answer must be equal.
-      if (want == Relation::equal) ASSERT_EQ(got, Relation::equal) << describe(c);
+      if (want == Relation::equal) {
+        ASSERT_EQ(got, Relation::equal) << describe(c);
+      }
       tally.add(scenarios::name(category), decidable || want == Relation::equal ? std::string(to_string(want)) : "in_band");
       if (decidable) {
         ++decided;
         ASSERT_EQ(got, want) << describe(c) << "\n  mu=" << ref::to_double(r.mu) << " margin=" << ref::to_double(r.margin);
       }
-      if (got == Relation::touching)
+      if (got == Relation::touching) {
         ASSERT_LE(ref::to_double(abs(r.mu - 1)), band) << describe(c);
+      }
       ASSERT_EQ(overlap(c.a, c.b), got != Relation::separated) << describe(c);
       ASSERT_EQ(classify(c.b, c.a), mirrored(got)) << describe(c);
       ASSERT_EQ(overlap(c.b, c.a), got != Relation::separated) << describe(c);
@@ -121,7 +124,9 @@ TEST(ClassifyProperty, FloatMatchesReferenceOutsideFloatBand) {
       return ref::Body<3>{e.center().cast<double>(), e.axes().cast<double>(), e.radii().cast<double>()};
     };
     const auto r = ref::classify<3>(as_ref(af), as_ref(bf), band);
-    if (r.margin > 1e-5) ASSERT_EQ(classify(af, bf), from_ref(r.relation)) << describe(c);
+    if (r.margin > 1e-5) {
+      ASSERT_EQ(classify(af, bf), from_ref(r.relation)) << describe(c);
+    }
   }
 }
 

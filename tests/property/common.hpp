@@ -5,7 +5,7 @@
 #include <ellipsect/contact.hpp>
 
 #include "scenarios/scenarios.hpp"
-#include "tests/reference/reference.hpp"
+#include "tests/reference/bridge.hpp"
 #include "tests/support.hpp"
 
 #include <gtest/gtest.h>
@@ -18,22 +18,8 @@ namespace ellipsect::testing {
 
 namespace ref = ellipsect::reference;
 
-template <int N>
-ref::Body<N> to_ref(const Ellipsoid<double, N>& e) {
-  return {e.center(), e.axes(), e.radii()};
-}
-
-inline Relation from_ref(ref::Relation r) {
-  switch (r) {
-    case ref::Relation::separated: return Relation::separated;
-    case ref::Relation::touching: return Relation::touching;
-    case ref::Relation::overlapping: return Relation::overlapping;
-    case ref::Relation::a_contains_b: return Relation::a_contains_b;
-    case ref::Relation::b_contains_a: return Relation::b_contains_a;
-    case ref::Relation::equal: return Relation::equal;
-  }
-  return Relation::overlapping;
-}
+using reference::from_ref;
+using reference::to_ref;
 
 inline Relation mirrored(Relation r) {
   if (r == Relation::a_contains_b) return Relation::b_contains_a;
