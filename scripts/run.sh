@@ -35,7 +35,8 @@ build() {  # build DIR [cmake args...]
 case "${1:-}" in
   example)
     install_missing
-    build build/release -DCMAKE_BUILD_TYPE=Release -DELLIPSECT_BUILD_TESTS=OFF -DELLIPSECT_BUILD_BENCH=OFF
+    build build/release -DCMAKE_BUILD_TYPE=Release -DELLIPSECT_BUILD_TESTS=OFF -DELLIPSECT_BUILD_BENCH=OFF \
+      -DELLIPSECT_BUILD_TOOLS=ON
     ./build/release/tools/ellipsect check examples/scenes/swept_2d.json
     ./build/release/tools/ellipsect render examples/scenes/swept_2d.json -o build/release/swept_2d.svg
     ./build/release/tools/ellipsect render examples/scenes/swept_2d.json -o build/release/swept_2d.png
@@ -43,15 +44,18 @@ case "${1:-}" in
     ;;
   test)
     install_missing
-    build build/release -DCMAKE_BUILD_TYPE=Release
-    (cd build/release && ctest --output-on-failure -j "$(nproc)")
+    # Options set explicitly: `example` may have configured build/release without tests.
+    build build/release -DCMAKE_BUILD_TYPE=Release -DELLIPSECT_BUILD_TESTS=ON -DELLIPSECT_BUILD_BENCH=ON \
+      -DELLIPSECT_BUILD_TOOLS=ON
+    (cd build/release && ctest --output-on-failure --no-tests=error -j "$(nproc)")
     # Sanitizer pass: same suite, fewer random cases per property test.
-    build build/sanitize -DCMAKE_BUILD_TYPE=RelWithDebInfo -DELLIPSECT_SANITIZE=ON -DELLIPSECT_BUILD_BENCH=OFF
-    (cd build/sanitize && ELLIPSECT_CASE_SCALE=0.05 ctest --output-on-failure -j "$(nproc)")
+    build build/sanitize -DCMAKE_BUILD_TYPE=RelWithDebInfo -DELLIPSECT_SANITIZE=ON -DELLIPSECT_BUILD_TESTS=ON \
+      -DELLIPSECT_BUILD_BENCH=OFF -DELLIPSECT_BUILD_TOOLS=ON
+    (cd build/sanitize && ELLIPSECT_CASE_SCALE=0.05 ctest --output-on-failure --no-tests=error -j "$(nproc)")
     ;;
   bench)
     install_missing
-    build build/release -DCMAKE_BUILD_TYPE=Release
+    build build/release -DCMAKE_BUILD_TYPE=Release -DELLIPSECT_BUILD_BENCH=ON
     # bench [NAME [ARGS...]]: bench/bench_NAME.cpp (default: batch, the side-by-side with
     # FCL and libccd), with Google Benchmark's ARGS.
     program=build/release/bench/bench_${2:-batch}
