@@ -55,6 +55,29 @@ void append_vec(std::string& out, const double* v, int n) {
   out += ']';
 }
 
+// `, "key": ` and a number or a vector of n values, or null where it is not defined.
+void append_field(std::string& out, const char* key, bool defined, const double* v, int n) {
+  out += ", \"";
+  out += key;
+  out += "\": ";
+  if (!defined) {
+    out += "null";
+  } else if (n == 1) {
+    append_number(out, *v);
+  } else {
+    append_vec(out, v, n);
+  }
+}
+
+// `"name": {"status": "...", ` as the start of a query's JSON object.
+void open_object(std::string& out, const char* name, std::string_view status) {
+  out += ", \"";
+  out += name;
+  out += "\": {\"status\": \"";
+  out += status;
+  out += '"';
+}
+
 template <int N>
 void append_record(std::string& out, Format format, std::uint64_t index, std::uint64_t line, const std::string* a,
                    const std::string* b, const PairResult<N>& r, const Queries& q) {
@@ -82,29 +105,20 @@ void append_record(std::string& out, Format format, std::uint64_t index, std::ui
       out += '"';
     }
     if (q.contact) {
-      out += ", \"contact\": {\"status\": \"";
-      out += to_string(c.status);
-      out += "\", \"time\": ";
-      if (has_time) append_number(out, c.time); else out += "null";
-      out += ", \"point\": ";
-      if (has_point) append_vec(out, c.point.data(), N); else out += "null";
-      out += ", \"normal\": ";
-      if (has_point) append_vec(out, c.normal.data(), N); else out += "null";
+      open_object(out, "contact", to_string(c.status));
+      append_field(out, "time", has_time, &c.time, 1);
+      append_field(out, "point", has_point, c.point.data(), N);
+      append_field(out, "normal", has_point, c.normal.data(), N);
       out += ", \"iterations\": ";
       out += std::to_string(c.iterations);
       out += '}';
     }
     if (q.distance) {
-      out += ", \"distance\": {\"status\": \"";
-      out += to_string(d.status);
-      out += "\", \"distance\": ";
-      if (has_distance) append_number(out, d.distance); else out += "null";
-      out += ", \"point_a\": ";
-      if (has_witness) append_vec(out, d.point_a.data(), N); else out += "null";
-      out += ", \"point_b\": ";
-      if (has_witness) append_vec(out, d.point_b.data(), N); else out += "null";
-      out += ", \"normal\": ";
-      if (has_witness) append_vec(out, d.normal.data(), N); else out += "null";
+      open_object(out, "distance", to_string(d.status));
+      append_field(out, "distance", has_distance, &d.distance, 1);
+      append_field(out, "point_a", has_witness, d.point_a.data(), N);
+      append_field(out, "point_b", has_witness, d.point_b.data(), N);
+      append_field(out, "normal", has_witness, d.normal.data(), N);
       out += ", \"iterations\": ";
       out += std::to_string(d.iterations);
       out += '}';
