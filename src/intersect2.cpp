@@ -273,8 +273,9 @@ BoundaryIntersection<T> intersect_boundaries(const Ellipse2<T>& a, const Ellipse
   const Relation relation = classify(a, b, options);
   if (relation == Relation::equal) out.status = BoundaryStatus::equal;
   if (relation == Relation::equal || relation == Relation::separated) return out;
-  const auto [s, o, a_is_s] = detail::order_pair(a, b);
-  with_common_points<T>(s, o, options, [&](const auto& c) {
+  const auto pair = detail::order_pair(a, b);
+  const Ellipse2<T>& s = pair.s;
+  with_common_points<T>(s, pair.o, options, [&](const auto& c) {
     using R = typename std::decay_t<decltype(c.red.e)>::Scalar;
     const Vec<R, 2> ca = a.center().template cast<R>();
     const Mat<R, 2> axes_a = a.axes().template cast<R>();
@@ -301,7 +302,8 @@ OverlapArea<T> overlap_area(const Ellipse2<T>& a, const Ellipse2<T>& b, const Op
   using R = detail::Work<T>;
   auto area_of = [](const Ellipse2<T>& e) { return std::numbers::pi_v<R> * R(e.radii()[0]) * R(e.radii()[1]); };
   OverlapArea<T> out{T(0), classify(a, b, options)};
-  const auto [s, o, a_is_s] = detail::order_pair(a, b);
+  const auto pair = detail::order_pair(a, b);
+  const Ellipse2<T>& s = pair.s;
   switch (out.relation) {
     case Relation::separated:
     case Relation::touching: break;
@@ -309,7 +311,7 @@ OverlapArea<T> overlap_area(const Ellipse2<T>& a, const Ellipse2<T>& b, const Op
     case Relation::b_contains_a: out.area = T(area_of(a)); break;
     case Relation::equal: out.area = T(area_of(s)); break;
     case Relation::overlapping:
-      with_common_points<T>(s, o, options, [&](const auto& c) {
+      with_common_points<T>(s, pair.o, options, [&](const auto& c) {
         using W = typename std::decay_t<decltype(c.red.e)>::Scalar;
         out.area = T(lens_area<W>(c) * W(s.radii()[0]) * W(s.radii()[1]));
       });
