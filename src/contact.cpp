@@ -159,8 +159,8 @@ Contact<T, N> solve_contact(const Ellipsoid<T, N>& s, const Ellipsoid<T, N>& o, 
 }
 
 template <class T, int N>
-Contact<T, N> first_contact(const Ellipsoid<T, N>& a, const Vec<T, N>& velocity_a, const Ellipsoid<T, N>& b,
-                            const Vec<T, N>& velocity_b, T t_max, const Options& options) noexcept {
+Contact<T, N> first_contact(const Ellipsoid<T, N>& a, const VecArg<T, N>& velocity_a, const Ellipsoid<T, N>& b,
+                            const VecArg<T, N>& velocity_b, T t_max, const Options& options) noexcept {
   using R = detail::Work<T>;
   Contact<T, N> out;
   out.time = std::numeric_limits<T>::quiet_NaN();

@@ -7,7 +7,7 @@
 namespace ellipsect {
 
 template <class T, int N>
-ClosestPoint<T, N> closest_point(const Ellipsoid<T, N>& body, const Vec<T, N>& x) noexcept {
+ClosestPoint<T, N> closest_point(const Ellipsoid<T, N>& body, const VecArg<T, N>& x) noexcept {
   using R = detail::Work<T>;
   // Frame of the body's axes with the query point at the origin.
   const Mat<R, N> axes = body.axes().template cast<R>();

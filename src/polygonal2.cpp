@@ -275,7 +275,7 @@ SegmentCircle segment_circle(const Vec2<T>& a, const Vec2<T>& b, const Vec2<T>& 
 }
 
 template <class T>
-PolygonalOverlap polygonal_overlap(const Ellipse2<T>& ellipse, const Vec2<T>& center, T radius,
+PolygonalOverlap polygonal_overlap(const Ellipse2<T>& ellipse, const VecArg<T, 2>& center, T radius,
                                    int max_iterations) noexcept {
   if (!valid_circle(center, radius, max_iterations)) return {Verdict::invalid_input, 0};
   const T s = unit_scale(ellipse.radii().maxCoeff());
@@ -315,7 +315,7 @@ PolygonalOverlap polygonal_overlap(const Ellipse2<T>& a, const Ellipse2<T>& b, i
 }
 
 template <class T>
-PolygonalOverlap circle_cover_overlap(const Ellipse2<T>& ellipse, const Vec2<T>& center, T radius,
+PolygonalOverlap circle_cover_overlap(const Ellipse2<T>& ellipse, const VecArg<T, 2>& center, T radius,
                                       int max_iterations) noexcept {
   if (!valid_circle(center, radius, max_iterations)) return {Verdict::invalid_input, 0};
   const T s = unit_scale(ellipse.radii().maxCoeff());

@@ -63,7 +63,7 @@ QuarticPoint<T> no_point(QuarticStatus s) noexcept {
 }  // namespace
 
 template <class T>
-QuarticPoint<T> closest_point_closed_form(const Ellipse2<T>& ellipse, const Vec2<T>& x) noexcept {
+QuarticPoint<T> closest_point_closed_form(const Ellipse2<T>& ellipse, const VecArg<T, 2>& x) noexcept {
   using C = std::complex<T>;
   if (!x.allFinite()) return no_point<T>(QuarticStatus::invalid_input);
   const Frame<T> fr = frame<T>(ellipse, x);
@@ -94,7 +94,7 @@ QuarticPoint<T> closest_point_closed_form(const Ellipse2<T>& ellipse, const Vec2
 }
 
 template <class T>
-QuarticPoint<T> closest_point_quartic(const Ellipse2<T>& ellipse, const Vec2<T>& x) noexcept {
+QuarticPoint<T> closest_point_quartic(const Ellipse2<T>& ellipse, const VecArg<T, 2>& x) noexcept {
   using R = detail::Work<T>;
   if (!x.allFinite()) return no_point<T>(QuarticStatus::invalid_input);
   const Frame<R> fr = frame<R>(ellipse, x);

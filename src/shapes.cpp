@@ -5,9 +5,11 @@
 #include <Eigen/Eigenvalues>
 #include <Eigen/QR>
 
+#include <array>
 #include <cmath>
 #include <limits>
 #include <sstream>
+#include <utility>
 
 namespace ellipsect {
 namespace {
@@ -35,12 +37,15 @@ void require_finite(const Eigen::MatrixBase<Derived>& m, const std::string& fiel
       }
 }
 
+template <class T>
+void require_positive(T value, const std::string& field) {
+  if (!std::isfinite(value)) throw InputError(field, "must be finite (got " + show(value) + ")");
+  if (!(value > T(0))) throw InputError(field, "must be > 0 (got " + show(value) + ")");
+}
+
 template <class T, int N>
 void require_radii(const Vec<T, N>& radii) {
-  require_finite(radii, "radii");
-  for (int i = 0; i < N; ++i)
-    if (!(radii[i] > T(0)))
-      throw InputError("radii[" + std::to_string(i) + "]", "must be > 0 (got " + show(radii[i]) + ")");
+  for (int i = 0; i < N; ++i) require_positive(radii[i], "radii[" + std::to_string(i) + "]");
 }
 
 // Orthonormalize by Householder QR (the Q factor, column signs kept as given).
@@ -59,6 +64,13 @@ Mat<T, N> orthonormalized(const Mat<T, N>& m) {
 }  // namespace
 
 template <class T, int N>
+Ellipsoid<T, N>::Ellipsoid(const Vec<T, N>& center, const Mat<T, N>& axes, const Vec<T, N>& radii) noexcept {
+  Eigen::Map<Vec<T, N>>(center_.data()) = center;
+  Eigen::Map<Mat<T, N>>(axes_.data()) = axes;
+  Eigen::Map<Vec<T, N>>(radii_.data()) = radii;
+}
+
+template <class T, int N>
 Ellipsoid<T, N> Ellipsoid<T, N>::from_axes(const Vec<T, N>& center, const Mat<T, N>& axes, const Vec<T, N>& radii) {
   require_finite(center, "center");
   require_finite(axes, "axes");
@@ -68,13 +80,10 @@ Ellipsoid<T, N> Ellipsoid<T, N>::from_axes(const Vec<T, N>& center, const Mat<T,
   if (!(dev <= axes_tolerance))
     throw InputError("axes", "columns must be orthonormal (max |axes^T axes - I| = " + show(dev) + " > " +
                                  show(axes_tolerance) + ")");
-  Ellipsoid e;
-  e.center_ = center;
   // Axes orthonormal to working precision are kept bit for bit (so rebuilding a body from
   // its own fields reproduces it exactly); others are orthonormalized.
-  e.axes_ = dev <= T(4 * N) * std::numeric_limits<T>::epsilon() ? axes : orthonormalized<T, N>(axes);
-  e.radii_ = radii;
-  return e;
+  if (dev <= T(4 * N) * std::numeric_limits<T>::epsilon()) return Ellipsoid(center, axes, radii);
+  return Ellipsoid(center, orthonormalized<T, N>(axes), radii);
 }
 
 template <class T, int N>
@@ -88,31 +97,29 @@ Ellipsoid<T, N> Ellipsoid<T, N>::from_quadric(const Vec<T, N>& center, const Mat
   if (asym > sym_tol * scale)
     throw InputError("M", "must be symmetric (max |M - M^T| = " + show(asym) + ")");
   using W = double;
-  const Mat<W, N> Mw = (M.template cast<W>() + M.template cast<W>().transpose()) / W(2);
-  const Eigen::SelfAdjointEigenSolver<Mat<W, N>> eig(Mw);
+  // Eigen's tridiagonalization does not take unaligned (DontAlign) matrices.
+  using Aligned = Eigen::Matrix<W, N, N>;
+  const Aligned Mw = (M.template cast<W>() + M.template cast<W>().transpose()) / W(2);
+  const Eigen::SelfAdjointEigenSolver<Aligned> eig(Mw);
   const Vec<W, N> lambda = eig.eigenvalues();  // ascending
   const W floor = W(64) * std::numeric_limits<T>::epsilon() * lambda[N - 1];
   if (!(lambda[0] > floor))
     throw InputError("M", "must be positive definite (smallest eigenvalue " + show(lambda[0]) +
                               ", largest " + show(lambda[N - 1]) + ")");
-  Ellipsoid e;
-  e.center_ = center;
-  e.axes_ = orthonormalized<T, N>(eig.eigenvectors().template cast<T>());
-  e.radii_ = lambda.cwiseSqrt().cwiseInverse().template cast<T>();
-  return e;
+  return Ellipsoid(center, orthonormalized<T, N>(eig.eigenvectors().template cast<T>()),
+                   lambda.cwiseSqrt().cwiseInverse().template cast<T>());
 }
 
 template <class T, int N>
 Mat<T, N> Ellipsoid<T, N>::quadric() const noexcept {
-  return axes_ * radii_.cwiseAbs2().cwiseInverse().asDiagonal() * axes_.transpose();
+  return axes() * radii().cwiseAbs2().cwiseInverse().asDiagonal() * axes().transpose();
 }
 
 template <class T, int N>
 Ellipsoid<T, N> Ellipsoid<T, N>::translated(const Vec<T, N>& offset) const {
-  Ellipsoid e = *this;
-  e.center_ += offset;
-  require_finite(e.center_, "center");
-  return e;
+  const Vec<T, N> center = this->center() + offset;
+  require_finite(center, "center");
+  return Ellipsoid(center, axes(), radii());
 }
 
 template <class T>
@@ -125,8 +132,13 @@ Ellipse2<T> make_ellipse(const Vec2<T>& center, T angle, const Vec2<T>& radii) {
 }
 
 template <class T>
-Ellipsoid3<T> make_ellipsoid(const Vec3<T>& center, const Eigen::Quaternion<T>& rotation, const Vec3<T>& radii) {
-  require_finite(rotation.coeffs(), "quaternion");
+Ellipsoid3<T> make_ellipsoid(const Vec3<T>& center, const Quat<T>& rotation, const Vec3<T>& radii) {
+  // Named in the order of Eigen's constructor Quaternion(w, x, y, z), not of its storage.
+  const std::array<std::pair<T, const char*>, 4> parts = {
+      {{rotation.w(), "quaternion.w"}, {rotation.x(), "quaternion.x"}, {rotation.y(), "quaternion.y"},
+       {rotation.z(), "quaternion.z"}}};
+  for (const auto& [value, field] : parts)
+    if (!std::isfinite(value)) throw InputError(field, "must be finite (got " + show(value) + ")");
   const T tol = sizeof(T) >= sizeof(double) ? T(1e-9) : T(1e-5);
   const T n = rotation.norm();
   if (!(std::abs(n - T(1)) <= tol))
@@ -141,6 +153,7 @@ Ellipsoid3<T> make_ellipsoid(const Vec3<T>& center, const Mat3<T>& rotation, con
 
 template <class T, int N>
 Ellipsoid<T, N> make_ball(const Vec<T, N>& center, T radius) {
+  require_positive(radius, "radius");
   return Ellipsoid<T, N>::from_axes(center, Mat<T, N>::Identity(), Vec<T, N>::Constant(radius));
 }
 
@@ -151,9 +164,8 @@ ELLIPSECT_FOR_EACH_TYPE_AND_DIM(ELLIPSECT_INSTANTIATE)
 #undef ELLIPSECT_INSTANTIATE
 template Ellipse2<float> make_ellipse<float>(const Vec2<float>&, float, const Vec2<float>&);
 template Ellipse2<double> make_ellipse<double>(const Vec2<double>&, double, const Vec2<double>&);
-template Ellipsoid3<float> make_ellipsoid<float>(const Vec3<float>&, const Eigen::Quaternion<float>&, const Vec3<float>&);
-template Ellipsoid3<double> make_ellipsoid<double>(const Vec3<double>&, const Eigen::Quaternion<double>&,
-                                                   const Vec3<double>&);
+template Ellipsoid3<float> make_ellipsoid<float>(const Vec3<float>&, const Quat<float>&, const Vec3<float>&);
+template Ellipsoid3<double> make_ellipsoid<double>(const Vec3<double>&, const Quat<double>&, const Vec3<double>&);
 template Ellipsoid3<float> make_ellipsoid<float>(const Vec3<float>&, const Mat3<float>&, const Vec3<float>&);
 template Ellipsoid3<double> make_ellipsoid<double>(const Vec3<double>&, const Mat3<double>&, const Vec3<double>&);
 

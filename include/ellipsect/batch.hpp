@@ -76,6 +76,8 @@ private:
   std::vector<std::vector<double>> columns_;
   std::vector<Ellipsoid<T, N>> a_, b_;
 };
+static_assert(detail::has_plain_layout<Pairs<double, 3>, std::vector<std::vector<double>>,
+                                       std::vector<Ellipsoid3<double>>, std::vector<Ellipsoid3<double>>>);
 
 // out.size() must equal pairs.size() (std::invalid_argument otherwise).
 template <class T, int N>

@@ -44,11 +44,13 @@ struct Contact {
   // Newton steps taken on the contact time.
   int iterations = 0;
 };
+static_assert(detail::has_plain_layout<Contact<float, 2>, ContactStatus, float, float[2], float[2], int> &&
+              detail::has_plain_layout<Contact<double, 3>, ContactStatus, double, double[3], double[3], int>);
 
 // Bodies a and b move as center + t * velocity; contact is searched in [0, t_max]
 // (t_max may be +infinity).
 template <class T, int N>
-Contact<T, N> first_contact(const Ellipsoid<T, N>& a, const Vec<T, N>& velocity_a, const Ellipsoid<T, N>& b,
-                            const Vec<T, N>& velocity_b, T t_max, const Options& options = {}) noexcept;
+Contact<T, N> first_contact(const Ellipsoid<T, N>& a, const VecArg<T, N>& velocity_a, const Ellipsoid<T, N>& b,
+                            const VecArg<T, N>& velocity_b, T t_max, const Options& options = {}) noexcept;
 
 }  // namespace ellipsect

@@ -72,6 +72,9 @@ struct Distance {
   // Newton steps on the direction, summed over all starts.
   int iterations = 0;
 };
+static_assert(
+    detail::has_plain_layout<Distance<float, 2>, DistanceStatus, float, float[2], float[2], float[2], int> &&
+    detail::has_plain_layout<Distance<double, 3>, DistanceStatus, double, double[3], double[3], double[3], int>);
 
 // Separation distance and closest points. Overlapping bodies: status overlapping,
 // distance 0, points and normal NaN (no penetration is computed; see signed_distance).

@@ -62,6 +62,8 @@ struct BoundaryIntersection {
   std::array<Vec2<T>, 4> points;
   std::array<CrossingKind, 4> kinds;
 };
+static_assert(detail::has_plain_layout<BoundaryIntersection<float>, BoundaryStatus, int, float[4][2], CrossingKind[4]> &&
+              detail::has_plain_layout<BoundaryIntersection<double>, BoundaryStatus, int, double[4][2], CrossingKind[4]>);
 
 template <class T>
 BoundaryIntersection<T> intersect_boundaries(const Ellipse2<T>& a, const Ellipse2<T>& b,
@@ -76,6 +78,8 @@ struct OverlapArea {
   // classify(a, b), which selects the configuration.
   Relation relation;
 };
+static_assert(detail::has_plain_layout<OverlapArea<float>, float, Relation> &&
+              detail::has_plain_layout<OverlapArea<double>, double, Relation>);
 
 template <class T>
 OverlapArea<T> overlap_area(const Ellipse2<T>& a, const Ellipse2<T>& b, const Options& options = {}) noexcept;

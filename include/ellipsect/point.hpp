@@ -17,8 +17,10 @@ struct ClosestPoint {
   Vec<T, N> point;         // on the boundary, world frame
   T signed_distance;       // |x - point|, negative when x is inside the body
 };
+static_assert(detail::has_plain_layout<ClosestPoint<float, 2>, float[2], float> &&
+              detail::has_plain_layout<ClosestPoint<double, 3>, double[3], double>);
 
 template <class T, int N>
-ClosestPoint<T, N> closest_point(const Ellipsoid<T, N>& body, const Vec<T, N>& x) noexcept;
+ClosestPoint<T, N> closest_point(const Ellipsoid<T, N>& body, const VecArg<T, N>& x) noexcept;
 
 }  // namespace ellipsect

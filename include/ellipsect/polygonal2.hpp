@@ -92,7 +92,7 @@ struct PolygonalOverlap {
 
 // Ellipse against the disk |x - center| <= radius (radius >= 0).
 template <class T>
-PolygonalOverlap polygonal_overlap(const Ellipse2<T>& ellipse, const Vec2<T>& center, T radius,
+PolygonalOverlap polygonal_overlap(const Ellipse2<T>& ellipse, const VecArg<T, 2>& center, T radius,
                                    int max_iterations = 10) noexcept;
 
 // Two ellipses; b is stretched into a circle. Axes that are exactly parallel (equal
@@ -102,7 +102,7 @@ PolygonalOverlap polygonal_overlap(const Ellipse2<T>& a, const Ellipse2<T>& b, i
 
 // The circle-cover variant, ellipse against a disk.
 template <class T>
-PolygonalOverlap circle_cover_overlap(const Ellipse2<T>& ellipse, const Vec2<T>& center, T radius,
+PolygonalOverlap circle_cover_overlap(const Ellipse2<T>& ellipse, const VecArg<T, 2>& center, T radius,
                                       int max_iterations = 10) noexcept;
 
 // The document's bound: after n iterations every point of the inscribed and circumscribed

@@ -61,13 +61,15 @@ struct QuarticPoint {
   Vec2<T> point;  // outside: the closest boundary point, world frame; NaN otherwise
   T distance;     // outside: |x - point| > 0; NaN otherwise
 };
+static_assert(detail::has_plain_layout<QuarticPoint<float>, QuarticStatus, float[2], float> &&
+              detail::has_plain_layout<QuarticPoint<double>, QuarticStatus, double[2], double>);
 
 // The published closed form, evaluated in T.
 template <class T>
-QuarticPoint<T> closest_point_closed_form(const Ellipse2<T>& ellipse, const Vec2<T>& x) noexcept;
+QuarticPoint<T> closest_point_closed_form(const Ellipse2<T>& ellipse, const VecArg<T, 2>& x) noexcept;
 
 // The careful closed form plus polishing.
 template <class T>
-QuarticPoint<T> closest_point_quartic(const Ellipse2<T>& ellipse, const Vec2<T>& x) noexcept;
+QuarticPoint<T> closest_point_quartic(const Ellipse2<T>& ellipse, const VecArg<T, 2>& x) noexcept;
 
 }  // namespace ellipsect

@@ -6,22 +6,63 @@
 //
 // Every factory validates its input once and throws InputError naming the offending
 // field; a constructed Ellipsoid is always valid, so queries on it are noexcept.
+//
+// ABI. The public types are laid out the same whatever the compiler flags (-march, -m...)
+// and Eigen settings (EIGEN_MAX_STATIC_ALIGN_BYTES, EIGEN_DONT_ALIGN) of the program that
+// includes these headers: Vec and Mat are unaligned Eigen matrices (Eigen::DontAlign,
+// stored as plain arrays of T), and the static_asserts after each public type pin its size
+// and alignment to those of the same members with Vec and Mat as arrays of T, so a layout
+// that could differ from the library's is a compile error, never a silent misreading.
+// Aligned Eigen vectors and matrices (Eigen::Vector3d, ...) convert implicitly wherever a
+// Vec or Mat is taken.
 #pragma once
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include <algorithm>
+#include <array>
+#include <cstddef>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 
 namespace ellipsect {
 
-template <class T, int N> using Vec = Eigen::Matrix<T, N, 1>;
-template <class T, int N> using Mat = Eigen::Matrix<T, N, N>;
+template <class T, int N> using Vec = Eigen::Matrix<T, N, 1, Eigen::DontAlign>;
+template <class T, int N> using Mat = Eigen::Matrix<T, N, N, Eigen::DontAlign>;
+template <class T> using Quat = Eigen::Quaternion<T, Eigen::DontAlign>;
+// A Vec parameter of a query whose T and N are deduced from its other arguments (the
+// bodies), so aligned Eigen vectors and Eigen expressions convert to it.
+template <class T, int N> using VecArg = std::type_identity_t<Vec<T, N>>;
 template <class T> using Vec2 = Vec<T, 2>;
 template <class T> using Vec3 = Vec<T, 3>;
 template <class T> using Mat2 = Mat<T, 2>;
 template <class T> using Mat3 = Mat<T, 3>;
+
+namespace detail {
+
+// Size and alignment of a struct with members of types M..., in order, by the C++ layout
+// rules (each member at the next multiple of its alignment, the size rounded up to the
+// largest alignment). With Vec and Mat written as arrays of T no compiler flag changes it.
+template <class... M>
+struct PlainLayout {
+  static constexpr std::size_t align = std::max({alignof(M)...});
+  static constexpr std::size_t size = [] {
+    std::size_t end = 0;
+    ((end = (end + alignof(M) - 1) / alignof(M) * alignof(M) + sizeof(M)), ...);
+    return (end + align - 1) / align * align;
+  }();
+};
+template <class S, class... M>
+inline constexpr bool has_plain_layout =
+    sizeof(S) == PlainLayout<M...>::size && alignof(S) == PlainLayout<M...>::align;
+
+}  // namespace detail
+
+static_assert(detail::has_plain_layout<Vec2<float>, float[2]> && detail::has_plain_layout<Vec3<double>, double[3]> &&
+              detail::has_plain_layout<Mat2<float>, float[4]> && detail::has_plain_layout<Mat3<double>, double[9]> &&
+              detail::has_plain_layout<Quat<double>, double[4]>);
 
 // Thrown for invalid input; field() names the offending field, e.g. "radii[1]".
 class InputError : public std::invalid_argument {
@@ -34,6 +75,8 @@ private:
   std::string field_;
 };
 
+// Trivially copyable and standard-layout: an array of bodies may be copied with memcpy and
+// read as rows of (2 N + N^2) values of T: center, axes (column by column), radii.
 template <class T, int N>
 class Ellipsoid {
   static_assert(N >= 2, "ellipsect: dimension must be at least 2");
@@ -47,6 +90,16 @@ public:
   // closer ones are kept as given.
   static constexpr T axes_tolerance = sizeof(T) >= sizeof(double) ? T(1e-9) : T(1e-5);
 
+  // The default body: the unit ball at the origin (center 0, axes the identity, radii 1),
+  // valid like every other, so containers can be resized and arrays declared; a constant
+  // expression, no allocation, no check.
+  constexpr Ellipsoid() noexcept : center_{}, axes_{}, radii_{} {
+    for (int i = 0; i < N; ++i) {
+      axes_[static_cast<std::size_t>(i * (N + 1))] = T(1);
+      radii_[static_cast<std::size_t>(i)] = T(1);
+    }
+  }
+
   // center: finite; axes: finite, orthonormal columns (within axes_tolerance);
   // radii: finite and > 0. Throws InputError naming the field otherwise.
   static Ellipsoid from_axes(const Vec<T, N>& center, const Mat<T, N>& axes, const Vec<T, N>& radii);
@@ -57,9 +110,10 @@ public:
   // radii M's eigenvalues^-1/2, accurate to about eps * cond(M) relative.
   static Ellipsoid from_quadric(const Vec<T, N>& center, const Mat<T, N>& M);
 
-  const Vec<T, N>& center() const noexcept { return center_; }
-  const Mat<T, N>& axes() const noexcept { return axes_; }
-  const Vec<T, N>& radii() const noexcept { return radii_; }
+  // Read-only views of the fields (Eigen expressions of Vec / Mat; they convert to either).
+  Eigen::Map<const Vec<T, N>> center() const noexcept { return Eigen::Map<const Vec<T, N>>(center_.data()); }
+  Eigen::Map<const Mat<T, N>> axes() const noexcept { return Eigen::Map<const Mat<T, N>>(axes_.data()); }
+  Eigen::Map<const Vec<T, N>> radii() const noexcept { return Eigen::Map<const Vec<T, N>>(radii_.data()); }
 
   // The quadric matrix M = axes diag(radii)^-2 axes^T.
   Mat<T, N> quadric() const noexcept;
@@ -67,30 +121,38 @@ public:
   Ellipsoid translated(const Vec<T, N>& offset) const;
 
 private:
-  Ellipsoid() = default;
-  Vec<T, N> center_;
-  Mat<T, N> axes_;
-  Vec<T, N> radii_;
+  // Unchecked; the factories validate first.
+  Ellipsoid(const Vec<T, N>& center, const Mat<T, N>& axes, const Vec<T, N>& radii) noexcept;
+
+  std::array<T, N> center_;
+  std::array<T, N * N> axes_;  // column-major
+  std::array<T, N> radii_;
 };
 
 template <class T> using Ellipse2 = Ellipsoid<T, 2>;
 template <class T> using Ellipsoid3 = Ellipsoid<T, 3>;
+
+static_assert(std::is_trivially_copyable_v<Ellipse2<float>> && std::is_trivially_copyable_v<Ellipsoid3<double>> &&
+              std::is_standard_layout_v<Ellipsoid3<double>>);
+static_assert(detail::has_plain_layout<Ellipse2<float>, float[2], float[4], float[2]> &&
+              detail::has_plain_layout<Ellipsoid3<double>, double[3], double[9], double[3]>);
 
 // An ellipse whose first axis makes `angle` radians with the x axis (counter-clockwise).
 template <class T>
 Ellipse2<T> make_ellipse(const Vec2<T>& center, T angle, const Vec2<T>& radii);
 
 // An ellipsoid rotated by a unit quaternion (|q| within 1e-9 of 1 for double, 1e-5 for
-// float; it is normalized). The axes are the columns of q's rotation matrix.
+// float; it is normalized). The axes are the columns of q's rotation matrix. Errors name
+// the components in Eigen's constructor order Quaternion(w, x, y, z): "quaternion.w",
+// "quaternion.x", ... (an aligned Eigen::Quaterniond converts implicitly).
 template <class T>
-Ellipsoid3<T> make_ellipsoid(const Vec3<T>& center, const Eigen::Quaternion<T>& rotation,
-                             const Vec3<T>& radii);
+Ellipsoid3<T> make_ellipsoid(const Vec3<T>& center, const Quat<T>& rotation, const Vec3<T>& radii);
 
 // An ellipsoid whose axes are the columns of a rotation (or any orthonormal) matrix.
 template <class T>
 Ellipsoid3<T> make_ellipsoid(const Vec3<T>& center, const Mat3<T>& rotation, const Vec3<T>& radii);
 
-// A ball (circle, sphere) of the given radius.
+// A ball (circle, sphere) of the given radius (errors name the field "radius").
 template <class T, int N>
 Ellipsoid<T, N> make_ball(const Vec<T, N>& center, T radius);
 

@@ -39,7 +39,7 @@ TEST(Shapes, RejectsBadRadiiNamingTheField) {
   expect_field([] { make_ellipse<double>({0, 0}, 0, {-1, 1}); }, "radii[0]");
   expect_field([] { make_ellipse<double>({0, 0}, 0, {nan, 1}); }, "radii[0]");
   expect_field([] { make_ellipse<double>({0, 0}, 0, {1, inf}); }, "radii[1]");
-  expect_field([] { make_ball<float, 3>({0, 0, 0}, 0.0f); }, "radii[0]");
+  expect_field([] { make_ball<float, 3>({0, 0, 0}, 0.0f); }, "radius");
 }
 
 TEST(Shapes, RejectsNonFiniteCenterAndAngle) {
@@ -72,7 +72,7 @@ TEST(Shapes, QuaternionMustBeUnit) {
   expect_field([] { make_ellipsoid<double>({0, 0, 0}, Eigen::Quaterniond(2, 0, 0, 0), {1, 1, 1}); }, "quaternion");
   expect_field([] { make_ellipsoid<double>({0, 0, 0}, Eigen::Quaterniond(0, 0, 0, 0), {1, 1, 1}); }, "quaternion");
   expect_field([] { make_ellipsoid<double>({0, 0, 0}, Eigen::Quaterniond(nan, 0, 0, 0), {1, 1, 1}); },
-               "quaternion[3]");
+               "quaternion.w");
   const Eigen::Quaterniond q(Eigen::AngleAxisd(1.0, Vec3<double>::UnitZ()));
   const auto e = make_ellipsoid<double>({0, 0, 0}, q, {1, 2, 3});
   EXPECT_NEAR(e.axes()(1, 0), std::sin(1.0), 1e-15);
