@@ -1,0 +1,67 @@
+// A fixed workload for instruction counts (valgrind --tool=callgrind), which stay stable
+// on a loaded machine where timings do not: each query family runs once over the same
+// seeded scenario mix as bench_queries (every category, 64 cases each), in its own
+// non-inlined function, so callgrind_annotate --inclusive=yes reports it apart from the
+// case generation. Usage in bench/RESULTS.md ("Instruction counts").
+#include <ellipsect/ellipsect.hpp>
+
+#include "scenarios/scenarios.hpp"
+
+#include <cstdio>
+#include <vector>
+
+namespace {
+
+using namespace ellipsect;
+constexpr int cases_per_category = 64;
+
+template <int N>
+std::vector<scenarios::Case<N>> mix() {
+  std::vector<scenarios::Case<N>> cases;
+  for (const auto c : scenarios::all_categories)
+    for (int i = 0; i < cases_per_category; ++i) cases.push_back(scenarios::make_case<N>(c, 900000 + i));
+  return cases;
+}
+
+// Each returns a checksum so the calls cannot be optimized away.
+template <int N>
+[[gnu::noinline]] double count_overlap(const std::vector<scenarios::Case<N>>& cases) {
+  double sum = 0;
+  for (const auto& c : cases) sum += overlap(c.a, c.b);
+  return sum;
+}
+
+template <int N>
+[[gnu::noinline]] double count_classify(const std::vector<scenarios::Case<N>>& cases) {
+  double sum = 0;
+  for (const auto& c : cases) sum += static_cast<int>(classify(c.a, c.b));
+  return sum;
+}
+
+template <int N>
+[[gnu::noinline]] double count_first_contact(const std::vector<scenarios::Case<N>>& cases) {
+  double sum = 0;
+  for (const auto& c : cases) sum += first_contact(c.a, c.va, c.b, c.vb, c.t_max).iterations;
+  return sum;
+}
+
+template <int N>
+[[gnu::noinline]] double count_distance(const std::vector<scenarios::Case<N>>& cases) {
+  double sum = 0;
+  for (const auto& c : cases) sum += signed_distance(c.a, c.b).iterations;
+  return sum;
+}
+
+template <int N>
+double run() {
+  const auto cases = mix<N>();
+  return count_overlap<N>(cases) + count_classify<N>(cases) + count_first_contact<N>(cases) +
+         count_distance<N>(cases);
+}
+
+}  // namespace
+
+int main() {
+  std::printf("checksum %.17g %.17g\n", run<2>(), run<3>());
+  return 0;
+}
