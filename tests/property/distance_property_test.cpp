@@ -88,7 +88,7 @@ void check_case(const scenarios::Case<N>& c, Tally& tally) {
   ASSERT_EQ(sw.distance, got.distance) << describe(c);
   ASSERT_EQ(sw.point_a, identical ? got.point_a : got.point_b) << describe(c);
   ASSERT_EQ(sw.point_b, identical ? got.point_b : got.point_a) << describe(c);
-  ASSERT_EQ(sw.normal, identical ? got.normal : (-got.normal).eval()) << describe(c);
+  ASSERT_EQ(sw.normal, (identical ? got.normal : Vec<double, N>(-got.normal))) << describe(c);
   const auto d = distance(c.a, c.b);
   ASSERT_EQ(d.status, got.status) << describe(c);
   if (got.status == DistanceStatus::overlapping) {
