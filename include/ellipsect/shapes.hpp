@@ -76,7 +76,11 @@ private:
 };
 
 // Trivially copyable and standard-layout: an array of bodies may be copied with memcpy and
-// read as rows of (2 N + N^2) values of T: center, axes (column by column), radii.
+// read (not written: that would skip validation) as rows of (2 N + N^2) values of T:
+// center, axes (column by column), radii. Filling an array of bodies (a binding's numpy
+// columns, a structure of arrays) needs no allocation: default-construct or resize, then
+// assign factory results; factories allocate only the message of an InputError they throw,
+// and take Eigen::Map views of the caller's rows (they convert to Vec and Mat).
 template <class T, int N>
 class Ellipsoid {
   static_assert(N >= 2, "ellipsect: dimension must be at least 2");
@@ -110,7 +114,8 @@ public:
   // radii M's eigenvalues^-1/2, accurate to about eps * cond(M) relative.
   static Ellipsoid from_quadric(const Vec<T, N>& center, const Mat<T, N>& M);
 
-  // Read-only views of the fields (Eigen expressions of Vec / Mat; they convert to either).
+  // Read-only views of the fields, valid while the body lives (they convert to Vec / Mat
+  // and to aligned Eigen types).
   Eigen::Map<const Vec<T, N>> center() const noexcept { return Eigen::Map<const Vec<T, N>>(center_.data()); }
   Eigen::Map<const Mat<T, N>> axes() const noexcept { return Eigen::Map<const Mat<T, N>>(axes_.data()); }
   Eigen::Map<const Vec<T, N>> radii() const noexcept { return Eigen::Map<const Vec<T, N>>(radii_.data()); }
