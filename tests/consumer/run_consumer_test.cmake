@@ -1,5 +1,7 @@
 # Installs ellipsect into a scratch prefix, then configures, builds and runs a small
-# consumer project against it with find_package(ellipsect).
+# consumer project against it with find_package(ellipsect): `consumer`, and the layout
+# checks abi_* built with other SIMD flags and Eigen alignments (abi_avx512f runs only on
+# a CPU with AVX-512; elsewhere it is only built).
 set(prefix ${BINARY_DIR}/prefix)
 file(REMOVE_RECURSE ${BINARY_DIR})
 foreach(step
@@ -18,3 +20,22 @@ if(NOT out MATCHES "hit 4")
   message(FATAL_ERROR "consumer printed an unexpected answer: ${out}")
 endif()
 message(STATUS "consumer output: ${out}")
+
+file(READ /proc/cpuinfo cpuinfo)
+file(GLOB abi_programs ${BINARY_DIR}/app/abi_*)
+list(FILTER abi_programs INCLUDE REGEX "/abi_[a-z0-9]+$")
+list(LENGTH abi_programs count)
+if(count LESS 4)
+  message(FATAL_ERROR "expected at least 4 abi_* programs, found: ${abi_programs}")
+endif()
+foreach(program ${abi_programs})
+  if(program MATCHES "avx512" AND NOT cpuinfo MATCHES "avx512f")
+    message(STATUS "${program}: built, not run (no avx512f in /proc/cpuinfo)")
+    continue()
+  endif()
+  execute_process(COMMAND ${program} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0 OR NOT out MATCHES ": ok ")
+    message(FATAL_ERROR "${program} failed (${rc}):\n${out}\n${err}")
+  endif()
+  message(STATUS "${out}")
+endforeach()
