@@ -48,7 +48,8 @@ namespace ellipsect {
 
 enum class QuarticStatus {
   outside,        // the point is outside the ellipse; `point` and `distance` are set
-  inside,         // the point is inside or on the ellipse (a circle centered there collides)
+  inside,         // the point is inside or on the ellipse (a circle centered there collides);
+                  // a point within rounding of the boundary may be either, never outside at distance 0
   failed,         // the closed form produced a non-finite value (closest_point_closed_form only)
   invalid_input,  // the point is not finite
 };
@@ -59,7 +60,7 @@ template <class T>
 struct QuarticPoint {
   QuarticStatus status = QuarticStatus::invalid_input;
   Vec2<T> point;  // outside: the closest boundary point, world frame; NaN otherwise
-  T distance;     // outside: |x - point| > 0; NaN otherwise
+  T distance;     // outside: |x - point| > 0 (also after rounding to T); NaN otherwise
 };
 
 // The published closed form, evaluated in T.
