@@ -1,6 +1,6 @@
 // Niemitalo's polygon bisection (docs/niemitalo.md). Differences from the document's code:
 //
-// * Out of iterations is `undecided`, never `false`.
+// * Out of levels is `undecided`, with the certified band of the signed gap, never `false`.
 // * The choice between the two sub-triangles tests each one exactly (center inside, or an
 //   outer edge within reach). The document's shortcuts (a center on the inner side of a
 //   new chord counts as a collision; a sub-triangle is chosen by projections onto the
@@ -248,12 +248,13 @@ PolygonalOverlap<T> with_band(const Outcome& o, T major, T size, bool cover) noe
   r.verdict = o.verdict;
   r.level = o.level;
   r.iterations = o.iterations;
-  switch (o.verdict) {
-    case Verdict::collision: r.gap_lo = -inf, r.gap_hi = rho; break;
-    case Verdict::no_collision: r.gap_lo = -rho, r.gap_hi = inf; break;
-    default:
-      r.gap_lo = -k.below[o.level] * major - rho;
-      r.gap_hi = (cover ? k.cover_above[o.level] : k.above[o.level]) * major + rho;
+  if (o.verdict == Verdict::undecided) {
+    r.gap_lo = -k.below[o.level] * major - rho;
+    r.gap_hi = (cover ? k.cover_above[o.level] : k.above[o.level]) * major + rho;
+  } else {
+    const bool hit = o.verdict == Verdict::collision;
+    r.gap_lo = hit ? -inf : -rho;
+    r.gap_hi = hit ? rho : inf;
   }
   return r;
 }

@@ -10,7 +10,7 @@
 //   enclosing parallelogram. A circle that meets the inscribed polygon collides; one that
 //   meets no triangle does not; otherwise the one triangle it meets (there is never more
 //   than one) is bisected: a new vertex on the ellipse, two smaller triangles. Each
-//   iteration doubles the number of sides; after n iterations the polygon has 2^(n+2).
+//   level doubles the number of sides; at level n the polygon has 2^(n+2).
 //   For two ellipses, b is first stretched into a circle (parallel axes: the document's
 //   coordinate scaling; otherwise a rotation-stretch matrix, still division-free).
 //
@@ -18,7 +18,7 @@
 //   arc between neighbouring vertices is enclosed by a disk (center the chord's
 //   midpoint, radius^2 the larger of chord^2 / 4 and the squared distance to the
 //   triangle's outer corner) instead of a triangle; neighbouring disks overlap, so a
-//   query may follow more than one arc (depth first, at most 2^(n+1) - 1 arcs).
+//   query may follow more than one arc (depth first, at most 2^(n+1) - 1 bisections).
 //
 // Arithmetic. Only +, -, * and comparisons on T run per query: no division, no square
 // root, no trigonometry. The per-level coefficients (1 / (2 cos(pi / 2^(t+1))), ...) are
@@ -39,10 +39,12 @@
 // (the circle cover: sin h major + rho on the right), with `major` the major radius of the
 // ellipse (for two ellipses: of a, the one not stretched; incidence is affine-invariant, so
 // the stretch does not enter) and rho the rounding allowance
-//   rho = 16 (n + 2) eps_T (|center offset| + major + R),  R the circle's radius (for two
-//   ellipses, b's major radius),  n = level.
-// In exact arithmetic rho = 0 and collision / no_collision are always right. Both sides of
-// the undecided band are within niemitalo_error_bound(major, n) + rho of 0.
+//   rho = 16 (n + 2) eps_T (|dx| + |dy| + major + R),  (dx, dy) the offset between the
+//   centers, R the circle's radius (for two ellipses, b's major radius), n = level
+//   (measured: g never needed more than 0.3% of rho, in float; nothing in double).
+// In exact arithmetic rho = 0 and collision / no_collision are always right. For
+// polygonal_overlap both sides of the undecided band are within
+// niemitalo_error_bound(major, n) + rho of 0.
 //
 // Contract. Every result is collision, no_collision, undecided (max_level used up: never a
 // guess) or invalid_input (max_level outside [0, niemitalo_max_level]; band NaN). Circles
