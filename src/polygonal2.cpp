@@ -242,21 +242,12 @@ bool valid_level(int max_level) noexcept { return max_level >= 0 && max_level <=
 template <class T>
 PolygonalOverlap<T> with_band(const Outcome& o, T major, T size, bool cover) noexcept {
   constexpr T inf = std::numeric_limits<T>::infinity();
-  const auto& k = detail::niemitalo_coefficients<T>();
   const T rho = T(16 * (o.level + 2)) * std::numeric_limits<T>::epsilon() * size;
-  PolygonalOverlap<T> r;
-  r.verdict = o.verdict;
-  r.level = o.level;
-  r.iterations = o.iterations;
-  if (o.verdict == Verdict::undecided) {
-    r.gap_lo = -k.below[o.level] * major - rho;
-    r.gap_hi = (cover ? k.cover_above[o.level] : k.above[o.level]) * major + rho;
-  } else {
-    const bool hit = o.verdict == Verdict::collision;
-    r.gap_lo = hit ? -inf : -rho;
-    r.gap_hi = hit ? rho : inf;
-  }
-  return r;
+  if (o.verdict == Verdict::collision) return {o.verdict, o.level, o.iterations, -inf, rho};
+  if (o.verdict == Verdict::no_collision) return {o.verdict, o.level, o.iterations, -rho, inf};
+  const auto& k = detail::niemitalo_coefficients<T>();
+  return {o.verdict, o.level, o.iterations, -k.below[o.level] * major - rho,
+          (cover ? k.cover_above[o.level] : k.above[o.level]) * major + rho};
 }
 
 template <class T>
@@ -324,28 +315,22 @@ SegmentFrame<T> segment_frame(const Vec2<T>& a, const Vec2<T>& b, const Circle<T
 }
 
 template <class T>
-void require_finite(T v, const char* field) {
-  if (!std::isfinite(v)) {
-    std::ostringstream m;
-    m.precision(17);
-    m << "must be finite (got " << v << ")";
-    throw InputError(field, m.str());
-  }
+std::string show(T v) {
+  std::ostringstream s;
+  s.precision(17);
+  s << v;
+  return s.str();
 }
 
 }  // namespace
 
 template <class T>
 Circle<T> make_circle(const Vec2<T>& center, T radius) {
-  require_finite(center.x(), "center[0]");
-  require_finite(center.y(), "center[1]");
-  require_finite(radius, "radius");
-  if (radius < T(0)) {
-    std::ostringstream m;
-    m.precision(17);
-    m << "must be >= 0 (got " << radius << ")";
-    throw InputError("radius", m.str());
-  }
+  for (int i = 0; i < 2; ++i)
+    if (!std::isfinite(center[i]))
+      throw InputError("center[" + std::to_string(i) + "]", "must be finite (got " + show(center[i]) + ")");
+  if (!std::isfinite(radius) || radius < T(0))
+    throw InputError("radius", "must be finite and >= 0 (got " + show(radius) + ")");
   return Circle<T>(center, radius);
 }
 
