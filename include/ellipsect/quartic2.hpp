@@ -37,7 +37,9 @@
 // for every outside point, in double and float; its closed-form root alone (before the
 // polish) gives the point to 1e-12 of the major radius up to aspect ratio 10 and to about
 // 1e-16 aspect^3 beyond (near a needle's flat side the quartic is ill-conditioned).
-// closest_point_closed_form: see the failure table in docs/niemitalo.md.
+// closest_point_closed_form: see the failure table in docs/niemitalo.md. Both report a
+// point whose distance rounds to 0 in T (on the ellipse, to rounding) as `inside`, never
+// as `outside` at distance 0 (tests/regression/niemitalo_test.cpp).
 #pragma once
 
 #include <ellipsect/shapes.hpp>
