@@ -1,7 +1,7 @@
 // ns per query of Niemitalo's 2D methods next to the exact overlap, on the same pairs: the
 // seeded scenario mix (scenarios/scenarios.hpp, 256 pairs per category, 2560 in all), with
 // b replaced by the circle at its center with the geometric mean of its radii for the
-// ellipse-circle queries. /n is max_iterations. Timing and the per-query median: see
+// ellipse-circle queries. /n is max_level. Timing and the per-query median: see
 // bench/bench_support.hpp.
 #include <ellipsect/classify.hpp>
 #include <ellipsect/polygonal2.hpp>
@@ -23,9 +23,8 @@ constexpr int cases_per_category = 256;
 template <class T>
 struct Pair {
   Ellipse2<T> a, b;   // the scenario pair
-  Ellipse2<T> ball;   // the circle standing in for b
-  Vec2<T> center;
-  T radius;
+  Circle<T> circle;   // the circle standing in for b
+  Ellipse2<T> ball;   // the same disk as an Ellipse2, for the exact overlap
 };
 
 template <class T>
@@ -40,9 +39,8 @@ const std::vector<Pair<T>>& pairs() {
     for (const auto c : scenarios::all_categories)
       for (int i = 0; i < cases_per_category; ++i) {
         const auto s = scenarios::make_case<2>(c, 900000 + i);
-        const T r = T(std::sqrt(s.b.radii().prod()));
-        const Vec2<T> center = s.b.center().cast<T>();
-        v.push_back({as<T>(s.a), as<T>(s.b), make_ball<T, 2>(center, r), center, r});
+        const auto circle = make_circle<T>(s.b.center().cast<T>(), T(std::sqrt(s.b.radii().prod())));
+        v.push_back({as<T>(s.a), as<T>(s.b), circle, circle.ellipse()});
       }
     return v;
   }();
@@ -57,13 +55,13 @@ void cycle(benchmark::State& state, Query query) {
 template <class T>
 void BM_polygonal_circle(benchmark::State& state) {
   const int n = static_cast<int>(state.range(0));
-  cycle<T>(state, [n](const Pair<T>& p) { return polygonal_overlap(p.a, p.center, p.radius, n).verdict; });
+  cycle<T>(state, [n](const Pair<T>& p) { return polygonal_overlap(p.a, p.circle, n).verdict; });
 }
 
 template <class T>
 void BM_circle_cover(benchmark::State& state) {
   const int n = static_cast<int>(state.range(0));
-  cycle<T>(state, [n](const Pair<T>& p) { return circle_cover_overlap(p.a, p.center, p.radius, n).verdict; });
+  cycle<T>(state, [n](const Pair<T>& p) { return circle_cover_overlap(p.a, p.circle, n).verdict; });
 }
 
 template <class T>
@@ -77,16 +75,16 @@ void BM_polygonal_ellipses(benchmark::State& state) {
 template <class T>
 void BM_closed_form_circle(benchmark::State& state) {
   cycle<T>(state, [](const Pair<T>& p) {
-    const auto q = closest_point_closed_form(p.a, p.center);
-    return q.status == QuarticStatus::inside || q.distance <= p.radius;
+    const auto q = closest_point_closed_form(p.a, p.circle.center());
+    return q.status == QuarticStatus::inside || q.distance <= p.circle.radius();
   });
 }
 
 template <class T>
 void BM_quartic_circle(benchmark::State& state) {
   cycle<T>(state, [](const Pair<T>& p) {
-    const auto q = closest_point_quartic(p.a, p.center);
-    return q.status == QuarticStatus::inside || q.distance <= p.radius;
+    const auto q = closest_point_quartic(p.a, p.circle.center());
+    return q.status == QuarticStatus::inside || q.distance <= p.circle.radius();
   });
 }
 

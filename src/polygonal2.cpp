@@ -1,6 +1,6 @@
 // Niemitalo's polygon bisection (docs/niemitalo.md). Differences from the document's code:
 //
-// * Out of iterations is `undecided`, never `false`.
+// * Out of levels is `undecided`, with the certified band of the signed gap, never `false`.
 // * The choice between the two sub-triangles tests each one exactly (center inside, or an
 //   outer edge within reach). The document's shortcuts (a center on the inner side of a
 //   new chord counts as a collision; a sub-triangle is chosen by projections onto the
@@ -24,6 +24,8 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <sstream>
+#include <string>
 #include <type_traits>
 
 namespace ellipsect {
@@ -76,6 +78,13 @@ struct Disk {
   T rr;
 };
 
+// What a test found, before the band is attached.
+struct Outcome {
+  Verdict verdict;
+  int level;       // deepest level examined
+  int iterations;  // bisections performed
+};
+
 // The document's segment test. Moving a to the origin and multiplying by conj(b - a)
 // puts the segment on [0, |b - a|^2] of the x axis and the center at (proj, cross); the
 // radius becomes r |b - a|. `side` > 0: the center is left of a -> b.
@@ -114,12 +123,12 @@ bool meets_outer(const Disk<T>& d, Pt<T> a, Pt<T> corner, Pt<T> c) noexcept {
 // missing its chord. The disk meets at most one of the two sub-triangles: the inscribed
 // polygon plus the two is convex, so a disk meeting both would cross a chord or contain c1.
 template <class T>
-PolygonalOverlap bisect(const Disk<T>& d, Pt<T> c0, Pt<T> c2, int max_iterations) noexcept {
+Outcome bisect(const Disk<T>& d, Pt<T> c0, Pt<T> c2, int max_level) noexcept {
   const auto& k = detail::niemitalo_coefficients<T>();
-  for (int t = 1; t <= max_iterations; ++t) {
+  for (int t = 1; t <= max_level; ++t) {
     const Pt<T> c1 = k.inner[t] * (c0 + c2);
     if (meets_segment(d, c0, c1) || meets_segment(d, c1, c2) || inside(d.p, c0, c1, c2))
-      return {Verdict::collision, t};
+      return {Verdict::collision, t, t};
     const Pt<T> c3 = k.outer[t] * (c0 + c1);  // tangents at c0 and c1 meet here
     const Pt<T> c4 = (c1 - c3) + c1;          // tangents at c1 and c2 (c1 is the midpoint)
     if (meets_outer(d, c0, c3, c1))
@@ -127,9 +136,9 @@ PolygonalOverlap bisect(const Disk<T>& d, Pt<T> c0, Pt<T> c2, int max_iterations
     else if (meets_outer(d, c1, c4, c2))
       c0 = c1;
     else
-      return {Verdict::no_collision, t};
+      return {Verdict::no_collision, t, t};
   }
-  return {Verdict::undecided, max_iterations};
+  return {Verdict::undecided, max_level, max_level};
 }
 
 // Axis-aligned ellipse (w, h) with the center folded into the first quadrant (the ellipse
@@ -142,12 +151,12 @@ bool level_zero_collides(const Disk<T>& d, T w, T h) noexcept {
 }
 
 template <class T>
-PolygonalOverlap quadrant_test(const Disk<T>& d, T w, T h, int max_iterations) noexcept {
-  if (level_zero_collides(d, w, h)) return {Verdict::collision, 0};
+Outcome quadrant_test(const Disk<T>& d, T w, T h, int max_level) noexcept {
+  if (level_zero_collides(d, w, h)) return {Verdict::collision, 0, 0};
   // Missing the rhombus, the disk meets the enclosing triangle iff it meets the box.
   const T dx = std::max(d.p.x - w, T(0)), dy = std::max(d.p.y - h, T(0));
-  if (dx * dx + dy * dy > d.rr) return {Verdict::no_collision, 0};
-  return bisect(d, {w, 0}, {0, h}, max_iterations);
+  if (dx * dx + dy * dy > d.rr) return {Verdict::no_collision, 0, 0};
+  return bisect(d, {w, 0}, {0, h}, max_level);
 }
 
 // General position: conjugate semi-diameters u, v (counter-clockwise); level 0 is the
@@ -163,20 +172,21 @@ bool misses_slab(const Disk<T>& d, T cross_p, T det, Pt<T> along) noexcept {
 }
 
 template <class T>
-PolygonalOverlap general_test(const Disk<T>& d, Pt<T> u, Pt<T> v, int max_iterations) noexcept {
+Outcome general_test(const Disk<T>& d, Pt<T> u, Pt<T> v, int max_level) noexcept {
   const T det = cross(u, v);
-  if (misses_slab(d, cross(d.p, v), det, v) || misses_slab(d, cross(u, d.p), det, u)) return {Verdict::no_collision, 0};
+  if (misses_slab(d, cross(d.p, v), det, v) || misses_slab(d, cross(u, d.p), det, u))
+    return {Verdict::no_collision, 0, 0};
   const std::array<std::array<Pt<T>, 2>, 4> arcs{{{u, v}, {v, -u}, {-u, -v}, {-v, u}}};
   bool in = true;
   for (const auto& [c0, c2] : arcs) {
     T side;
-    if (meets_segment(d, c0, c2, side)) return {Verdict::collision, 0};
+    if (meets_segment(d, c0, c2, side)) return {Verdict::collision, 0, 0};
     in = in && side >= T(0);
   }
-  if (in) return {Verdict::collision, 0};
+  if (in) return {Verdict::collision, 0, 0};
   for (const auto& [c0, c2] : arcs)  // at most one is met: the argument of bisect
-    if (meets_outer(d, c0, c0 + c2, c2)) return bisect(d, c0, c2, max_iterations);
-  return {Verdict::no_collision, 0};
+    if (meets_outer(d, c0, c0 + c2, c2)) return bisect(d, c0, c2, max_level);
+  return {Verdict::no_collision, 0, 0};
 }
 
 // The disk around the arc (c0, c2) of level t: center the chord's midpoint m, radius^2 the
@@ -194,8 +204,8 @@ bool meets_cover(const Disk<T>& d, Pt<T> c0, Pt<T> c2, int t) noexcept {
 }
 
 template <class T>
-PolygonalOverlap cover_test(const Disk<T>& d, T w, T h, int max_iterations) noexcept {
-  if (level_zero_collides(d, w, h)) return {Verdict::collision, 0};
+Outcome cover_test(const Disk<T>& d, T w, T h, int max_level) noexcept {
+  if (level_zero_collides(d, w, h)) return {Verdict::collision, 0, 0};
   struct Node {
     Pt<T> c0, c2;
     int level;  // the arc joins neighbours of level - 1
@@ -206,28 +216,43 @@ PolygonalOverlap cover_test(const Disk<T>& d, T w, T h, int max_iterations) noex
   int size = 0;
   if (meets_cover(d, {w, 0}, {0, h}, 0)) stack[size++] = {{w, 0}, {0, h}, 1};
   const auto& k = detail::niemitalo_coefficients<T>();
-  int deepest = 0;
+  int deepest = 0, bisections = 0;
   bool undecided = false;
   while (size > 0) {
     const Node n = stack[--size];
-    if (n.level > max_iterations) {
+    if (n.level > max_level) {
       undecided = true;
       continue;
     }
     deepest = std::max(deepest, n.level);
+    ++bisections;
     const Pt<T> c1 = k.inner[n.level] * (n.c0 + n.c2);
     if (meets_segment(d, n.c0, c1) || meets_segment(d, c1, n.c2) || inside(d.p, n.c0, c1, n.c2))
-      return {Verdict::collision, n.level};
+      return {Verdict::collision, deepest, bisections};
     if (meets_cover(d, c1, n.c2, n.level)) stack[size++] = {c1, n.c2, n.level + 1};
     if (meets_cover(d, n.c0, c1, n.level)) stack[size++] = {n.c0, c1, n.level + 1};
   }
-  return undecided ? PolygonalOverlap{Verdict::undecided, max_iterations} : PolygonalOverlap{Verdict::no_collision, deepest};
+  return {undecided ? Verdict::undecided : Verdict::no_collision, deepest, bisections};
+}
+
+bool valid_level(int max_level) noexcept { return max_level >= 0 && max_level <= niemitalo_max_level; }
+
+// The result in world units: `major` is the major radius of the ellipse whose polygons were
+// built, `size` = |offset_x| + |offset_y| + major + R (see polygonal2.hpp, "The band").
+template <class T>
+PolygonalOverlap<T> with_band(const Outcome& o, T major, T size, bool cover) noexcept {
+  constexpr T inf = std::numeric_limits<T>::infinity();
+  const T rho = T(16 * (o.level + 2)) * std::numeric_limits<T>::epsilon() * size;
+  if (o.verdict == Verdict::collision) return {o.verdict, o.level, o.iterations, -inf, rho};
+  if (o.verdict == Verdict::no_collision) return {o.verdict, o.level, o.iterations, -rho, inf};
+  const auto& k = detail::niemitalo_coefficients<T>();
+  return {o.verdict, o.level, o.iterations, -k.below[o.level] * major - rho,
+          (cover ? k.cover_above[o.level] : k.above[o.level]) * major + rho};
 }
 
 template <class T>
-bool valid_circle(const Vec2<T>& center, T radius, int max_iterations) noexcept {
-  return center.allFinite() && std::isfinite(radius) && radius >= T(0) && max_iterations >= 0 &&
-         max_iterations <= niemitalo_max_iterations;
+T band_size(const Vec2<T>& offset, T major, T other) noexcept {
+  return std::abs(offset.x()) + std::abs(offset.y()) + major + other;
 }
 
 // 2^-e for the binary exponent e of `size` (finite, > 0): multiplying by it is exact and
@@ -250,10 +275,10 @@ T unit_scale(T size) noexcept {
 
 // The disk's center in the ellipse's axes, folded into the first quadrant; all scaled by s.
 template <class T>
-Disk<T> folded_disk(const Ellipse2<T>& e, const Vec2<T>& center, T radius, T s) noexcept {
+Disk<T> folded_disk(const Ellipse2<T>& e, const Circle<T>& c, T s) noexcept {
   const Mat2<T>& q = e.axes();
-  const T dx = s * (center.x() - e.center().x()), dy = s * (center.y() - e.center().y());
-  const T r = s * radius;
+  const T dx = s * (c.center().x() - e.center().x()), dy = s * (c.center().y() - e.center().y());
+  const T r = s * c.radius();
   return {{std::abs(q(0, 0) * dx + q(1, 0) * dy), std::abs(q(0, 1) * dx + q(1, 1) * dy)}, r * r};
 }
 
@@ -262,30 +287,82 @@ bool same_direction(const Vec2<T>& u, const Vec2<T>& v) noexcept {
   return u == v || u == Vec2<T>(-v);
 }
 
+// The segment [a, b] and the circle with a at the origin, scaled by an exact power of two
+// that brings the largest of |b - a|, |center - a| (componentwise) and the radius into
+// [1, 2): fourth powers then neither overflow nor underflow (below rounding). The
+// differences are taken in the given units, so their rounding is relative to themselves;
+// where one overflows (coordinates beyond 2^1022) all inputs are halved first, which is
+// exact but for parts far below that rounding.
+template <class T>
+struct SegmentFrame {
+  Disk<T> d;
+  Pt<T> end;
+};
+
+template <class T>
+SegmentFrame<T> segment_frame(const Vec2<T>& a, const Vec2<T>& b, const Circle<T>& c) noexcept {
+  T half = T(1);
+  Vec2<T> e = b - a, q = c.center() - a;
+  if (!e.allFinite() || !q.allFinite()) {
+    half = T(0.5);
+    e = half * b - half * a;
+    q = half * c.center() - half * a;
+  }
+  const T r = half * c.radius();
+  const T s = unit_scale(std::max({e.cwiseAbs().maxCoeff(), q.cwiseAbs().maxCoeff(), r}));
+  const T sr = s * r;
+  return {{{s * q.x(), s * q.y()}, sr * sr}, {s * e.x(), s * e.y()}};
+}
+
+template <class T>
+std::string show(T v) {
+  std::ostringstream s;
+  s.precision(17);
+  s << v;
+  return s.str();
+}
+
 }  // namespace
 
 template <class T>
-SegmentCircle segment_circle(const Vec2<T>& a, const Vec2<T>& b, const Vec2<T>& center, T radius) noexcept {
-  if (!a.allFinite() || !b.allFinite() || !center.allFinite() || !std::isfinite(radius) || radius < T(0))
-    return {Verdict::invalid_input, Side::on_line};
+Circle<T> make_circle(const VecArg<T, 2>& center, T radius) {
+  for (int i = 0; i < 2; ++i)
+    if (!std::isfinite(center[i]))
+      throw InputError("center[" + std::to_string(i) + "]", "must be finite (got " + show(center[i]) + ")");
+  if (!std::isfinite(radius) || radius < T(0))
+    throw InputError("radius", "must be finite and >= 0 (got " + show(radius) + ")");
+  return Circle<T>(center, radius);
+}
+
+template <class T>
+Ellipse2<T> Circle<T>::ellipse() const {
+  if (!(radius_ > T(0))) throw InputError("radius", "must be > 0 for an Ellipse2 (got 0: a point)");
+  return make_ball<T, 2>(center_, radius_);
+}
+
+template <class T>
+SegmentCircle segment_circle(const VecArg<T, 2>& a, const VecArg<T, 2>& b, const Circle<T>& circle) noexcept {
+  if (!a.allFinite() || !b.allFinite()) return {Verdict::invalid_input, Side::on_line};
+  const SegmentFrame<T> f = segment_frame(a, b, circle);
   T side;
-  const bool hit = meets_segment(Disk<T>{{center.x(), center.y()}, radius * radius}, {a.x(), a.y()}, {b.x(), b.y()}, side);
+  const bool hit = meets_segment(f.d, {T(0), T(0)}, f.end, side);
   return {hit ? Verdict::collision : Verdict::no_collision,
           side > T(0) ? Side::left : side < T(0) ? Side::right : Side::on_line};
 }
 
 template <class T>
-PolygonalOverlap polygonal_overlap(const Ellipse2<T>& ellipse, const VecArg<T, 2>& center, T radius,
-                                   int max_iterations) noexcept {
-  if (!valid_circle(center, radius, max_iterations)) return {Verdict::invalid_input, 0};
-  const T s = unit_scale(ellipse.radii().maxCoeff());
-  return quadrant_test(folded_disk(ellipse, center, radius, s), s * ellipse.radii()[0], s * ellipse.radii()[1],
-                       max_iterations);
+PolygonalOverlap<T> polygonal_overlap(const Ellipse2<T>& ellipse, const Circle<T>& circle, int max_level) noexcept {
+  if (!valid_level(max_level)) return {};
+  const T major = ellipse.radii().maxCoeff();
+  const T s = unit_scale(major);
+  const Outcome o = quadrant_test(folded_disk(ellipse, circle, s), s * ellipse.radii()[0], s * ellipse.radii()[1],
+                                  max_level);
+  return with_band(o, major, band_size<T>(circle.center() - ellipse.center(), major, circle.radius()), false);
 }
 
 template <class T>
-PolygonalOverlap polygonal_overlap(const Ellipse2<T>& a, const Ellipse2<T>& b, int max_iterations) noexcept {
-  if (max_iterations < 0 || max_iterations > niemitalo_max_iterations) return {Verdict::invalid_input, 0};
+PolygonalOverlap<T> polygonal_overlap(const Ellipse2<T>& a, const Ellipse2<T>& b, int max_level) noexcept {
+  if (!valid_level(max_level)) return {};
   const T s = unit_scale(b.radii().maxCoeff());
   const Mat2<T>& qa = a.axes();
   const Mat2<T>& qb = b.axes();
@@ -293,47 +370,61 @@ PolygonalOverlap polygonal_overlap(const Ellipse2<T>& a, const Ellipse2<T>& b, i
   const Vec2<T> offset = s * (b.center() - a.center());
   const bool same = same_direction<T>(qa.col(0), qb.col(0)) && same_direction<T>(qa.col(1), qb.col(1));
   const bool swapped = same_direction<T>(qa.col(0), qb.col(1)) && same_direction<T>(qa.col(1), qb.col(0));
+  Outcome o;
   if (same || swapped) {
     // Parallel axes (the document's route): in a's axes, multiply x by b's extent along y
     // and y by b's extent along x; b becomes the circle of radius w_b h_b.
     const T wb = same ? rb[0] : rb[1], hb = same ? rb[1] : rb[0];
     const Vec2<T> local = (qa.transpose() * offset).cwiseAbs();
     const T r = wb * hb;
-    return quadrant_test(Disk<T>{{local.x() * hb, local.y() * wb}, r * r}, ra[0] * hb, ra[1] * wb, max_iterations);
+    o = quadrant_test(Disk<T>{{local.x() * hb, local.y() * wb}, r * r}, ra[0] * hb, ra[1] * wb, max_level);
+  } else {
+    // Rotation-stretch: A = diag(h_b, w_b) Q_b^T makes b the circle of radius w_b h_b; a's
+    // semi-axes become two conjugate semi-diameters u, v (ordered counter-clockwise).
+    const Vec2<T> stretch(rb[1], rb[0]);
+    const Mat2<T> to_b = qb.transpose();
+    const Vec2<T> p = stretch.cwiseProduct(to_b * offset);
+    const Vec2<T> u = stretch.cwiseProduct(to_b * (ra[0] * qa.col(0)));
+    const Vec2<T> v = stretch.cwiseProduct(to_b * (ra[1] * qa.col(1)));
+    const Pt<T> pu{u.x(), u.y()}, pv{v.x(), v.y()};
+    const T r = rb[0] * rb[1];
+    const Disk<T> d{{p.x(), p.y()}, r * r};
+    o = cross(pu, pv) >= T(0) ? general_test(d, pu, pv, max_level) : general_test(d, pv, pu, max_level);
   }
-  // Rotation-stretch: A = diag(h_b, w_b) Q_b^T makes b the circle of radius w_b h_b; a's
-  // semi-axes become two conjugate semi-diameters u, v (ordered counter-clockwise).
-  const Vec2<T> stretch(rb[1], rb[0]);
-  const Mat2<T> to_b = qb.transpose();
-  const Vec2<T> p = stretch.cwiseProduct(to_b * offset);
-  const Vec2<T> u = stretch.cwiseProduct(to_b * (ra[0] * qa.col(0)));
-  const Vec2<T> v = stretch.cwiseProduct(to_b * (ra[1] * qa.col(1)));
-  const Pt<T> pu{u.x(), u.y()}, pv{v.x(), v.y()};
-  const T r = rb[0] * rb[1];
-  const Disk<T> d{{p.x(), p.y()}, r * r};
-  return cross(pu, pv) >= T(0) ? general_test(d, pu, pv, max_iterations) : general_test(d, pv, pu, max_iterations);
+  // The band is a's (the polygons are a's, mapped by an invertible linear map).
+  const T major = a.radii().maxCoeff();
+  return with_band(o, major, band_size<T>(b.center() - a.center(), major, b.radii().maxCoeff()), false);
 }
 
 template <class T>
-PolygonalOverlap circle_cover_overlap(const Ellipse2<T>& ellipse, const VecArg<T, 2>& center, T radius,
-                                      int max_iterations) noexcept {
-  if (!valid_circle(center, radius, max_iterations)) return {Verdict::invalid_input, 0};
-  const T s = unit_scale(ellipse.radii().maxCoeff());
-  return cover_test(folded_disk(ellipse, center, radius, s), s * ellipse.radii()[0], s * ellipse.radii()[1],
-                    max_iterations);
+PolygonalOverlap<T> circle_cover_overlap(const Ellipse2<T>& ellipse, const Circle<T>& circle, int max_level) noexcept {
+  if (!valid_level(max_level)) return {};
+  const T major = ellipse.radii().maxCoeff();
+  const T s = unit_scale(major);
+  const Outcome o = cover_test(folded_disk(ellipse, circle, s), s * ellipse.radii()[0], s * ellipse.radii()[1],
+                               max_level);
+  return with_band(o, major, band_size<T>(circle.center() - ellipse.center(), major, circle.radius()), true);
 }
 
 template <class T>
-T niemitalo_error_bound(T major_radius, int iterations) noexcept {
-  return T(std::exp2(0.303 - 2.0 * iterations)) * major_radius;
+T niemitalo_error_bound(T major_radius, int level) noexcept {
+  return T(std::exp2(0.303 - 2.0 * level)) * major_radius;
 }
 
-#define ELLIPSECT_INSTANTIATE(T)                                                                                   \
-  template SegmentCircle segment_circle<T>(const Vec2<T>&, const Vec2<T>&, const Vec2<T>&, T) noexcept;           \
-  template PolygonalOverlap polygonal_overlap<T>(const Ellipse2<T>&, const Vec2<T>&, T, int) noexcept;            \
-  template PolygonalOverlap polygonal_overlap<T>(const Ellipse2<T>&, const Ellipse2<T>&, int) noexcept;           \
-  template PolygonalOverlap circle_cover_overlap<T>(const Ellipse2<T>&, const Vec2<T>&, T, int) noexcept;         \
-  template T niemitalo_error_bound<T>(T, int) noexcept;
+template <class T>
+T niemitalo_error_bound(const Ellipse2<T>& ellipse, int level) noexcept {
+  return niemitalo_error_bound(ellipse.radii().maxCoeff(), level);
+}
+
+#define ELLIPSECT_INSTANTIATE(T)                                                                                     \
+  template class Circle<T>;                                                                                         \
+  template Circle<T> make_circle<T>(const VecArg<T, 2>&, T);                                                            \
+  template SegmentCircle segment_circle<T>(const VecArg<T, 2>&, const VecArg<T, 2>&, const Circle<T>&) noexcept;            \
+  template PolygonalOverlap<T> polygonal_overlap<T>(const Ellipse2<T>&, const Circle<T>&, int) noexcept;            \
+  template PolygonalOverlap<T> polygonal_overlap<T>(const Ellipse2<T>&, const Ellipse2<T>&, int) noexcept;          \
+  template PolygonalOverlap<T> circle_cover_overlap<T>(const Ellipse2<T>&, const Circle<T>&, int) noexcept;         \
+  template T niemitalo_error_bound<T>(T, int) noexcept;                                                             \
+  template T niemitalo_error_bound<T>(const Ellipse2<T>&, int) noexcept;
 ELLIPSECT_INSTANTIATE(float)
 ELLIPSECT_INSTANTIATE(double)
 #undef ELLIPSECT_INSTANTIATE

@@ -44,20 +44,23 @@ Frame<R> frame(const Ellipse2<T>& e, const Vec2<T>& x) noexcept {
   return f;
 }
 
-// The world point for (major, minor) coordinates in the first quadrant.
+template <class T>
+QuarticPoint<T> no_point(QuarticStatus s) noexcept {
+  constexpr T nan = std::numeric_limits<T>::quiet_NaN();
+  return {s, Vec2<T>(nan, nan), nan};
+}
+
+// The world point for (major, minor) coordinates in the first quadrant. A distance that is
+// 0 in T (a point on the boundary, which the inside test missed by rounding) is `inside`:
+// `outside` promises a positive distance.
 template <class R, class T>
 QuarticPoint<T> outside(const Ellipse2<T>& e, const Frame<R>& f, R along_major, R along_minor, R distance) noexcept {
+  if (!(T(distance) > T(0))) return no_point<T>(QuarticStatus::inside);
   Vec2<R> local;
   local[f.major] = std::copysign(along_major, f.local[f.major]);
   local[1 - f.major] = std::copysign(along_minor, f.local[1 - f.major]);
   const Vec2<R> world = e.center().template cast<R>() + e.axes().template cast<R>() * local;
   return {QuarticStatus::outside, world.template cast<T>(), T(distance)};
-}
-
-template <class T>
-QuarticPoint<T> no_point(QuarticStatus s) noexcept {
-  constexpr T nan = std::numeric_limits<T>::quiet_NaN();
-  return {s, Vec2<T>(nan, nan), nan};
 }
 
 }  // namespace

@@ -10,7 +10,7 @@
 //   enclosing parallelogram. A circle that meets the inscribed polygon collides; one that
 //   meets no triangle does not; otherwise the one triangle it meets (there is never more
 //   than one) is bisected: a new vertex on the ellipse, two smaller triangles. Each
-//   iteration doubles the number of sides; after n iterations the polygon has 2^(n+2).
+//   level doubles the number of sides; at level n the polygon has 2^(n+2).
 //   For two ellipses, b is first stretched into a circle (parallel axes: the document's
 //   coordinate scaling; otherwise a rotation-stretch matrix, still division-free).
 //
@@ -18,39 +18,64 @@
 //   arc between neighbouring vertices is enclosed by a disk (center the chord's
 //   midpoint, radius^2 the larger of chord^2 / 4 and the squared distance to the
 //   triangle's outer corner) instead of a triangle; neighbouring disks overlap, so a
-//   query may follow more than one arc (depth first, at most 2^(n+1) - 1 arcs).
+//   query may follow more than one arc (depth first, at most 2^(n+1) - 1 bisections).
 //
 // Arithmetic. Only +, -, * and comparisons on T run per query: no division, no square
 // root, no trigonometry. The per-level coefficients (1 / (2 cos(pi / 2^(t+1))), ...) are
 // tabulated once; inputs are scaled by an exact power of two (an exponent shift) so that
-// squared quantities stay in range; float runs in float.
+// squared and fourth-power quantities stay in range; float runs in float.
 //
-// Contract. Every result is collision, no_collision, undecided (max_iterations used up:
-// never a guess) or invalid_input (a non-finite circle, a negative radius, or
-// max_iterations outside [0, niemitalo_max_iterations]). In exact arithmetic collision and
-// no_collision are always right, and undecided happens only when the bodies' signed gap g
-// (distance apart, or minus the penetration depth) in the frame where the test runs (for
-// two ellipses: after stretching b into a circle) is within the polygon's error:
-//   |g| <= niemitalo_error_bound(s_max, n),  s_max the ellipse's major radius there.
-// With R the circle's radius and s_min the ellipse's minor radius in that frame, the
-// pair's Perram-Wertheim factor mu (scale both bodies by mu about their centers and they
-// touch) then satisfies |mu - 1| <= |g| / (R + s_min); in world terms
-//   ellipse-circle:   |mu - 1| <= bound(1, n) * major / (radius + minor),
-//   two ellipses:     |mu - 1| <= bound(1, n) * r_a,max r_b,max / (r_b0 r_b1 + r_a,min r_b,min).
-// The circle cover's band is wider on the outside: -bound <= g <= s_max sin(pi / 2^(n+2)).
+// Levels and iterations (one meaning everywhere). Level t of the sandwich has 2^(t+2)
+// sides; `max_level` caps the level. `level` in a result is the deepest level examined
+// (undecided => level == max_level); `iterations` is the number of bisections performed
+// (new vertices computed): equal to `level` for polygonal_overlap, which follows one
+// triangle, and up to 2^(max_level+1) - 1 for circle_cover_overlap, which may follow several.
+//
+// The band. Every result carries [gap_lo, gap_hi], a certified range of the signed gap g
+// between the closed bodies in world units (distance apart, or minus the penetration
+// depth: the signed distance of distance.hpp): collision [-inf, rho], no_collision
+// [-rho, +inf], undecided the polygon's band at level n = max_level,
+//   -(1 - cos h) major - rho  <=  g  <=  (1 / cos h - 1) major + rho,      h = pi / 2^(n+2)
+// (the circle cover: sin h major + rho on the right), with `major` the major radius of the
+// ellipse (for two ellipses: of a, the one not stretched; incidence is affine-invariant, so
+// the stretch does not enter) and rho the rounding allowance
+//   rho = 16 (n + 2) eps_T (|dx| + |dy| + major + R),  (dx, dy) the offset between the
+//   centers, R the circle's radius (for two ellipses, b's major radius), n = level
+//   (measured: g never needed more than 0.3% of rho, in float; nothing in double).
+// In exact arithmetic rho = 0 and collision / no_collision are always right. For
+// polygonal_overlap both sides of the undecided band are within
+// niemitalo_error_bound(major, n) + rho of 0.
+//
+// Contract. Every result is collision, no_collision, undecided (max_level used up: never a
+// guess) or invalid_input (max_level outside [0, niemitalo_max_level]; band NaN). Circles
+// are validated once, by make_circle.
 //
 // Accuracy (tested against the 50-digit reference, tests/property/niemitalo_property_test.cpp,
 // on the scenario categories with aspect ratios to 1e4, near tangency, containment and
-// scenes scaled by 1e-6 and 1e6, n = 0 .. 20): every undecided answer lies inside the band
-// above, and a decided answer is wrong only within rounding of tangency,
-// |mu - 1| <= 16 (n + 2) eps_T * (size of the test's frame) / (R + s_min). Measured: no
-// wrong answer in double; in float up to |mu - 1| = 1.1e-5 (aspect ratio 1e4) and 2.9e-6
-// (near tangent), where float rounding rather than the polygon limits the answer (n >= 8).
-// Scaling a scene by a power of two gives the same verdict and iteration count, bit for bit.
+// scenes scaled by 1e-6 and 1e6, n = 0 .. 20, double and float): the reference's signed
+// distance lies in [gap_lo, gap_hi] for every answer. A decided answer is therefore wrong
+// only within rho of tangency. Measured: no wrong answer in double; in float wrong answers
+// only for gaps below float resolution (near tangent, aspect ratio 1e4), where float
+// rounding rather than the polygon limits the answer (n >= 8). In terms of the pair's
+// Perram-Wertheim factor mu, an undecided answer means
+//   ellipse-circle:   |mu - 1| <= bound(1, n) * major / (radius + minor),
+//   two ellipses:     |mu - 1| <= bound(1, n) * r_a,max r_b,max / (r_b0 r_b1 + r_a,min r_b,min).
+// Scaling a scene by a power of two gives the same verdict, level and iteration count, bit
+// for bit, and the band scaled by it.
+//
+// segment_circle: the verdict is exact (that of the closed sets given) when every sum and
+// product of the test is exact in T, e.g. for integer multiples of one power of two 2^m
+// with |coordinates|, radius <= 2^(m+11) in double, 2^(m+4) in float. Otherwise it is
+// exact except within
+//   |dist(center, segment) - radius| <= 8 eps_T (|b - a| + |center - a| + radius),
+// and `side` is exact except for a center within 2 eps_T |center - a| of the line. Any
+// finite inputs are valid (no overflow or underflow: the test runs on inputs rescaled by
+// an exact power of two).
 #pragma once
 
 #include <ellipsect/shapes.hpp>
 
+#include <limits>
 #include <string_view>
 
 namespace ellipsect {
@@ -58,15 +83,49 @@ namespace ellipsect {
 enum class Verdict {
   collision,     // the closed bodies share a point
   no_collision,  // they do not
-  undecided,     // max_iterations reached with the circle still inside the polygon's band
+  undecided,     // max_level reached with the circle still inside the polygon's band
   invalid_input, // see each function
 };
 
 std::string_view to_string(Verdict v) noexcept;
 
-// Largest accepted max_iterations (beyond about 26 the double coefficients are exactly
-// 1/2 and the polygon stops improving).
-inline constexpr int niemitalo_max_iterations = 30;
+// Largest accepted max_level (beyond about 26 the double coefficients are exactly 1/2 and
+// the polygon stops improving).
+inline constexpr int niemitalo_max_level = 30;
+
+template <class T>
+class Circle;
+
+// The closed disk |x - center| <= radius; radius 0 is a point. Throws InputError naming
+// "center[i]" (not finite) or "radius" (not finite, or negative).
+template <class T>
+Circle<T> make_circle(const VecArg<T, 2>& center, T radius);
+
+// The circle of every Niemitalo test (segment_circle, polygonal_overlap,
+// circle_cover_overlap): a validated value, like Ellipse2.
+template <class T>
+class Circle {
+public:
+  using Scalar = T;
+
+  const Vec2<T>& center() const noexcept { return center_; }
+  T radius() const noexcept { return radius_; }
+
+  // The same disk as an Ellipse2 (make_ball), for the exact queries (classify, overlap,
+  // distance, contact, ...). Throws InputError("radius") for radius 0: an Ellipse2 has
+  // positive radii.
+  Ellipse2<T> ellipse() const;
+
+private:
+  Circle(const Vec2<T>& center, T radius) noexcept : center_(center), radius_(radius) {}
+  friend Circle make_circle<T>(const VecArg<T, 2>&, T);
+
+  Vec2<T> center_;
+  T radius_;
+};
+
+static_assert(detail::has_plain_layout<Circle<float>, float[2], float> &&
+              detail::has_plain_layout<Circle<double>, double[2], double>);
 
 // Side of the directed line from a to b on which a point lies (left: counter-clockwise).
 enum class Side { left, on_line, right };
@@ -78,37 +137,48 @@ struct SegmentCircle {
   Side side;        // side of the line a -> b on which the circle's center lies
 };
 
-// Closed segment [a, b] against the closed disk |x - center| <= radius; a == b is a point.
-// invalid_input (side on_line) when an input is not finite or radius < 0.
+// Closed segment [a, b] against the closed disk; a == b is a point. invalid_input (side
+// on_line) when a or b is not finite. Exactness: see the top of this file.
 template <class T>
-SegmentCircle segment_circle(const Vec2<T>& a, const Vec2<T>& b, const Vec2<T>& center, T radius) noexcept;
+SegmentCircle segment_circle(const VecArg<T, 2>& a, const VecArg<T, 2>& b, const Circle<T>& circle) noexcept;
 
+template <class T>
 struct PolygonalOverlap {
-  Verdict verdict;
-  // Bisections performed: 0 when the level-0 polygons decided; max_iterations when
-  // undecided; for circle_cover_overlap the deepest level visited.
-  int iterations;
+  Verdict verdict = Verdict::invalid_input;
+  int level = 0;       // deepest level examined (0: the level-0 polygons decided); max_level when undecided
+  int iterations = 0;  // bisections performed (== level for polygonal_overlap)
+  T gap_lo = std::numeric_limits<T>::quiet_NaN();  // the signed gap g, world units: gap_lo <= g <= gap_hi
+  T gap_hi = std::numeric_limits<T>::quiet_NaN();  // (+-inf on the open side of a decided answer)
 };
 
-// Ellipse against the disk |x - center| <= radius (radius >= 0).
+static_assert(detail::has_plain_layout<PolygonalOverlap<float>, Verdict, int, int, float, float> &&
+              detail::has_plain_layout<PolygonalOverlap<double>, Verdict, int, int, double, double>);
+
+// Ellipse against a circle.
 template <class T>
-PolygonalOverlap polygonal_overlap(const Ellipse2<T>& ellipse, const VecArg<T, 2>& center, T radius,
-                                   int max_iterations = 10) noexcept;
+PolygonalOverlap<T> polygonal_overlap(const Ellipse2<T>& ellipse, const Circle<T>& circle, int max_level = 10) noexcept;
 
 // Two ellipses; b is stretched into a circle. Axes that are exactly parallel (equal
-// columns up to sign and order) take the document's cheaper scaling route.
+// columns up to sign and order) take the document's cheaper scaling route. The band's
+// `major` is a's.
 template <class T>
-PolygonalOverlap polygonal_overlap(const Ellipse2<T>& a, const Ellipse2<T>& b, int max_iterations = 10) noexcept;
+PolygonalOverlap<T> polygonal_overlap(const Ellipse2<T>& a, const Ellipse2<T>& b, int max_level = 10) noexcept;
 
-// The circle-cover variant, ellipse against a disk.
+// The circle-cover variant, ellipse against a circle.
 template <class T>
-PolygonalOverlap circle_cover_overlap(const Ellipse2<T>& ellipse, const VecArg<T, 2>& center, T radius,
-                                      int max_iterations = 10) noexcept;
+PolygonalOverlap<T> circle_cover_overlap(const Ellipse2<T>& ellipse, const Circle<T>& circle,
+                                         int max_level = 10) noexcept;
 
-// The document's bound: after n iterations every point of the inscribed and circumscribed
-// polygons lies within 2^(0.303 - 2n) * major_radius of the ellipse. (Tested; the exact
-// worst case is (1 / cos(pi / 2^(n+2)) - 1) * major_radius, about a quarter of it.)
+// The document's bound: after n levels every point of the inscribed and circumscribed
+// polygons lies within 2^(0.303 - 2n) * major_radius of the ellipse (the exact worst case,
+// (1 / cos(pi / 2^(n+2)) - 1) * major_radius, is about a quarter of it). Hence an
+// undecided answer's band lies within +-(bound + rho) (see the top of this file).
 template <class T>
-T niemitalo_error_bound(T major_radius, int iterations) noexcept;
+T niemitalo_error_bound(T major_radius, int level) noexcept;
+
+// The same for the ellipse of polygonal_overlap / circle_cover_overlap (for two ellipses:
+// a, the first argument), in world units.
+template <class T>
+T niemitalo_error_bound(const Ellipse2<T>& ellipse, int level) noexcept;
 
 }  // namespace ellipsect

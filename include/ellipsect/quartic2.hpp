@@ -37,7 +37,9 @@
 // for every outside point, in double and float; its closed-form root alone (before the
 // polish) gives the point to 1e-12 of the major radius up to aspect ratio 10 and to about
 // 1e-16 aspect^3 beyond (near a needle's flat side the quartic is ill-conditioned).
-// closest_point_closed_form: see the failure table in docs/niemitalo.md.
+// closest_point_closed_form: see the failure table in docs/niemitalo.md. Both report a
+// point whose distance rounds to 0 in T (on the ellipse, to rounding) as `inside`, never
+// as `outside` at distance 0 (tests/regression/niemitalo_test.cpp).
 #pragma once
 
 #include <ellipsect/shapes.hpp>
@@ -48,7 +50,8 @@ namespace ellipsect {
 
 enum class QuarticStatus {
   outside,        // the point is outside the ellipse; `point` and `distance` are set
-  inside,         // the point is inside or on the ellipse (a circle centered there collides)
+  inside,         // the point is inside or on the ellipse (a circle centered there collides);
+                  // a point within rounding of the boundary may be either, never outside at distance 0
   failed,         // the closed form produced a non-finite value (closest_point_closed_form only)
   invalid_input,  // the point is not finite
 };
@@ -59,7 +62,7 @@ template <class T>
 struct QuarticPoint {
   QuarticStatus status = QuarticStatus::invalid_input;
   Vec2<T> point;  // outside: the closest boundary point, world frame; NaN otherwise
-  T distance;     // outside: |x - point| > 0; NaN otherwise
+  T distance;     // outside: |x - point| > 0 (also after rounding to T); NaN otherwise
 };
 static_assert(detail::has_plain_layout<QuarticPoint<float>, QuarticStatus, float[2], float> &&
               detail::has_plain_layout<QuarticPoint<double>, QuarticStatus, double[2], double>);

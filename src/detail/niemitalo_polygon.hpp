@@ -13,6 +13,13 @@
 // Both are linear in the vertices, so they hold for any A (midpoints and tangents are
 // affine notions). The tables are computed once, in long double, and rounded to T; the
 // iteration itself then needs only multiplications and additions.
+//
+// The band of level n (h = pi / 2^(n+2), half the angle between neighbours): in the
+// circle's frame the inscribed polygon reaches in to cos h, the triangles out to 1 / cos h,
+// the circle cover's disks (center cos h, radius sin h) out to cos h + sin h <= 1 + sin h;
+// a linear map stretches these by at most the major radius:
+//   below(n) = 1 - cos h = 2 sin^2(h / 2),  above(n) = 1 / cos h - 1 = below(n) / cos h,
+//   cover_above(n) = sin h.
 #pragma once
 
 #include <array>
@@ -20,13 +27,16 @@
 
 namespace ellipsect::detail {
 
-// Largest level with a table entry; the public cap (niemitalo_max_iterations) equals it.
+// Largest level with a table entry; the public cap (niemitalo_max_level) equals it.
 inline constexpr int niemitalo_levels = 30;
 
 template <class T>
 struct NiemitaloCoefficients {
   std::array<T, niemitalo_levels + 1> inner{};  // inner[0] is unused (no level -1)
   std::array<T, niemitalo_levels + 1> outer{};
+  std::array<T, niemitalo_levels + 1> below{};        // the band at level n, per unit of major radius
+  std::array<T, niemitalo_levels + 1> above{};
+  std::array<T, niemitalo_levels + 1> cover_above{};
 };
 
 template <class T>
@@ -38,6 +48,10 @@ const NiemitaloCoefficients<T>& niemitalo_coefficients() noexcept {
       const long double half = pi / std::ldexp(1.0L, t + 2);  // half the angle between level-t neighbours
       k.outer[t] = static_cast<T>(0.5L / (std::cos(half) * std::cos(half)));
       if (t > 0) k.inner[t] = static_cast<T>(0.5L / std::cos(2 * half));
+      const long double s = std::sin(half / 2);
+      k.below[t] = static_cast<T>(2 * s * s);
+      k.above[t] = static_cast<T>(2 * s * s / std::cos(half));
+      k.cover_above[t] = static_cast<T>(std::sin(half));
     }
     return k;
   }();

@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <string>
 #include <vector>
 
 namespace {
@@ -30,7 +31,7 @@ Vec2<double> center_at_gap(const Ellipse2<double>& e, double theta, double r, do
 
 TEST(SegmentCircle, MiddleEndpointsAndSide) {
   const Vec2<double> a(0, 0), b(4, 0);
-  auto test = [&](Vec2<double> c, double r) { return segment_circle<double>(a, b, c, r); };
+  auto test = [&](Vec2<double> c, double r) { return segment_circle<double>(a, b, make_circle(c, r)); };
   EXPECT_EQ(test({2, 1.5}, 1).verdict, Verdict::no_collision);  // beside the middle, too far
   EXPECT_EQ(test({2, 1.5}, 1).side, Side::left);
   EXPECT_EQ(test({2, -0.5}, 1).verdict, Verdict::collision);    // crosses the middle
@@ -41,31 +42,55 @@ TEST(SegmentCircle, MiddleEndpointsAndSide) {
   EXPECT_EQ(test({-3, 4}, 5).verdict, Verdict::collision);  // start point on the circle
   EXPECT_EQ(test({-3, 4}, 4.999).verdict, Verdict::no_collision);
   // Swapping the end points mirrors the side.
-  EXPECT_EQ(segment_circle<double>(b, a, {2, 1.5}, 1).side, Side::right);
+  EXPECT_EQ(segment_circle<double>(b, a, make_circle<double>({2, 1.5}, 1)).side, Side::right);
 }
 
 // Small integers are exact in float: a tangent circle (distance == radius) touches.
 TEST(SegmentCircle, ExactTangencyInFloat) {
-  EXPECT_EQ(segment_circle<float>({1, 1}, {7, 1}, {4, 4}, 3).verdict, Verdict::collision);
-  EXPECT_EQ(segment_circle<float>({1, 1}, {7, 1}, {4, 4}, 2.9999998f).verdict, Verdict::no_collision);
+  EXPECT_EQ(segment_circle<float>({1, 1}, {7, 1}, make_circle<float>({4, 4}, 3)).verdict, Verdict::collision);
+  EXPECT_EQ(segment_circle<float>({1, 1}, {7, 1}, make_circle<float>({4, 4}, 2.9999998f)).verdict, Verdict::no_collision);
   // Along a slanted segment (3, 4) with the center 5 to its left.
-  EXPECT_EQ(segment_circle<float>({0, 0}, {6, 8}, {-1, 7}, 5).verdict, Verdict::collision);
-  EXPECT_EQ(segment_circle<float>({0, 0}, {6, 8}, {-1, 7}, 5).side, Side::left);
+  EXPECT_EQ(segment_circle<float>({0, 0}, {6, 8}, make_circle<float>({-1, 7}, 5)).verdict, Verdict::collision);
+  EXPECT_EQ(segment_circle<float>({0, 0}, {6, 8}, make_circle<float>({-1, 7}, 5)).side, Side::left);
 }
 
 TEST(SegmentCircle, DegenerateSegmentIsAPoint) {
-  EXPECT_EQ(segment_circle<double>({1, 1}, {1, 1}, {1.5, 1}, 1).verdict, Verdict::collision);
-  EXPECT_EQ(segment_circle<double>({1, 1}, {1, 1}, {3, 1}, 1).verdict, Verdict::no_collision);
-  EXPECT_EQ(segment_circle<double>({1, 1}, {1, 1}, {1, 1}, 0).verdict, Verdict::collision);
+  EXPECT_EQ(segment_circle<double>({1, 1}, {1, 1}, make_circle<double>({1.5, 1}, 1)).verdict, Verdict::collision);
+  EXPECT_EQ(segment_circle<double>({1, 1}, {1, 1}, make_circle<double>({3, 1}, 1)).verdict, Verdict::no_collision);
+  EXPECT_EQ(segment_circle<double>({1, 1}, {1, 1}, make_circle<double>({1, 1}, 0)).verdict, Verdict::collision);
 }
 
 TEST(SegmentCircle, InvalidInput) {
-  EXPECT_EQ(segment_circle<double>({0, 0}, {1, 0}, {nan, 0}, 1).verdict, Verdict::invalid_input);
-  EXPECT_EQ(segment_circle<double>({0, 0}, {1, 0}, {0, 0}, -1).verdict, Verdict::invalid_input);
-  EXPECT_EQ(segment_circle<double>({0, 0}, {1, 0}, {0, 0}, std::numeric_limits<double>::infinity()).verdict,
+  const auto c = make_circle<double>({0, 0}, 1);
+  EXPECT_EQ(segment_circle<double>({nan, 0}, {1, 0}, c).verdict, Verdict::invalid_input);
+  EXPECT_EQ(segment_circle<double>({0, 0}, {1, std::numeric_limits<double>::infinity()}, c).verdict,
             Verdict::invalid_input);
+  EXPECT_EQ(segment_circle<double>({0, 0}, {1, 0}, c).verdict, Verdict::collision);
   EXPECT_EQ(to_string(Verdict::undecided), "undecided");
   EXPECT_EQ(to_string(Side::on_line), "on_line");
+}
+
+// The circle is validated once; the error names the field.
+TEST(Circle, FactoryValidatesAndNamesTheField) {
+  auto field = [](auto make) {
+    try {
+      make();
+    } catch (const InputError& e) {
+      return e.field();
+    }
+    return std::string("no error");
+  };
+  EXPECT_EQ(field([] { make_circle<double>({nan, 0}, 1); }), "center[0]");
+  EXPECT_EQ(field([] { make_circle<double>({0, std::numeric_limits<double>::infinity()}, 1); }), "center[1]");
+  EXPECT_EQ(field([] { make_circle<double>({0, 0}, -1); }), "radius");
+  EXPECT_EQ(field([] { make_circle<float>({0, 0}, nan); }), "radius");
+  EXPECT_EQ(field([] { make_circle<double>({0, 0}, 0).ellipse(); }), "radius");  // a point is no Ellipse2
+  const auto c = make_circle<double>({1, -2}, 3);
+  EXPECT_EQ(c.center(), Vec2<double>(1, -2));
+  EXPECT_EQ(c.radius(), 3);
+  const Ellipse2<double> e = c.ellipse();
+  EXPECT_EQ(e.center(), c.center());
+  EXPECT_EQ(e.radii(), Vec2<double>(3, 3));
 }
 
 // The document's first example: ellipse at (-1, 5) with horizontal radius 10 and vertical
@@ -77,26 +102,26 @@ TEST(PolygonalOverlap, DocumentExampleEllipseCircle) {
   const auto e = make_ellipse<double>({-1, 5}, 0, {10, 20});
   const Vec2<double> c(25, 7);
   for (int n = 0; n <= 20; ++n) {
-    const auto r = polygonal_overlap(e, c, 15.0, n);
+    const auto r = polygonal_overlap(e, make_circle(c, 15.0), n);
     EXPECT_NE(r.verdict, Verdict::collision) << n;
     if (niemitalo_error_bound(20.0, n) < 1) {
       EXPECT_EQ(r.verdict, Verdict::no_collision) << n;
     }
     // The same pair as two ellipses (parallel axes), and in float.
-    const auto rr = polygonal_overlap(e, make_ball<double, 2>(c, 15), n);
+    const auto rr = polygonal_overlap(e, make_circle(c, 15.0).ellipse(), n);
     EXPECT_NE(rr.verdict, Verdict::collision) << n;
     if (niemitalo_error_bound(20.0, n) < 1) {
       EXPECT_EQ(rr.verdict, Verdict::no_collision) << n;
     }
-    const auto rf = polygonal_overlap(make_ellipse<float>({-1, 5}, 0, {10, 20}), Vec2<float>(25, 7), 15.0f, n);
+    const auto rf = polygonal_overlap(make_ellipse<float>({-1, 5}, 0, {10, 20}), make_circle<float>({25, 7}, 15), n);
     if (niemitalo_error_bound(20.0, n) < 1) {
       EXPECT_EQ(rf.verdict, Verdict::no_collision) << n;
     }
   }
-  EXPECT_EQ(polygonal_overlap(e, c, 15.0, 10).verdict, Verdict::no_collision);
+  EXPECT_EQ(polygonal_overlap(e, make_circle(c, 15.0), 10).verdict, Verdict::no_collision);
   // Moving the circle 2 to the left makes x = 8..9 shared on the line y = 7 (the ellipse
   // reaches x = -1 + 10 sqrt(1 - (2/20)^2) = 8.95 there): a collision.
-  EXPECT_EQ(polygonal_overlap(e, Vec2<double>(23, 7), 15.0, 10).verdict, Verdict::collision);
+  EXPECT_EQ(polygonal_overlap(e, make_circle<double>({23, 7}, 15), 10).verdict, Verdict::collision);
 }
 
 // The document's second example: ellipse 0 at (-10, 5) with radius vector (10, 20) and the
@@ -129,35 +154,59 @@ TEST(PolygonalOverlap, DocumentShortcutSeparatedPair) {
   EXPECT_EQ(polygonal_overlap(b, a, 10).verdict, Verdict::no_collision);
 }
 
+// The documented rounding allowance rho and the exact band of level n (polygonal2.hpp, "The band").
+double rho(const Ellipse2<double>& e, const Vec2<double>& c, double r, int n) {
+  const Vec2<double> d = c - e.center();
+  return 16 * (n + 2) * std::numeric_limits<double>::epsilon() * (std::abs(d.x()) + std::abs(d.y()) + e.radii().maxCoeff() + r);
+}
+double half_angle(int n) { return M_PI / std::ldexp(1.0, n + 2); }
+
 // Ellipse (2, 1) and a unit circle at signed gap g from a boundary point that is not a
 // vertex of any level (parameter 0.3): decided once the bound is below |g|, undecided
-// (carrying the count) before.
+// (at level n) before. The band always holds g; an undecided one is the polygon's band of
+// level n, (1 / cos h - 1) * 2 above and (1 - cos h) * 2 below, widened by rho.
 TEST(PolygonalOverlap, GapAtABoundaryPoint) {
   const auto e = make_ellipse<double>({1, -2}, 0.7, {2, 1});
   for (double g : {0.5, 1e-3, -1e-3, -0.5}) {
     const Vec2<double> c = center_at_gap(e, 0.3, 1.0, g);
     for (int n = 0; n <= 12; ++n) {
-      const auto r = polygonal_overlap(e, c, 1.0, n);
+      const auto r = polygonal_overlap(e, make_circle(c, 1.0), n);
       const Verdict want = g > 0 ? Verdict::no_collision : Verdict::collision;
       if (niemitalo_error_bound(2.0, n) < std::abs(g)) {
         EXPECT_EQ(r.verdict, want) << g << " " << n;
       } else {
         EXPECT_TRUE(r.verdict == want || r.verdict == Verdict::undecided) << g << " " << n;
       }
+      EXPECT_EQ(r.iterations, r.level);  // one triangle followed: one bisection per level
+      EXPECT_LE(r.level, n);
+      EXPECT_LE(r.gap_lo, g) << g << " " << n;
+      EXPECT_GE(r.gap_hi, g) << g << " " << n;
+      const double slack = rho(e, c, 1.0, r.level);
       if (r.verdict == Verdict::undecided) {
-        EXPECT_EQ(r.iterations, n);
+        EXPECT_EQ(r.level, n);
+        EXPECT_NEAR(r.gap_hi, 2 * (1 / std::cos(half_angle(n)) - 1) + slack, 1e-15) << n;
+        EXPECT_NEAR(r.gap_lo, -2 * (1 - std::cos(half_angle(n))) - slack, 1e-15) << n;
+        EXPECT_LE(std::max(r.gap_hi, -r.gap_lo), niemitalo_error_bound(e, n) + slack);
+      } else if (r.verdict == Verdict::collision) {
+        EXPECT_EQ(r.gap_lo, -std::numeric_limits<double>::infinity());
+        EXPECT_EQ(r.gap_hi, slack);
+      } else {
+        EXPECT_EQ(r.gap_lo, -slack);
+        EXPECT_EQ(r.gap_hi, std::numeric_limits<double>::infinity());
       }
-      EXPECT_LE(r.iterations, n);
     }
   }
-  // A gap of 1e-9 needs about 15 iterations (the exact band is a quarter of the bound).
+  // A gap of 1e-9 needs about 15 levels (the exact band is a quarter of the bound).
   const Vec2<double> c = center_at_gap(e, 0.3, 1.0, 1e-9);
-  EXPECT_EQ(polygonal_overlap(e, c, 1.0, 5).verdict, Verdict::undecided);
-  EXPECT_EQ(polygonal_overlap(e, c, 1.0, 5).iterations, 5);
-  EXPECT_EQ(polygonal_overlap(e, c, 1.0, 25).verdict, Verdict::no_collision);
+  const auto r5 = polygonal_overlap(e, make_circle(c, 1.0), 5);
+  EXPECT_EQ(r5.verdict, Verdict::undecided);
+  EXPECT_EQ(r5.level, 5);
+  EXPECT_EQ(r5.iterations, 5);
+  EXPECT_EQ(polygonal_overlap(e, make_circle(c, 1.0), 25).verdict, Verdict::no_collision);
   // Where the contact is a vertex of the level-0 polygon, level 0 decides at once.
-  const auto at_vertex = polygonal_overlap(e, center_at_gap(e, 0.0, 1.0, 1e-9), 1.0, 5);
+  const auto at_vertex = polygonal_overlap(e, make_circle(center_at_gap(e, 0.0, 1.0, 1e-9), 1.0), 5);
   EXPECT_EQ(at_vertex.verdict, Verdict::no_collision);
+  EXPECT_EQ(at_vertex.level, 0);
   EXPECT_EQ(at_vertex.iterations, 0);
 }
 
@@ -165,10 +214,10 @@ TEST(PolygonalOverlap, GapAtABoundaryPoint) {
 // inscribed polygon, or the circle covers its edges).
 TEST(PolygonalOverlap, ContainmentAndFarApart) {
   const auto e = make_ellipse<double>({0, 0}, 0.3, {5, 1});
-  EXPECT_EQ(polygonal_overlap(e, Vec2<double>(0.5, 0.1), 0.1, 0).verdict, Verdict::collision);
-  EXPECT_EQ(polygonal_overlap(e, Vec2<double>(0, 0), 100.0, 0).verdict, Verdict::collision);
-  EXPECT_EQ(polygonal_overlap(e, Vec2<double>(1e4, 1e4), 1.0, 0).verdict, Verdict::no_collision);
-  EXPECT_EQ(polygonal_overlap(e, Vec2<double>(0, 0), 0.0, 0).verdict, Verdict::collision);  // a point
+  EXPECT_EQ(polygonal_overlap(e, make_circle<double>({0.5, 0.1}, 0.1), 0).verdict, Verdict::collision);
+  EXPECT_EQ(polygonal_overlap(e, make_circle<double>({0, 0}, 100), 0).verdict, Verdict::collision);
+  EXPECT_EQ(polygonal_overlap(e, make_circle<double>({1e4, 1e4}, 1), 0).verdict, Verdict::no_collision);
+  EXPECT_EQ(polygonal_overlap(e, make_circle<double>({0, 0}, 0), 0).verdict, Verdict::collision);  // a point
 }
 
 // Two ellipses with the same axes (up to order and sign) take the scaling route, others
@@ -197,34 +246,47 @@ TEST(PolygonalOverlap, ParallelAndStretchRoutesAgree) {
 
 TEST(PolygonalOverlap, InvalidInput) {
   const auto e = make_ellipse<double>({0, 0}, 0, {2, 1});
-  EXPECT_EQ(polygonal_overlap(e, Vec2<double>(nan, 0), 1.0).verdict, Verdict::invalid_input);
-  EXPECT_EQ(polygonal_overlap(e, Vec2<double>(0, 0), -1.0).verdict, Verdict::invalid_input);
-  EXPECT_EQ(polygonal_overlap(e, Vec2<double>(0, 0), nan).verdict, Verdict::invalid_input);
-  EXPECT_EQ(polygonal_overlap(e, Vec2<double>(0, 0), 1.0, -1).verdict, Verdict::invalid_input);
-  EXPECT_EQ(polygonal_overlap(e, Vec2<double>(0, 0), 1.0, niemitalo_max_iterations + 1).verdict, Verdict::invalid_input);
-  EXPECT_EQ(polygonal_overlap(e, e, -1).verdict, Verdict::invalid_input);
-  EXPECT_EQ(circle_cover_overlap(e, Vec2<double>(0, 0), -1.0).verdict, Verdict::invalid_input);
-  EXPECT_EQ(polygonal_overlap(e, Vec2<double>(9, 0), 1.0, niemitalo_max_iterations).verdict, Verdict::no_collision);
+  const auto c = make_circle<double>({0, 0}, 1);
+  for (int bad : {-1, niemitalo_max_level + 1}) {
+    for (const auto& r : {polygonal_overlap(e, c, bad), polygonal_overlap(e, e, bad), circle_cover_overlap(e, c, bad)}) {
+      EXPECT_EQ(r.verdict, Verdict::invalid_input) << bad;
+      EXPECT_TRUE(std::isnan(r.gap_lo) && std::isnan(r.gap_hi)) << bad;
+    }
+  }
+  EXPECT_EQ(polygonal_overlap(e, make_circle<double>({9, 0}, 1), niemitalo_max_level).verdict, Verdict::no_collision);
 }
 
-// The circle cover: same answers away from its (wider) band, undecided inside it.
+// The circle cover: same answers away from its (wider) band, undecided inside it; the band
+// holds g (its upper side is sin h * major); the search may follow more than one arc, so
+// it can perform more bisections than levels.
 TEST(CircleCoverOverlap, GapAtABoundaryPoint) {
   const auto e = make_ellipse<double>({0, 0}, 0, {2, 1});
+  int more_bisections_than_levels = 0;
   for (double g : {0.5, 1e-2, -1e-2, -0.5}) {
     const Vec2<double> c = center_at_gap(e, 0.3, 1.0, g);
     for (int n = 0; n <= 12; ++n) {
-      const auto r = circle_cover_overlap(e, c, 1.0, n);
+      const auto r = circle_cover_overlap(e, make_circle(c, 1.0), n);
       const Verdict want = g > 0 ? Verdict::no_collision : Verdict::collision;
-      const double band = g > 0 ? 2 * std::sin(M_PI / std::ldexp(1.0, n + 2)) : niemitalo_error_bound(2.0, n);
+      const double band = g > 0 ? 2 * std::sin(half_angle(n)) : niemitalo_error_bound(2.0, n);
       if (band < std::abs(g)) {
         EXPECT_EQ(r.verdict, want) << g << " " << n;
       } else {
         EXPECT_TRUE(r.verdict == want || r.verdict == Verdict::undecided) << g << " " << n;
       }
+      EXPECT_LE(r.gap_lo, g) << g << " " << n;
+      EXPECT_GE(r.gap_hi, g) << g << " " << n;
+      EXPECT_GE(r.iterations, r.level);
+      EXPECT_LE(r.iterations, (2 << n) - 1);
+      more_bisections_than_levels += r.iterations > r.level;
+      if (r.verdict == Verdict::undecided) {
+        EXPECT_EQ(r.level, n);
+        EXPECT_NEAR(r.gap_hi, 2 * std::sin(half_angle(n)) + rho(e, c, 1.0, n), 1e-15) << n;
+      }
     }
   }
-  EXPECT_EQ(circle_cover_overlap(e, Vec2<double>(0.5, 0.2), 0.1).verdict, Verdict::collision);
-  EXPECT_EQ(circle_cover_overlap(make_ellipse<float>({0, 0}, 0, {2, 1}), Vec2<float>(3.5f, 0), 1.0f).verdict,
+  EXPECT_GT(more_bisections_than_levels, 0);
+  EXPECT_EQ(circle_cover_overlap(e, make_circle<double>({0.5, 0.2}, 0.1)).verdict, Verdict::collision);
+  EXPECT_EQ(circle_cover_overlap(make_ellipse<float>({0, 0}, 0, {2, 1}), make_circle<float>({3.5f, 0}, 1)).verdict,
             Verdict::no_collision);
 }
 
@@ -251,26 +313,32 @@ TEST(NiemitaloErrorBound, PolygonWithinTheBound) {
           next.push_back(level.back());
           level = next;
         }
-        double worst = 0;
+        double out = 0, in = 0;  // farthest corner outside, deepest chord point inside
         for (std::size_t i = 0; i + 1 < level.size(); ++i) {
           const Vec2<double> corner = e.center() + k.outer[n] * (level[i] + level[i + 1]);
-          worst = std::max(worst, closest_point(e, corner).signed_distance);
+          out = std::max(out, closest_point(e, corner).signed_distance);
           for (int j = 1; j < 8; ++j) {
             const Vec2<double> on_chord = e.center() + level[i] + (j / 8.0) * (level[i + 1] - level[i]);
-            worst = std::max(worst, -closest_point(e, on_chord).signed_distance);
+            in = std::max(in, -closest_point(e, on_chord).signed_distance);
           }
         }
+        // The tabulated band of the results (above: corners, below: chords), major radius 1.
+        EXPECT_LE(out, k.above[n] + 1e-14) << aspect << " " << n;
+        EXPECT_LE(in, k.below[n] + 1e-14) << aspect << " " << n;
+        const double worst = std::max(out, in);
         const double exact = (1 / std::cos(M_PI / std::ldexp(1.0, n + 2)) - 1) * 1.0;
         EXPECT_LE(worst, niemitalo_error_bound(1.0, n)) << aspect << " " << n;
         EXPECT_LE(worst, exact + 1e-14) << aspect << " " << n;
         if (aspect == 1.0) {
           EXPECT_GT(worst, 0.99 * exact) << n;  // attained by a circle
+          EXPECT_GT(in, 0.9 * k.below[n]) << n;
         }
       }
     }
   }
   EXPECT_NEAR(niemitalo_error_bound(1.0, 0), std::exp2(0.303), 1e-15);
   EXPECT_NEAR(niemitalo_error_bound(1.0, 3) / niemitalo_error_bound(1.0, 2), 0.25, 1e-15);
+  EXPECT_EQ(niemitalo_error_bound(make_ellipse<double>({5, 5}, 0.3, {0.5, 3}), 4), niemitalo_error_bound(3.0, 4));
 }
 
 }  // namespace

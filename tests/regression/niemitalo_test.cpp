@@ -1,0 +1,224 @@
+// Regressions of the Niemitalo API (polygonal2.hpp, quartic2.hpp): each test names a
+// finding from users or fuzzing and states its cause. Expected values come from closed
+// forms or the 50-digit reference (tests/reference), never from the code under test.
+#include <ellipsect/classify.hpp>
+#include <ellipsect/polygonal2.hpp>
+#include <ellipsect/quartic2.hpp>
+
+#include "tests/reference/distance_reference.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+namespace {
+
+using namespace ellipsect;
+namespace ref = ellipsect::reference;
+
+ref::Body<2> body(const Ellipse2<double>& e) { return {e.center(), e.axes(), e.radii()}; }
+
+double reference_gap(const Ellipse2<double>& a, const Ellipse2<double>& b) {
+  return ref::to_double(ref::signed_distance<2>(body(a), body(b)).distance);
+}
+
+// Center of a circle of radius r at signed gap g from the ellipse's boundary point with
+// parameter theta (on the outward normal there: that point is the nearest, so the gap is g).
+Vec2<double> center_at_gap(const Ellipse2<double>& e, double theta, double r, double g) {
+  const Vec2<double> on(e.radii()[0] * std::cos(theta), e.radii()[1] * std::sin(theta));
+  const Vec2<double> normal = on.cwiseQuotient(e.radii().cwiseAbs2()).normalized();
+  return e.center() + e.axes() * (on + (r + g) * normal);
+}
+
+// The circle was (center, radius) for polygonal_overlap and circle_cover_overlap but an
+// Ellipse2 from make_ball for overlap, and segment_circle took two more loose arguments:
+// each call validated (or not) its own way. Now one validated Circle goes to every
+// Niemitalo test, and circle.ellipse() is the same disk for the exact queries.
+TEST(NiemitaloRegression, CircleIsPassedTheSameWayEverywhere) {
+  const auto e = make_ellipse<double>({0, 0}, 0.4, {3, 1});
+  for (double x : {2.0, 3.5, 6.0}) {
+    const Circle<double> c = make_circle<double>({x, 1}, 0.75);
+    const bool exact = overlap(e, c.ellipse());
+    EXPECT_EQ(polygonal_overlap(e, c, 20).verdict == Verdict::collision, exact) << x;
+    EXPECT_EQ(circle_cover_overlap(e, c, 20).verdict == Verdict::collision, exact) << x;
+    EXPECT_EQ(polygonal_overlap(e, c.ellipse(), 20).verdict == Verdict::collision, exact) << x;
+  }
+  // The segment test takes the same value: the segment (0, 0)-(4, 0) and a circle 1 above it.
+  EXPECT_EQ(segment_circle<double>({0, 0}, {4, 0}, make_circle<double>({2, 1}, 1)).verdict, Verdict::collision);
+  EXPECT_EQ(segment_circle<double>({0, 0}, {4, 0}, make_circle<double>({2, 1}, 0.5)).verdict, Verdict::no_collision);
+  EXPECT_THROW(make_circle<double>({0, 0}, -1), InputError);
+}
+
+// `iterations` was the number of bisections in polygonal_overlap but the deepest level
+// visited in circle_cover_overlap (which may bisect several arcs per level). Now
+// `iterations` is always the bisections performed and `level` the deepest level examined.
+// Here a large circle hugs the flat side of a 1000:1 ellipse at a gap of 1e-6: the cover's
+// overlapping disks make the search follow many arcs.
+TEST(NiemitaloRegression, IterationsMeanBisectionsEverywhere) {
+  const auto e = make_ellipse<double>({0, 0}, 0, {1000, 1});
+  const Circle<double> c = make_circle<double>({0, 1000 + 1 + 1e-6}, 1000);
+  const auto cover = circle_cover_overlap(e, c, 8);
+  EXPECT_EQ(cover.verdict, Verdict::undecided);
+  EXPECT_EQ(cover.level, 8);
+  EXPECT_GT(cover.iterations, 8);
+  EXPECT_LE(cover.iterations, (2 << 8) - 1);
+  // The polygonal test follows one triangle: one bisection per level. (Here the contact is
+  // a level-0 vertex, so level 0 decides; off a vertex, at gap 1e-9, it runs out of levels.)
+  const auto at_vertex = polygonal_overlap(e, c, 8);
+  EXPECT_EQ(at_vertex.verdict, Verdict::no_collision);
+  EXPECT_EQ(at_vertex.level, 0);
+  EXPECT_EQ(at_vertex.iterations, 0);
+  const auto f = make_ellipse<double>({0, 0}, 0.2, {2, 1});
+  const auto poly = polygonal_overlap(f, make_circle(center_at_gap(f, 0.3, 1.0, 1e-9), 1.0), 8);
+  EXPECT_EQ(poly.verdict, Verdict::undecided);
+  EXPECT_EQ(poly.level, 8);
+  EXPECT_EQ(poly.iterations, 8);
+}
+
+// An undecided answer did not say how undecided: the certified range of the signed gap was
+// only in the documentation, in the stretched frame. Now every result carries it in world
+// units. b is a needle (aspect 50) and rotated, so the stretched frame differs strongly
+// from the world; the true gap (50-digit reference) lies in the band, and the band is the
+// polygon's band of a at level n: its width shrinks by 4 per level.
+TEST(NiemitaloRegression, UndecidedBandIsReturnedInWorldUnits) {
+  const auto a = make_ellipse<double>({0, 0}, 0.3, {2, 1});
+  const auto b0 = make_ellipse<double>({0, 0}, 1.1, {5, 0.1});
+  // Place b along x at the gap 1e-7 from a (bisection on the reference gap).
+  double lo = 0, hi = 10;
+  for (int i = 0; i < 80; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (reference_gap(a, b0.translated({mid, 3})) < 1e-7 ? lo : hi) = mid;
+  }
+  const auto b = b0.translated({hi, 3});
+  const double g = reference_gap(a, b);
+  ASSERT_GT(g, 0.5e-7);
+  ASSERT_LT(g, 2e-7);
+  double width = 0;
+  int undecided = 0;
+  for (int n = 3; n <= 8; ++n) {
+    const auto r = polygonal_overlap(a, b, n);
+    EXPECT_NE(r.verdict, Verdict::collision) << n;
+    EXPECT_LE(r.gap_lo, g) << n;
+    EXPECT_GE(r.gap_hi, g) << n;
+    if (r.verdict != Verdict::undecided) continue;
+    ++undecided;
+    const double h = M_PI / std::ldexp(1.0, n + 2);
+    EXPECT_NEAR(r.gap_hi, 2 * (1 / std::cos(h) - 1), 1e-12) << n;  // a's major radius is 2
+    EXPECT_NEAR(r.gap_lo, -2 * (1 - std::cos(h)), 1e-12) << n;
+    if (width > 0) EXPECT_NEAR((r.gap_hi - r.gap_lo) / width, 0.25, 0.01) << n;
+    width = r.gap_hi - r.gap_lo;
+  }
+  EXPECT_GE(undecided, 3);
+  EXPECT_EQ(polygonal_overlap(a, b, 20).verdict, Verdict::no_collision);
+}
+
+// niemitalo_error_bound(major, n) wanted the major radius of the ellipse after b was
+// stretched into a circle, which the caller cannot get. Incidence is affine-invariant, so
+// the bound holds in world units with a's own major radius; the overload takes the ellipse.
+// Near tangency (|g| = 1e-9) the undecided band at every level lies within the bound.
+TEST(NiemitaloRegression, ErrorBoundFromTheEllipses) {
+  const auto a = make_ellipse<double>({1, 1}, -0.7, {0.5, 3});
+  const auto b = make_ellipse<double>({0, 0}, 0.2, {4, 0.25});
+  const Vec2<double> dir(std::cos(0.9), std::sin(0.9));
+  double lo = 0, hi = 20;  // b along dir at the gap -1e-9 (overlapping)
+  for (int i = 0; i < 80; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (reference_gap(a, b.translated(mid * dir)) < -1e-9 ? lo : hi) = mid;
+  }
+  const auto bb = b.translated(lo * dir);
+  const double g = reference_gap(a, bb);
+  ASSERT_NEAR(g, -1e-9, 1e-10);
+  int undecided = 0;
+  for (int n = 0; n <= 12; ++n) {
+    const auto r = polygonal_overlap(a, bb, n);
+    EXPECT_NE(r.verdict, Verdict::no_collision) << n;
+    EXPECT_LE(r.gap_lo, g) << n;
+    EXPECT_GE(r.gap_hi, g) << n;
+    EXPECT_EQ(niemitalo_error_bound(a, n), niemitalo_error_bound(3.0, n));
+    if (r.verdict != Verdict::undecided) continue;
+    ++undecided;
+    const double rounding = 16 * (n + 2) * std::numeric_limits<double>::epsilon() *
+                            ((bb.center() - a.center()).cwiseAbs().sum() + 3 + 4);
+    EXPECT_LE(r.gap_hi, niemitalo_error_bound(a, n) + rounding) << n;
+    EXPECT_GE(r.gap_lo, -niemitalo_error_bound(a, n) - rounding) << n;
+  }
+  EXPECT_GE(undecided, 6);
+}
+
+// docs/niemitalo.md said segment_circle is "exact for exactly representable inputs". It
+// is exact only when the arithmetic is: here the center is 9.0e-17 from the segment
+// (50-digit reference) and the radius 0, and the rounded products answer collision. What
+// is guaranteed: exact when every product is (small integers), otherwise wrong only within
+// 8 eps (|b - a| + |center - a| + radius) of tangency.
+TEST(NiemitaloRegression, SegmentCircleExactOnlyWhenProductsAre) {
+  const Vec2<double> a(1.3911379460157425, -4.2195539500980539), b(-4.0801750888094626, -0.48709447805934558);
+  const Vec2<double> c(-0.45606246407281098, -2.9594175580648621);
+  using R = ref::Real;
+  const R ex = R(b.x()) - R(a.x()), ey = R(b.y()) - R(a.y()), qx = R(c.x()) - R(a.x()), qy = R(c.y()) - R(a.y());
+  const R t = (ex * qx + ey * qy) / (ex * ex + ey * ey);
+  ASSERT_TRUE(t > 0 && t < 1);  // the foot is inside the segment
+  const double dist = ref::to_double(abs(ex * qy - ey * qx) / sqrt(ex * ex + ey * ey));
+  EXPECT_NEAR(dist, 9.0e-17, 0.1e-17);
+  const double bound = 8 * std::numeric_limits<double>::epsilon() * ((b - a).norm() + (c - a).norm());
+  EXPECT_LT(dist, bound);  // within the stated bound, so either answer keeps the contract
+  const Verdict v = segment_circle<double>(a, b, make_circle<double>(c, 0)).verdict;
+  EXPECT_TRUE(v == Verdict::collision || v == Verdict::no_collision);
+  // Small integers: every product is exact, so tangency is decided exactly (3 above the
+  // segment, radius 3; the 3-4-5 right angle in float).
+  EXPECT_EQ(segment_circle<double>({-1, 0}, {3, 0}, make_circle<double>({2, 3}, 3)).verdict, Verdict::collision);
+  EXPECT_EQ(segment_circle<double>({-1, 0}, {3, 0}, make_circle<double>({2, 4}, 3)).verdict, Verdict::no_collision);
+  EXPECT_EQ(segment_circle<float>({0, 0}, {8, 6}, make_circle<float>({1, 7}, 5)).verdict, Verdict::collision);
+  EXPECT_EQ(segment_circle<float>({0, 0}, {8, 6}, make_circle<float>({1, 7}, 4)).verdict, Verdict::no_collision);
+}
+
+// segment_circle compared fourth powers of the coordinates, which overflow beyond about
+// 1e77 and underflow below about 1e-100: the segment (0, 0)-(k, 0) and the circle at
+// (0, 3k) of radius k (2k apart) answered collision. The test now runs on inputs scaled by
+// an exact power of two. With k a power of two the computation is the same as for k = 1,
+// bit for bit: the tangent circle (radius 3k, exact products) collides, one ulp smaller
+// does not.
+TEST(NiemitaloRegression, SegmentCircleFourthPowersOverflow) {
+  for (double k : {1e78, 1e100, 1e300, 1e-100, 1e-200, 1e-300, 1e-310}) {
+    EXPECT_EQ(segment_circle<double>({0, 0}, {k, 0}, make_circle<double>({0, 3 * k}, k)).verdict, Verdict::no_collision)
+        << k;
+  }
+  for (double k : {0x1p-1070, 0x1p-1000, 0x1p-300, 0x1p300, 0x1p1000, 0x1p1021}) {
+    const Vec2<double> c(0, 3 * k);
+    EXPECT_EQ(segment_circle<double>({0, 0}, {k, 0}, make_circle(c, 3 * k)).verdict, Verdict::collision) << k;
+    EXPECT_EQ(segment_circle<double>({0, 0}, {k, 0}, make_circle(c, std::nextafter(3 * k, 0.0))).verdict,
+              Verdict::no_collision)
+        << k;
+  }
+  // Differences that overflow: a segment across the whole range, a circle 1e308 above it.
+  EXPECT_EQ(segment_circle<double>({-1.7e308, 0}, {1.7e308, 0}, make_circle<double>({0, 1e308}, 0.9e308)).verdict,
+            Verdict::no_collision);
+  EXPECT_EQ(segment_circle<double>({-1.7e308, 0}, {1.7e308, 0}, make_circle<double>({0, 1e308}, 1.1e308)).verdict,
+            Verdict::collision);
+  for (float k : {1e20f, 1e-20f, 0x1p100f, 0x1p-120f})
+    EXPECT_EQ(segment_circle<float>({0, 0}, {k, 0}, make_circle<float>({0, 3 * k}, k)).verdict, Verdict::no_collision)
+        << k;
+}
+
+// closest_point_quartic answered `outside` with distance 0 for points on a circle whose
+// inside test (u^2 + v^2 <= 1) rounding put just outside: the polish then found the point
+// itself. `outside` promises |x - point| > 0, so such a point is `inside` (a circle
+// centered there collides). (3, 4) is exactly on the circle of radius 5; cos t, sin t is on
+// the unit circle to rounding.
+TEST(NiemitaloRegression, QuarticPointOnCircleIsNotOutside) {
+  const auto unit = make_ball<double, 2>({0, 0}, 1);
+  EXPECT_EQ(closest_point_quartic(unit, Vec2<double>(std::cos(0.00314), std::sin(0.00314))).status,
+            QuarticStatus::inside);
+  EXPECT_EQ(closest_point_quartic(make_ball<double, 2>({0, 0}, 5), Vec2<double>(3, 4)).status, QuarticStatus::inside);
+  for (int i = 0; i < 10000; ++i) {
+    const double t = i * 0.000628;
+    for (const auto& q : {closest_point_quartic(unit, Vec2<double>(std::cos(t), std::sin(t))),
+                          closest_point_closed_form(unit, Vec2<double>(std::cos(t), std::sin(t)))}) {
+      if (q.status == QuarticStatus::outside) EXPECT_GT(q.distance, 0) << t;
+    }
+    const auto f = closest_point_quartic(make_ball<float, 2>({0, 0}, 1), Vec2<float>(std::cos(t), std::sin(t)));
+    if (f.status == QuarticStatus::outside) EXPECT_GT(f.distance, 0.0f) << t;
+  }
+}
+
+}  // namespace
