@@ -115,10 +115,13 @@ void plane() {
   const auto area = overlap_area(a, b);
   check(area.relation == Relation::overlapping && std::abs(area.area - (2 * std::numbers::pi / 3 - h)) <= 1e-13,
         "OverlapArea<double>");
-  const auto sc = segment_circle<double>(Eigen::Vector2d(0, 0), Eigen::Vector2d(4, 0), Eigen::Vector2d(2, 1), 2.0);
+  const auto circle = make_circle(Eigen::Vector2d(2, 1), 2.0);
+  check(circle.center() == Eigen::Vector2d(2, 1) && circle.radius() == 2.0, "Circle<double>");
+  const auto sc = segment_circle(Eigen::Vector2d(0, 0), Eigen::Vector2d(4, 0), circle);
   check(sc.verdict == Verdict::collision && sc.side == Side::left, "SegmentCircle");
-  const auto po = polygonal_overlap(make_ellipse<double>({0, 0}, 0, {2, 1}), Eigen::Vector2d(5, 0), 1.0);
-  check(po.verdict == Verdict::no_collision, "PolygonalOverlap");
+  // The ellipse x^2/4 + y^2 <= 1 and the unit disk at (5, 0) are 2 apart along the x axis.
+  const auto po = polygonal_overlap(make_ellipse<double>({0, 0}, 0, {2, 1}), make_circle(Eigen::Vector2d(5, 0), 1.0));
+  check(po.verdict == Verdict::no_collision && po.gap_lo <= 2 && 2 <= po.gap_hi, "PolygonalOverlap<double>");
 }
 
 void arrays() {
