@@ -91,7 +91,8 @@ QuickStart<R, N> quick_start(const Ellipsoid<T, N>& s, const Ellipsoid<T, N>& o,
   }
   const auto pw = detail::pw_direction<R, N>(g);
   const Vec<R, N> line = g.r / g.r_norm;
-  // y is NaN where C is singular in working precision (two parallel needles): then the line.
+  // y is NaN where C is singular in working precision (two needles: the sum of two matrices
+  // of rank 1 to rounding); the comparison is false then and keeps the line.
   const Vec<R, N> n = detail::gap_value<R, N>(g, pw.n) <= detail::gap_value<R, N>(g, line) ? pw.n : line;
   // F >= 1.01^2 puts y, and then n, in {g > 0}.
   if (pw.f >= R(1.01 * 1.01)) return {DistanceStatus::separated, n};
