@@ -91,7 +91,9 @@ QuickStart<R, N> quick_start(const Ellipsoid<T, N>& s, const Ellipsoid<T, N>& o,
   }
   const auto pw = detail::pw_direction<R, N>(g);
   const Vec<R, N> line = g.r / g.r_norm;
-  const Vec<R, N> n = detail::gap_value<R, N>(g, line) < detail::gap_value<R, N>(g, pw.n) ? line : pw.n;
+  // y is NaN where C is singular in working precision (two needles: the sum of two matrices
+  // of rank 1 to rounding); the comparison is false then and keeps the line.
+  const Vec<R, N> n = detail::gap_value<R, N>(g, pw.n) <= detail::gap_value<R, N>(g, line) ? pw.n : line;
   // F >= 1.01^2 puts y, and then n, in {g > 0}.
   if (pw.f >= R(1.01 * 1.01)) return {DistanceStatus::separated, n};
   namespace hw = detail::HWY_NAMESPACE;  // a certain common point
@@ -148,7 +150,7 @@ Distance<T, N> solve(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b, const O
     if (doubt) st = start<detail::Wide<R>, R>(s, o, detail::Wide<R>(options.tolerance), doubt);
     out.status = st.status;
     // Absent only when S's center lies exactly on O's boundary (the bodies overlap).
-    if (st.normal.squaredNorm() > R(0)) starts[count++] = st.normal;
+    if (st.normal.squaredNorm() > R(0) && st.normal.allFinite()) starts[count++] = st.normal;
   }
   if (out.status == DistanceStatus::overlapping) {
     if (!penetration) {
@@ -168,10 +170,18 @@ Distance<T, N> solve(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b, const O
     if (d.at.phi < best.at.phi - noise || (d.at.phi <= best.at.phi + noise && d.converged && !best.converged)) best = d;
   }
 
-  if (!best.converged) out.status = DistanceStatus::did_not_converge;
   const Vec<R, N> point_s = s.center().template cast<R>() + best.at.s1;
   const Vec<R, N> point_o = o.center().template cast<R>() - best.at.s2;
   out.distance = T(-best.at.phi);
+  if (!best.converged) {
+    // g at the last iterate is at most max g; less a bound on its rounding (each |B n| is off
+    // by a few ulps of the body's largest radius, n . r by a few of |r|), rounded down to T.
+    out.status = DistanceStatus::did_not_converge;
+    const R margin = R(16) * std::numeric_limits<R>::epsilon() * (g.r_norm + g.radii1.maxCoeff() + g.radii2.maxCoeff());
+    const R lower = -(best.at.phi + margin);
+    out.distance = T(lower);
+    if (R(out.distance) > lower) out.distance = std::nextafter(out.distance, -std::numeric_limits<T>::infinity());
+  }
   out.point_a = (a_is_s ? point_s : point_o).template cast<T>();
   out.point_b = (a_is_s ? point_o : point_s).template cast<T>();
   out.normal = (a_is_s ? best.at.n : Vec<R, N>(-best.at.n)).template cast<T>();

@@ -21,11 +21,16 @@
 // problem (g can have several local maxima), so overlapping bodies also start from the
 // best directions sampled on both bodies' Gauss maps, and the deepest descent wins.
 //
+// A trust-region step rejected because it crossed a kink of g (the support radius of a thin
+// body turns sharply where n is orthogonal to its long axes) is cut at the kink.
+//
 // Accuracy (tested against a 50-digit reference, tests/property/distance_property_test.cpp,
 // on random and adversarial pairs: aspect ratios to 1e4, near tangency, deep overlap,
-// containment, equal bodies, scale 1e-6 and 1e6, bodies 1e4 sizes apart), with
+// containment and internal tangency, equal bodies, scale 1e-6 and 1e6, bodies 1e4 sizes
+// apart; the distance and status also at aspect ratios 1e6 to 1e8), with
 // scale = largest radius of a + largest radius of b + |distance|:
-//   distance     absolute error <= 1e-12 * scale (separated, touching and overlapping);
+//   distance     absolute error <= 1e-12 * scale (separated, touching and overlapping;
+//                aspect ratios to 1e8);
 //   point_a/_b   within 1e-12 * scale of the boundary of a / b, and of the support points
 //                of `normal`; within 1e-10 * scale of the exact witness points where the
 //                optimum is unique;
@@ -48,8 +53,9 @@ enum class DistanceStatus {
   separated,         // gap larger than the tangency band: distance > 0
   touching,          // within Options::tolerance of touching (the band of classify)
   overlapping,       // interiors intersect (includes containment and equal bodies)
-  did_not_converge,  // Options::max_iterations Newton steps without converging; the
-                     // fields hold the last iterate (a lower bound on the true distance)
+  did_not_converge,  // Options::max_iterations evaluations in a descent without converging
+                     // (not seen on the tested pairs with the default cap). The fields are
+                     // finite and certified: see Distance.
 };
 
 std::string_view to_string(DistanceStatus s) noexcept;
@@ -62,14 +68,23 @@ struct Distance {
   // 0 when touching (either sign).
   T distance;
   // Witness points, world frame: on the boundary of a and of b; point_b - point_a =
-  // distance * normal. NaN for distance() on overlapping bodies.
+  // distance * normal (but see did_not_converge below). NaN for distance() on overlapping
+  // bodies.
   Vec<T, N> point_a;
   Vec<T, N> point_b;
   // Unit normal, world frame: outward from a at point_a, pointing from a towards b when
   // separated. Translating b by -distance * normal (a pure push along the normal, of
   // length equal to the depth when overlapping) makes the bodies touch. NaN where the points are.
   Vec<T, N> normal;
-  // Newton steps on the direction, summed over all starts.
+  // did_not_converge: the fields hold the best iterate n, and are bounds, not estimates:
+  // normal = n (unit), point_a and point_b the support points of a along n and of b along
+  // -n (on the boundaries), and distance = g(n) less a bound on its rounding, rounded down:
+  // at most the true signed distance. When the bodies are apart |point_b - point_a| is at
+  // least the true distance (to the rounding of the points), so it lies between the two.
+  // point_b - point_a = distance * normal does not hold then.
+  //
+  // Evaluations of the support gap on the direction (Newton and cut steps), summed over
+  // all starts.
   int iterations = 0;
 };
 static_assert(

@@ -222,12 +222,32 @@ struct Descent {
   bool converged = false;
 };
 
-// Minimizes phi on the sphere from the unit direction n0, at most `max_iterations` steps.
-// Converged when the Newton step is below the resolution of a unit vector, when the model
-// predicts a decrease far below rounding, or when Newton stops contracting quadratically
-// while already at the rounding level of phi (the gradient is then rounding noise and the
-// direction is as accurate as the data allow). Within rounding, Newton steps are taken
-// without the decrease test, which the noise would make meaningless.
+// Where the step n -> n + Q t crosses a kink of phi: the smallest fraction tau in (0, 1) at
+// which some body's |B (n + tau Q t)| (a hyperbola in tau) has its minimum, below half its
+// value at n; 1 if none. A thin body's support radius is |B n| ~ r_max |n . u| away from
+// the plane n . u = 0, a kink smoothed over an angle r_min / r_max: a step across it
+// overshoots by the whole step, and shrinking the trust region towards that width takes
+// many rejected steps and leaves the radius too small to follow the valley afterwards.
+template <class R, int N>
+R kink_fraction(const GapBodies<R, N>& g, const Vec<R, N>& n, const Vec<R, N>& step) noexcept {
+  R tau = R(1);
+  for (const Mat<R, N>* b : {&g.b1, &g.b2}) {
+    const Vec<R, N> w0 = *b * n, w1 = *b * step;
+    const R at = -w0.dot(w1) / w1.squaredNorm();
+    if (at > R(0) && at < tau && (w0 + at * w1).squaredNorm() < R(0.25) * w0.squaredNorm()) tau = at;
+  }
+  return tau;
+}
+
+// Minimizes phi on the sphere from the unit direction n0, at most `max_iterations`
+// evaluations of phi after the first. Converged when the Newton step is below the
+// resolution of a unit vector, when the model predicts a decrease far below rounding, or
+// when Newton stops contracting quadratically while already at the rounding level of phi
+// (the gradient is then rounding noise and the direction is as accurate as the data
+// allow). Within rounding, Newton steps are taken without the decrease test, which the
+// noise would make meaningless. A rejected step that crosses a kink (kink_fraction) is cut
+// at the kink, into the valley, where the model holds again. Only trial directions with a
+// finite phi are accepted, so the result holds a finite iterate whenever n0 is finite.
 template <class R, int N>
 Descent<R, N> descend(const GapBodies<R, N>& g, const Vec<R, N>& n0, int max_iterations) noexcept {
   constexpr R eps = std::numeric_limits<R>::epsilon();
@@ -235,6 +255,10 @@ Descent<R, N> descend(const GapBodies<R, N>& g, const Vec<R, N>& n0, int max_ite
   d.at = gap_at<R, N>(g, n0);
   R radius = R(0.5);
   R last_pred = std::numeric_limits<R>::infinity();
+  auto trial_at = [&](const Vec<R, N>& m) {
+    ++d.iterations;
+    return gap_at<R, N>(g, Vec<R, N>(m * (R(1) / m.norm())));
+  };
   while (d.iterations < max_iterations) {
     bool newton;
     const Tangent<R, N> t = trust_step<R, N>(d.at, radius, newton);
@@ -245,17 +269,28 @@ Descent<R, N> descend(const GapBodies<R, N>& g, const Vec<R, N>& n0, int max_ite
       d.converged = true;
       return d;
     }
-    ++d.iterations;
-    const Vec<R, N> m = d.at.n + d.at.q * t;
-    const GapAt<R, N> trial = gap_at<R, N>(g, Vec<R, N>(m * (R(1) / m.norm())));
-    if (rounding_level) {
+    const Vec<R, N> step = d.at.q * t;
+    const GapAt<R, N> trial = trial_at(d.at.n + step);
+    if (rounding_level && std::isfinite(trial.phi)) {
       last_pred = pred;
       d.at = trial;
       continue;
     }
-    const R actual = d.at.phi - trial.phi;  // compared with the predicted decrease
-    if (actual < R(0.25) * pred) radius = len / 4;
-    else if (actual > R(0.75) * pred && len > radius / 2) radius = std::min(R(1), 2 * radius);
+    const R actual = d.at.phi - trial.phi;  // compared with the predicted decrease; NaN rejects
+    if (!(actual >= R(0.25) * pred)) {
+      const R tau = kink_fraction<R, N>(g, d.at.n, step);
+      if (tau < R(1) && d.iterations < max_iterations) {
+        const GapAt<R, N> kink = trial_at(d.at.n + tau * step);
+        if (kink.phi < d.at.phi) {
+          d.at = kink;
+          radius = std::max(radius / 4, tau * len);
+          continue;
+        }
+      }
+      radius = len / 4;
+    } else if (actual > R(0.75) * pred && len > radius / 2) {
+      radius = std::min(R(1), 2 * radius);
+    }
     if (actual > R(0)) {
       if (newton) last_pred = pred;
       d.at = trial;

@@ -120,6 +120,90 @@ void check_against_reference(int per_category) {
 TEST(DistanceProperty, MatchesReference2D) { check_against_reference<2>(cases(300)); }
 TEST(DistanceProperty, MatchesReference3D) { check_against_reference<3>(cases(300)); }
 
+// Thin bodies beyond the scenarios' 1e4: aspect ratios 1e6 to 1e8, random orientations and
+// sizes, both bodies needles or discs (radii r, r / aspect, ...) or with log-uniform radii
+// across the ratio, centers up to the sum of the largest radii apart. Claims: every query
+// converges, the status is classify's and the signed distance is the reference's to
+// 1e-12 * scale (the witness-point claims are made to aspect ratio 1e4 only).
+template <int N>
+scenarios::Case<N> thin_case(std::uint64_t seed) {
+  using namespace scenarios::detail;
+  Rng rng(seed * 0x9E3779B97F4A7C15ull + 7001);
+  const double aspect = log_uniform(rng, 1e6, 1e8);
+  auto shape = [&] {
+    const double size = log_uniform(rng, 0.3, 3.0);
+    const double kind = uniform(rng, 0, 1);
+    if (kind < 1.0 / 3) return radii<N>(rng, size, aspect);
+    Vec<double, N> r = Vec<double, N>::Constant(kind < 2.0 / 3 ? size / aspect : size);  // needle, disc
+    r[kind < 2.0 / 3 ? 0 : N - 1] = kind < 2.0 / 3 ? size : size / aspect;
+    return r;
+  };
+  const Vec<double, N> ra = shape(), rb = shape();
+  const Vec<double, N> ca = unit_vector<N>(rng) * uniform(rng, 0, 5);
+  const auto a = body<N>(ca, rotation<N>(rng), ra);
+  const auto b = body<N>(Vec<double, N>(ca + unit_vector<N>(rng) * (ra.maxCoeff() + rb.maxCoeff()) * uniform(rng, 0, 1)),
+                         rotation<N>(rng), rb);
+  return {scenarios::Category::high_aspect, seed, a, b, Vec<double, N>::Zero(), Vec<double, N>::Zero(), 0.0};
+}
+
+// One body inside the other, touching it from inside at a random boundary point and then
+// moved inwards by 0 (internal tangency), or by 1e-12 to 0.3 of its size; aspect ratios to
+// 100 and 10. The penetration depth here is the non-convex case (several local minima on
+// the inner body's far side). All claims of check_case apply.
+template <int N>
+scenarios::Case<N> inner_tangent_case(std::uint64_t seed) {
+  using namespace scenarios::detail;
+  Rng rng(seed * 0x9E3779B97F4A7C15ull + 7002);
+  const Vec<double, N> ra = radii<N>(rng, log_uniform(rng, 0.3, 3.0), 100.0);
+  const Vec<double, N> rb = radii<N>(rng, ra.minCoeff() * uniform(rng, 0.05, 0.95), 10.0);
+  auto a = body<N>(unit_vector<N>(rng), rotation<N>(rng), ra);
+  const Mat<double, N> axes_b = rotation<N>(rng);
+  const double inward = uniform(rng, 0, 1) < 0.3 ? 0.0 : log_uniform(rng, 1e-12, 0.3);
+  const Vec<double, N> p = a.center() + a.axes() * ra.asDiagonal() * unit_vector<N>(rng);
+  const Vec<double, N> n = (a.quadric() * (p - a.center())).normalized();
+  const Mat<double, N> minv = axes_b * rb.cwiseAbs2().asDiagonal() * axes_b.transpose();
+  const Vec<double, N> support = minv * n / std::sqrt(n.dot(minv * n));  // b's point with normal n
+  auto b = body<N>(Vec<double, N>(p - support - inward * rb.maxCoeff() * n), axes_b, rb);
+  if (uniform(rng, 0, 1) < 0.5) std::swap(a, b);
+  return {scenarios::Category::containment, seed, a, b, Vec<double, N>::Zero(), Vec<double, N>::Zero(), 0.0};
+}
+
+template <int N>
+void check_thin(int n) {
+  Tally tally;
+  for (int i = 0; i < n; ++i) {
+    SCOPED_TRACE("thin_case seed " + std::to_string(i));
+    const auto c = thin_case<N>(static_cast<std::uint64_t>(i));
+    const auto got = signed_distance(c.a, c.b);
+    tally.add("aspect 1e6..1e8", to_string(got.status));
+    const auto r = ref::signed_distance<N>(to_ref(c.a), to_ref(c.b));
+    const double want = ref::to_double(r.distance);
+    ASSERT_EQ(got.status, status_of(classify(c.a, c.b))) << describe(c);
+    ASSERT_NEAR(got.distance, want, 1e-12 * (c.a.radii().maxCoeff() + c.b.radii().maxCoeff() + std::abs(want)))
+        << describe(c);
+  }
+  tally.print("signed_distance at aspect 1e6..1e8, N=" + std::to_string(N));
+  EXPECT_GT(tally.count("aspect 1e6..1e8", "separated"), n / 10);
+  EXPECT_GT(tally.count("aspect 1e6..1e8", "overlapping"), n / 10);
+}
+
+template <int N>
+void check_inner_tangent(int n) {
+  Tally tally;
+  for (int i = 0; i < n; ++i) {
+    SCOPED_TRACE("inner_tangent_case seed " + std::to_string(i));
+    check_case<N>(inner_tangent_case<N>(static_cast<std::uint64_t>(i)), tally);
+    if (::testing::Test::HasFatalFailure()) return;
+  }
+  tally.print("signed_distance under containment and internal tangency, N=" + std::to_string(N));
+  EXPECT_EQ(tally.count("containment", "overlapping"), n);
+}
+
+TEST(DistanceProperty, Aspect1e6To1e8_2D) { check_thin<2>(cases(300)); }
+TEST(DistanceProperty, Aspect1e6To1e8_3D) { check_thin<3>(cases(300)); }
+TEST(DistanceProperty, InternalTangency2D) { check_inner_tangent<2>(cases(300)); }
+TEST(DistanceProperty, InternalTangency3D) { check_inner_tangent<3>(cases(300)); }
+
 // Pairs placed within the tangency band of touching (gap 0 or +-1e-14 of the size, any
 // orientation, aspect ratios to 1e3): the status is classify's and the signed distance is
 // the reference's, with no jump between touching and either side.
