@@ -6,6 +6,12 @@
 //
 // Every factory validates its input once and throws InputError naming the offending
 // field; a constructed Ellipsoid is always valid, so queries on it are noexcept.
+//
+// Range: every finite positive radius and finite center is accepted and supported by the
+// queries, from subnormals to the largest double: they rescale each pair by a power of two
+// (exactly), and compute pairs whose radii differ by more than 2^160 or whose coordinates
+// exceed 2^340 times their largest radius in long double (docs/method.md, section 7).
+// float bodies are computed in double, which holds every float length squared or cubed.
 #pragma once
 
 #include <Eigen/Core>
@@ -15,6 +21,9 @@
 #include <string>
 
 namespace ellipsect {
+namespace detail {
+struct ShapeAccess;
+}
 
 template <class T, int N> using Vec = Eigen::Matrix<T, N, 1>;
 template <class T, int N> using Mat = Eigen::Matrix<T, N, N>;
@@ -67,6 +76,7 @@ public:
   Ellipsoid translated(const Vec<T, N>& offset) const;
 
 private:
+  friend struct detail::ShapeAccess;  // exact power-of-two rescaling inside the queries
   Ellipsoid() = default;
   Vec<T, N> center_;
   Mat<T, N> axes_;
