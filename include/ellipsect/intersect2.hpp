@@ -61,7 +61,7 @@ struct BoundaryIntersection {
   // World-frame points, the first `count` valid, in counter-clockwise order of a's
   // parametrization angle (a's center + axes diag(radii) (cos t, sin t), t in (-pi, pi]).
   std::array<Vec2<T>, 4> points;
-  std::array<CrossingKind, 4> kinds;
+  std::array<CrossingKind, 4> kinds{};
 };
 
 template <class T>

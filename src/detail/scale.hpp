@@ -56,6 +56,8 @@ Scale scale_of(T r_max, T r_min, T coordinate) noexcept {
   if constexpr (!std::is_same_v<T, double>) {
     return {};
   } else {
+    // Most pairs: native by comparisons alone (the products by powers of two are exact).
+    if (r_max >= 0x1p-64 && r_max < 0x1p65 && r_min >= r_max * 0x1p-160 && coordinate <= r_max * 0x1p340) return {};
     const int e = std::ilogb(r_max);
     if (std::ilogb(r_min) < e - ratio_bits || (coordinate > 0 && std::ilogb(coordinate) > e + offset_bits))
       return {Range::wide, 0};
