@@ -12,10 +12,11 @@
 //           subnormal range of a representable pair), so the answers are exactly those of
 //           the pair at unit scale, and scaling a scene by 2^k scales every length answer by
 //           exactly 2^k;
-//   wide    not representable in double: every radius of the pair is not within 2^-ratio_bits
-//           of r_max, or a center coordinate or the query point exceeds 2^offset_bits r_max.
-//           The query runs in long double (its 15-bit exponent holds the squares of any
-//           double) on the bodies as given.
+//   wide    not representable in double: some radius of the pair is below about
+//           2^-ratio_bits r_max, or a center or query point coordinate above about
+//           2^offset_bits r_max. The query runs in long double (its 15-bit exponent holds
+//           the squares of any double) on the bodies as given.
+// first_contact also rescales time where the speeds leave the window (time_exponent).
 // float bodies are always native: their squares and cubes fit in double, the working type.
 #pragma once
 

@@ -56,7 +56,9 @@ void expect_scaled(T got, T want, int k, const std::string& what) {
     return;
   }
   double w;
-  if (exact(want, k, w)) EXPECT_EQ(got, w) << what;
+  if (exact(want, k, w)) {
+    EXPECT_EQ(got, w) << what;
+  }
 }
 
 template <int N>
@@ -140,8 +142,8 @@ void check_scales(int per_category) {
   EXPECT_GT(used, 10 * per_category * 2);
 }
 
-TEST(ScaleProperty, AnswersScaleExactly2D) { check_scales<2>(cases(20)); }
-TEST(ScaleProperty, AnswersScaleExactly3D) { check_scales<3>(cases(20)); }
+TEST(ScaleProperty, AnswersScaleExactly2D) { check_scales<2>(cases(200)); }
+TEST(ScaleProperty, AnswersScaleExactly3D) { check_scales<3>(cases(200)); }
 
 // The batch functions equal the scalar ones bit for bit on scaled pairs (the filter leaves
 // them to the scalar path) and on the unscaled ones mixed in the same chunks.
@@ -175,8 +177,8 @@ void check_batch(int per_category) {
   }
 }
 
-TEST(ScaleProperty, BatchEqualsScalarOnScaledPairs2D) { check_batch<2>(cases(20)); }
-TEST(ScaleProperty, BatchEqualsScalarOnScaledPairs3D) { check_batch<3>(cases(20)); }
+TEST(ScaleProperty, BatchEqualsScalarOnScaledPairs2D) { check_batch<2>(cases(100)); }
+TEST(ScaleProperty, BatchEqualsScalarOnScaledPairs3D) { check_batch<3>(cases(100)); }
 
 }  // namespace
 }  // namespace ellipsect::testing
