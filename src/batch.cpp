@@ -5,10 +5,12 @@
 #include "detail/batch_kernels.hpp"
 #include "detail/certificates-inl.hpp"
 #include "detail/instantiate.hpp"
+#include "detail/scale.hpp"
 
 #include <algorithm>
 #include <array>
 #include <atomic>
+#include <cmath>
 #include <stdexcept>
 #include <thread>
 
@@ -48,6 +50,12 @@ void Pairs<T, N>::push_back(const Ellipsoid<T, N>& a, const Vec<T, N>& velocity_
   };
   put(0, a);
   put(body_columns, b);
+  // Pairs the scalar functions rescale or widen (detail/scale.hpp) are left to them: NaN
+  // radii fail every certificate's comparison, so the filter leaves the pair open.
+  const detail::Scale scale = detail::scale_of(a, b);
+  if (scale.range != detail::Range::native || detail::time_exponent(scale, velocity_a, velocity_b) != 0)
+    for (const int first : {0, body_columns})
+      for (const int k : {layout.rmax(), layout.rmin()}) columns_[static_cast<std::size_t>(first + k)].back() = NAN;
   for (int i = 0; i < N; ++i) {
     columns_[static_cast<std::size_t>(2 * body_columns + i)].push_back(double(velocity_a[i]));
     columns_[static_cast<std::size_t>(2 * body_columns + N + i)].push_back(double(velocity_b[i]));

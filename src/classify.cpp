@@ -3,6 +3,7 @@
 #include "detail/certificates-inl.hpp"
 #include "detail/classify_impl.hpp"
 #include "detail/instantiate.hpp"
+#include "detail/scale.hpp"
 
 namespace ellipsect {
 
@@ -39,13 +40,18 @@ detail::ReducedRelation decide(const Ellipsoid<T, N>& s, const Ellipsoid<T, N>& 
 template <class T, int N>
 Relation classify(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b, const Options& options) noexcept {
   using R = detail::Work<T>;
+  using W = detail::Wide<R>;
+  const detail::Scale scale = detail::scale_of(a, b);
+  if (scale.range == detail::Range::scaled)
+    return classify(detail::scaled(a, -scale.exponent), detail::scaled(b, -scale.exponent), options);
+  const bool wide = scale.range == detail::Range::wide;
   namespace hw = detail::HWY_NAMESPACE;
-  const double code = hw::certificate_code<true>(a, b, options.tolerance);
+  const double code = wide ? 0 : hw::certificate_code<true>(a, b, options.tolerance);
   if (code < 0) return Relation::separated;
   if (code > 0) return Relation::overlapping;
   const auto [s, o, a_is_s] = detail::order_pair(a, b);
   const R tol = R(options.tolerance);
-  switch (decide<R>(s, o, tol)) {
+  switch (wide ? decide<W>(s, o, W(tol)) : decide<R>(s, o, tol)) {
     case detail::ReducedRelation::s_contains_o: return a_is_s ? Relation::a_contains_b : Relation::b_contains_a;
     case detail::ReducedRelation::o_contains_s: return a_is_s ? Relation::b_contains_a : Relation::a_contains_b;
     case detail::ReducedRelation::separated: return Relation::separated;
@@ -59,6 +65,14 @@ Relation classify(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b, const Opti
 template <class T, int N>
 bool overlap(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b, const Options& options) noexcept {
   using R = detail::Work<T>;
+  using W = detail::Wide<R>;
+  const detail::Scale scale = detail::scale_of(a, b);
+  if (scale.range == detail::Range::scaled)
+    return overlap(detail::scaled(a, -scale.exponent), detail::scaled(b, -scale.exponent), options);
+  if (scale.range == detail::Range::wide) {
+    const auto pair = detail::order_pair(a, b);
+    return decide<W>(pair.s, pair.o, W(options.tolerance)) != detail::ReducedRelation::separated;
+  }
   namespace hw = detail::HWY_NAMESPACE;
   const double code = hw::certificate_code<false>(a, b, options.tolerance);
   if (code != 0) return code > 0;

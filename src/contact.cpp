@@ -17,6 +17,7 @@
 #include "detail/certificates-inl.hpp"
 #include "detail/classify_impl.hpp"
 #include "detail/instantiate.hpp"
+#include "detail/scale.hpp"
 
 #include <cmath>
 #include <limits>
@@ -167,6 +168,38 @@ Contact<T, N> first_contact(const Ellipsoid<T, N>& a, const VecArg<T, N>& veloci
   out.point.setConstant(out.time);
   out.normal.setConstant(out.time);
   if (!velocity_a.allFinite() || !velocity_b.allFinite() || std::isnan(t_max) || t_max < T(0)) return out;
+
+  // Lengths and times rescaled by powers of two (detail/scale.hpp): lengths by 2^-e, times
+  // by 2^f where the speeds in the rescaled lengths (2^f) leave the window, so velocities
+  // by 2^-(e + f). A contact time beyond the largest finite T is outside every window.
+  const detail::Scale scale = detail::scale_of(a, b);
+  const bool wide = scale.range == detail::Range::wide;
+  const int f = detail::time_exponent(scale, velocity_a, velocity_b);
+  auto beyond_window = [&](Contact<T, N>& c) {
+    if (!std::isfinite(c.time)) {
+      c.status = ContactStatus::no_contact_in_window;
+      c.time = out.time;
+      c.point = out.point;
+      c.normal = out.normal;
+    }
+    return c;
+  };
+  if (scale.exponent != 0 || f != 0) {
+    const int e = scale.exponent;
+    Contact<T, N> c = first_contact(detail::scaled(a, -e), detail::times_pow2(velocity_a, -e - f), detail::scaled(b, -e),
+                                    detail::times_pow2(velocity_b, -e - f), std::ldexp(t_max, f), options);
+    c.time = std::ldexp(c.time, -f);
+    c.point = detail::times_pow2(c.point, e);
+    return c.status == ContactStatus::hit ? beyond_window(c) : c;
+  }
+  if (wide) {  // long double throughout, without the double-precision quick out
+    using W = detail::Wide<R>;
+    const auto p = detail::order_pair(a, b);
+    W doubt;
+    Contact<T, N> c = solve_contact<W, T, N>(p.s, p.o, p.a_is_s ? velocity_a : velocity_b,
+                                             p.a_is_s ? velocity_b : velocity_a, W(t_max), p.a_is_s, options, doubt);
+    return c.status == ContactStatus::hit ? beyond_window(c) : c;
+  }
 
   namespace hw = detail::HWY_NAMESPACE;
   double va[N], vb[N];

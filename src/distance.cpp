@@ -24,6 +24,7 @@
 #include "detail/classify_impl.hpp"
 #include "detail/distance_gap.hpp"
 #include "detail/instantiate.hpp"
+#include "detail/scale.hpp"
 
 #include <algorithm>
 #include <array>
@@ -115,10 +116,10 @@ R separation_margin(const Ellipsoid<T, N>& s, const Ellipsoid<T, N>& o, const de
 template <int N>
 constexpr int penetration_starts = N == 2 ? 3 : 4;
 
-template <class T, int N>
+// The solve in working precision R.
+template <class R, class T, int N>
 Distance<T, N> solve(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b, const Options& options,
                      bool penetration) noexcept {
-  using R = detail::Work<T>;
   constexpr T nan = std::numeric_limits<T>::quiet_NaN();
   Distance<T, N> out;
   out.distance = nan;
@@ -188,16 +189,33 @@ Distance<T, N> solve(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b, const O
   return out;
 }
 
+// The solve at the pair's scale (detail/scale.hpp): as given, rescaled by 2^-e with the
+// lengths scaled back, or in long double.
+template <class T, int N>
+Distance<T, N> solve_at_scale(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b, const Options& options,
+                              bool penetration) noexcept {
+  using R = detail::Work<T>;
+  const detail::Scale scale = detail::scale_of(a, b);
+  if (scale.range == detail::Range::native) return solve<R>(a, b, options, penetration);
+  if (scale.range == detail::Range::wide) return solve<detail::Wide<R>>(a, b, options, penetration);
+  const int e = scale.exponent;
+  Distance<T, N> d = solve<R>(detail::scaled(a, -e), detail::scaled(b, -e), options, penetration);
+  d.distance = std::ldexp(d.distance, e);
+  d.point_a = detail::times_pow2(d.point_a, e);
+  d.point_b = detail::times_pow2(d.point_b, e);
+  return d;
+}
+
 }  // namespace
 
 template <class T, int N>
 Distance<T, N> distance(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b, const Options& options) noexcept {
-  return solve(a, b, options, false);
+  return solve_at_scale(a, b, options, false);
 }
 
 template <class T, int N>
 Distance<T, N> signed_distance(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b, const Options& options) noexcept {
-  return solve(a, b, options, true);
+  return solve_at_scale(a, b, options, true);
 }
 
 #define ELLIPSECT_INSTANTIATE(T, N)                                                                              \

@@ -24,6 +24,7 @@
 #include <ellipsect/intersect2.hpp>
 
 #include "detail/classify_impl.hpp"
+#include "detail/scale.hpp"
 
 #include <array>
 #include <cmath>
@@ -220,10 +221,12 @@ Common<R> common_points(const Ellipse2<T>& s, const Ellipse2<T>& o, R tol, bool&
 template <class T, class Use>
 void with_common_points(const Ellipse2<T>& s, const Ellipse2<T>& o, const Options& options, Use use) noexcept {
   using R = detail::Work<T>;
-  bool doubt;
-  const auto c = common_points<R>(s, o, R(options.tolerance), doubt);
-  if (!doubt) return use(c);
   using W = detail::Wide<R>;
+  bool doubt = detail::scale_of(s, o).range == detail::Range::wide;  // not representable in R
+  if (!doubt) {
+    const auto c = common_points<R>(s, o, R(options.tolerance), doubt);
+    if (!doubt) return use(c);
+  }
   use(common_points<W>(s, o, W(options.tolerance), doubt));
 }
 
@@ -269,6 +272,12 @@ R lens_area(const Common<R>& c) noexcept {
 
 template <class T>
 BoundaryIntersection<T> intersect_boundaries(const Ellipse2<T>& a, const Ellipse2<T>& b, const Options& options) noexcept {
+  if (const detail::Scale scale = detail::scale_of(a, b); scale.range == detail::Range::scaled) {
+    const int e = scale.exponent;
+    BoundaryIntersection<T> out = intersect_boundaries(detail::scaled(a, -e), detail::scaled(b, -e), options);
+    for (int i = 0; i < out.count; ++i) out.points[i] = detail::times_pow2(out.points[i], e);
+    return out;
+  }
   BoundaryIntersection<T> out;
   const Relation relation = classify(a, b, options);
   if (relation == Relation::equal) out.status = BoundaryStatus::equal;
@@ -299,6 +308,12 @@ BoundaryIntersection<T> intersect_boundaries(const Ellipse2<T>& a, const Ellipse
 
 template <class T>
 OverlapArea<T> overlap_area(const Ellipse2<T>& a, const Ellipse2<T>& b, const Options& options) noexcept {
+  if (const detail::Scale scale = detail::scale_of(a, b); scale.range == detail::Range::scaled) {
+    const int e = scale.exponent;
+    OverlapArea<T> out = overlap_area(detail::scaled(a, -e), detail::scaled(b, -e), options);
+    out.area = std::ldexp(out.area, 2 * e);  // +inf beyond the largest finite T
+    return out;
+  }
   using R = detail::Work<T>;
   auto area_of = [](const Ellipse2<T>& e) { return std::numbers::pi_v<R> * R(e.radii()[0]) * R(e.radii()[1]); };
   OverlapArea<T> out{T(0), classify(a, b, options)};

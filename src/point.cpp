@@ -2,13 +2,16 @@
 
 #include "detail/reduce.hpp"
 #include "detail/instantiate.hpp"
+#include "detail/scale.hpp"
 #include "detail/secular.hpp"
 
 namespace ellipsect {
 
-template <class T, int N>
-ClosestPoint<T, N> closest_point(const Ellipsoid<T, N>& body, const VecArg<T, N>& x) noexcept {
-  using R = detail::Work<T>;
+namespace {
+
+// The query in working precision R.
+template <class R, class T, int N>
+ClosestPoint<T, N> solve(const Ellipsoid<T, N>& body, const Vec<T, N>& x) noexcept {
   // Frame of the body's axes with the query point at the origin.
   const Mat<R, N> axes = body.axes().template cast<R>();
   const Vec<R, N> e = body.radii().template cast<R>();
@@ -18,8 +21,24 @@ ClosestPoint<T, N> closest_point(const Ellipsoid<T, N>& body, const VecArg<T, N>
   return {(body.center().template cast<R>() + axes * p.offset).template cast<T>(), T(outside ? p.norm : -p.norm)};
 }
 
+}  // namespace
+
+// At the scale of the body and the point (detail/scale.hpp): as given, rescaled by 2^-e
+// with the lengths scaled back, or in long double.
+template <class T, int N>
+ClosestPoint<T, N> closest_point(const Ellipsoid<T, N>& body, const VecArg<T, N>& x) noexcept {
+  using R = detail::Work<T>;
+  const detail::Scale scale = detail::scale_of<T>(body.radii().maxCoeff(), body.radii().minCoeff(),
+                                                  std::max(detail::max_abs(body.center()), detail::max_abs(x)));
+  if (scale.range == detail::Range::native) return solve<R>(body, x);
+  if (scale.range == detail::Range::wide) return solve<detail::Wide<R>>(body, x);
+  const int e = scale.exponent;
+  ClosestPoint<T, N> p = solve<R>(detail::scaled(body, -e), detail::times_pow2(x, -e));
+  return {detail::times_pow2(p.point, e), std::ldexp(p.signed_distance, e)};
+}
+
 #define ELLIPSECT_INSTANTIATE(T, N) \
-  template ClosestPoint<T, N> closest_point<T, N>(const Ellipsoid<T, N>&, const Vec<T, N>&) noexcept;
+  template ClosestPoint<T, N> closest_point<T, N>(const Ellipsoid<T, N>&, const VecArg<T, N>&) noexcept;
 ELLIPSECT_FOR_EACH_TYPE_AND_DIM(ELLIPSECT_INSTANTIATE)
 #undef ELLIPSECT_INSTANTIATE
 

@@ -45,7 +45,9 @@ struct BatchOptions {
 // structure of arrays: one contiguous column of doubles per quantity the filter reads,
 // computed once per body when the pair is added (center, S = A diag(r^2) A^T and its
 // inverse, the quadric matrix, as packed upper triangles, largest and smallest radius),
-// plus the bodies themselves for the scalar fallback.
+// plus the bodies themselves for the scalar fallback. Pairs the scalar functions rescale or
+// compute in long double (docs/method.md, section 7) store NaN radii, which sends them to
+// the scalar functions.
 template <class T, int N>
 class Pairs {
 public:

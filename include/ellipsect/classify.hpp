@@ -5,7 +5,8 @@
 // bodies scaled by mu about their centers just touch) and whose containment scale factors
 // differ from 1 by more than 2 * Options::tolerance (default 1e-12); a pair reported
 // `touching` has |mu - 1| <= 2 * tolerance. Swapping the arguments gives the mirrored
-// answer bit for bit (a_contains_b <-> b_contains_a).
+// answer bit for bit (a_contains_b <-> b_contains_a). Scaling both bodies by 2^k changes
+// nothing, at any scale the factories accept (docs/method.md, section 7).
 #pragma once
 
 #include <ellipsect/options.hpp>

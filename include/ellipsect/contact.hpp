@@ -10,6 +10,8 @@
 //   normal within 1e-9 rad.
 // For grazing paths the contact time is ill-conditioned (a double root): the status is
 // right outside the tolerance band and the time is accurate to about sqrt(tolerance).
+// Scaling bodies and velocities by 2^k leaves status, time and normal unchanged and
+// multiplies the point by exactly 2^k, at any scale (docs/method.md, section 7).
 #pragma once
 
 #include <ellipsect/options.hpp>
@@ -23,7 +25,8 @@ enum class ContactStatus {
   hit,                   // separated at t = 0, first touch at `time` in (0, t_max]
   touching_at_start,     // touching at t = 0 (within the tolerance band); time = 0
   overlapping_at_start,  // interiors already intersect at t = 0; no point or normal
-  no_contact_in_window,  // separated throughout [0, t_max] (includes "never touch")
+  no_contact_in_window,  // separated throughout [0, t_max] (includes "never touch" and a
+                         // contact time beyond the largest finite T)
   did_not_converge,      // Options::max_iterations reached; time is the last iterate
   invalid_input,         // a velocity is not finite, or t_max is NaN or negative
 };

@@ -38,7 +38,9 @@
 //                of b at point_b, to 1e-12 * scale / (smallest radius of curvature) rad.
 // The status equals classify's (separated, touching, overlapping for all other relations).
 // Swapping two distinct bodies gives the same distance, swapped points and the negated
-// normal, bit for bit. float bodies are computed in double and the results rounded (tested to 1e-6 *
+// normal, bit for bit. Scaling both bodies by 2^k (|k| <= 1000 tested) multiplies the distance
+// and the points by exactly 2^k, the status and normal unchanged (docs/method.md, section 7).
+// float bodies are computed in double and the results rounded (tested to 1e-6 *
 // scale).
 #pragma once
 

@@ -26,7 +26,8 @@
 //   kinds   the number of transverse crossings is exact outside the tangency band;
 //   area    absolute error <= 1e-12 * the smaller ellipse's area.
 // Swapping a and b gives the same points (listed in the new a's order) and the same area,
-// bit for bit.
+// bit for bit. Scaling both ellipses by 2^k multiplies the points by exactly 2^k and the
+// area by 4^k (+inf beyond the largest double) (docs/method.md, section 7).
 // float ellipses are computed in double and the results rounded.
 #pragma once
 
@@ -60,7 +61,7 @@ struct BoundaryIntersection {
   // World-frame points, the first `count` valid, in counter-clockwise order of a's
   // parametrization angle (a's center + axes diag(radii) (cos t, sin t), t in (-pi, pi]).
   std::array<Vec2<T>, 4> points;
-  std::array<CrossingKind, 4> kinds;
+  std::array<CrossingKind, 4> kinds{};
 };
 static_assert(detail::has_plain_layout<BoundaryIntersection<float>, BoundaryStatus, int, float[4][2], CrossingKind[4]> &&
               detail::has_plain_layout<BoundaryIntersection<double>, BoundaryStatus, int, double[4][2], CrossingKind[4]>);

@@ -7,6 +7,12 @@
 // scene, or moving it rigidly, leaves these numbers unchanged, so the answers do not
 // depend on units. `tolerance` is that relative gap below which two bodies count as
 // touching (and containment within which counts as tangent from inside).
+//
+// Range. The model holds at every scale: a pair whose largest radius lies outside 2^+-64 is
+// rescaled by a power of two (exact) before the query, so scaling a scene by 2^k changes no
+// answer beyond multiplying lengths by exactly 2^k. Within one pair, radii within a ratio
+// of 2^160 and coordinates within 2^340 times the largest radius are computed in double;
+// pairs beyond that in long double (docs/method.md, section 7).
 #pragma once
 
 namespace ellipsect {

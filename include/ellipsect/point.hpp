@@ -5,7 +5,8 @@
 // safeguarded by a bracket and finished by bisection, so it always terminates; zero
 // components and repeated radii are handled exactly (the "hard case" of interior points).
 // Accuracy: the point lies on the boundary to a few ulps relative to the radii; the
-// distance has absolute error below 1e-14 * (largest radius + |x - center|).
+// distance has absolute error below 1e-14 * (largest radius + |x - center|). Scaling body
+// and point by 2^k multiplies point and distance by exactly 2^k (docs/method.md, section 7).
 #pragma once
 
 #include <ellipsect/shapes.hpp>

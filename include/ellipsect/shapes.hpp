@@ -15,6 +15,12 @@
 // that could differ from the library's is a compile error, never a silent misreading.
 // Aligned Eigen vectors and matrices (Eigen::Vector3d, ...) convert implicitly wherever a
 // Vec or Mat is taken.
+//
+// Range: every finite positive radius and finite center is accepted and supported by the
+// queries, from subnormals to the largest double: they rescale each pair by a power of two
+// (exactly), and compute pairs whose radii differ by more than 2^160 or whose coordinates
+// exceed 2^340 times their largest radius in long double (docs/method.md, section 7).
+// float bodies are computed in double, which holds every float length squared or cubed.
 #pragma once
 
 #include <Eigen/Core>
@@ -28,6 +34,9 @@
 #include <type_traits>
 
 namespace ellipsect {
+namespace detail {
+struct ShapeAccess;
+}
 
 template <class T, int N> using Vec = Eigen::Matrix<T, N, 1, Eigen::DontAlign>;
 template <class T, int N> using Mat = Eigen::Matrix<T, N, N, Eigen::DontAlign>;
@@ -126,6 +135,7 @@ public:
   Ellipsoid translated(const Vec<T, N>& offset) const;
 
 private:
+  friend struct detail::ShapeAccess;  // exact power-of-two rescaling inside the queries
   // Unchecked; the factories validate first.
   Ellipsoid(const Vec<T, N>& center, const Mat<T, N>& axes, const Vec<T, N>& radii) noexcept;
 

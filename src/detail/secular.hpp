@@ -30,6 +30,20 @@
 
 namespace ellipsect::detail {
 
+// |v| without the underflow or overflow of its squares: v.norm() where the squared norm is
+// a normal number (bit for bit), else the norm of v scaled by a power of two.
+template <class R, int N>
+R stable_norm(const Vec<R, N>& v) noexcept {
+  const R s = v.squaredNorm();
+  if (s >= std::numeric_limits<R>::min() && s <= std::numeric_limits<R>::max()) return std::sqrt(s);
+  const R m = v.cwiseAbs().maxCoeff();
+  if (!(m > R(0)) || !std::isfinite(m)) return m;
+  const int e = std::ilogb(m);
+  Vec<R, N> w;
+  for (int i = 0; i < N; ++i) w[i] = std::ldexp(v[i], -e);
+  return std::ldexp(w.norm(), e);
+}
+
 template <class R>
 struct SecularRoot {
   R x;        // the root
@@ -63,7 +77,7 @@ SecularRoot<R> solve_secular(const Vec<R, N>& c_in, const Vec<R, N>& g, R guess 
   // Bracket: S >= each single term, whose root is c_i - g_i; S(x) <= |c|^2 / (x + g_min)^2.
   R lo = 0;
   for (int i = 0; i < N; ++i) lo = std::max(lo, c[i] - g[i]);
-  R hi = std::max(lo, c.norm() - g.minCoeff());
+  R hi = std::max(lo, stable_norm(c) - g.minCoeff());
 
   auto eval = [&](R x, R& s, R& ds) {  // s = S(x), ds = sum t_i^2 / (g_i + x) = -S'(x)/2
     s = 0;
@@ -118,6 +132,14 @@ struct BranchPoint {
 // where (num, off) = (u, -e_i^2) for the closest point (u = x outside, x - e_min^2
 // inside) and (x + e_max^2, e_i^2) for the farthest. In the hard case the terms with
 // den_i = 0 are replaced by the boundary completion along the group's first axis.
+// k * (n / den), or (k / den) * n where n / den overflows (den subnormal; k is then as
+// small, as den = g_i + x >= |c_i| = e_i |k_i| on the branch).
+template <class R>
+R scaled_ratio(R k, R n, R den) noexcept {
+  const R q = n / den;
+  return std::isfinite(q) ? k * q : k / den * n;
+}
+
 template <class R, int N, class Num, class Off>
 BranchPoint<R, N> branch_point(const Vec<R, N>& e, const Vec<R, N>& k, const Vec<R, N>& g, const SecularRoot<R>& root,
                                Num num, Off off) noexcept {
@@ -130,11 +152,11 @@ BranchPoint<R, N> branch_point(const Vec<R, N>& e, const Vec<R, N>& k, const Vec
       b.point[i] = b.offset[i];
       completed = true;
     } else {
-      b.point[i] = k[i] * (num(i) / den);
-      b.offset[i] = k[i] * (off(i) / den);
+      b.point[i] = scaled_ratio(k[i], num(i), den);
+      b.offset[i] = scaled_ratio(k[i], off(i), den);
     }
   }
-  b.norm = b.point.norm();
+  b.norm = stable_norm(b.point);
   b.root = root.x;
   return b;
 }

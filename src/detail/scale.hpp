@@ -1,0 +1,113 @@
+// The range of scales every query supports, and the power-of-two rescaling that gives it
+// (docs/method.md, section 7).
+//
+// The methods form squares and cubes of lengths (quadric matrices, the secular equation,
+// the determinants of the Perram-Wertheim matrix), so in double they overflow beyond about
+// 1e51 to 1e154 and underflow below the reciprocals. A query therefore measures its pair:
+//   native  the largest radius r_max is within 2^+-native_exponent and the pair is
+//           representable (below): the query runs on the bodies as given;
+//   scaled  representable, r_max outside that window: the query runs on the bodies scaled
+//           by 2^-E, E = ilogb(r_max) (so r_max lands in [1, 2)), and its lengths are scaled
+//           back by 2^E. Multiplying by a power of two is exact (no result is in the
+//           subnormal range of a representable pair), so the answers are exactly those of
+//           the pair at unit scale, and scaling a scene by 2^k scales every length answer by
+//           exactly 2^k;
+//   wide    not representable in double: some radius of the pair is below about
+//           2^-ratio_bits r_max, or a center or query point coordinate above about
+//           2^offset_bits r_max. The query runs in long double (its 15-bit exponent holds
+//           the squares of any double) on the bodies as given.
+// first_contact also rescales time where the speeds leave the window (time_exponent).
+// float bodies are always native: their squares and cubes fit in double, the working type.
+#pragma once
+
+#include <ellipsect/shapes.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <type_traits>
+
+namespace ellipsect::detail {
+
+// Pairs whose largest radius lies in [2^-native_exponent, 2^(native_exponent + 1)) run as
+// given, so answers there are those of the code without rescaling, bit for bit.
+inline constexpr int native_exponent = 64;
+// Representable pairs: every radius >= 2^-ratio_bits r_max (the reduced frame forms
+// (r_max / r_min)^2 and the distance its cube), every center coordinate and query point
+// coordinate <= 2^offset_bits r_max (offsets over the smallest radius stay below 2^500).
+inline constexpr int ratio_bits = 160;
+inline constexpr int offset_bits = 340;
+
+enum class Range { native, scaled, wide };
+
+struct Scale {
+  Range range = Range::native;
+  int exponent = 0;  // E: the query runs on the bodies times 2^-E (Range::scaled)
+};
+
+// Largest magnitude of a vector's coordinates.
+template <class D>
+typename D::Scalar max_abs(const Eigen::MatrixBase<D>& v) noexcept {
+  return v.cwiseAbs().maxCoeff();
+}
+
+// The range of a set of lengths given as the largest and smallest radius and the largest
+// coordinate magnitude (centers, query points).
+template <class T>
+Scale scale_of(T r_max, T r_min, T coordinate) noexcept {
+  if constexpr (!std::is_same_v<T, double>) {
+    return {};
+  } else {
+    // Most pairs: native by comparisons alone (the products by powers of two are exact).
+    if (r_max >= 0x1p-64 && r_max < 0x1p65 && r_min >= r_max * 0x1p-160 && coordinate <= r_max * 0x1p340) return {};
+    const int e = std::ilogb(r_max);
+    if (std::ilogb(r_min) < e - ratio_bits || (coordinate > 0 && std::ilogb(coordinate) > e + offset_bits))
+      return {Range::wide, 0};
+    if (e >= -native_exponent && e <= native_exponent) return {};
+    return {Range::scaled, e};
+  }
+}
+
+template <class T, int N>
+Scale scale_of(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b) noexcept {
+  return scale_of<T>(std::max(a.radii().maxCoeff(), b.radii().maxCoeff()),
+                     std::min(a.radii().minCoeff(), b.radii().minCoeff()),
+                     std::max(max_abs(a.center()), max_abs(b.center())));
+}
+
+// first_contact also rescales time where the speeds, in the rescaled lengths, leave the
+// window: f = their exponent (velocities times 2^-(E + f), times and t_max times 2^f),
+// else 0.
+template <class T, int N>
+int time_exponent(const Scale& scale, const Vec<T, N>& velocity_a, const Vec<T, N>& velocity_b) noexcept {
+  if constexpr (!std::is_same_v<T, double>) {
+    return 0;
+  } else {
+    const T speed = std::max(max_abs(velocity_a), max_abs(velocity_b));
+    if (scale.range == Range::wide || !(speed > 0) || !std::isfinite(speed)) return 0;
+    const int f = std::ilogb(speed) - scale.exponent;
+    return f >= -native_exponent && f <= native_exponent ? 0 : f;
+  }
+}
+
+// A vector times 2^k (exact where the result is normal).
+template <class D>
+Vec<typename D::Scalar, D::RowsAtCompileTime> times_pow2(const Eigen::MatrixBase<D>& v, int k) noexcept {
+  Vec<typename D::Scalar, D::RowsAtCompileTime> out;
+  for (int i = 0; i < D::RowsAtCompileTime; ++i) out[i] = std::ldexp(v[i], k);
+  return out;
+}
+
+// The body scaled about the origin by 2^k: center and radii times 2^k, the same axes.
+struct ShapeAccess {
+  template <class T, int N>
+  static Ellipsoid<T, N> scaled(const Ellipsoid<T, N>& e, int k) noexcept {
+    return Ellipsoid<T, N>(times_pow2(e.center(), k), e.axes(), times_pow2(e.radii(), k));
+  }
+};
+
+template <class T, int N>
+Ellipsoid<T, N> scaled(const Ellipsoid<T, N>& e, int k) noexcept {
+  return ShapeAccess::scaled(e, k);
+}
+
+}  // namespace ellipsect::detail
