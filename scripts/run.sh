@@ -3,14 +3,17 @@
 #   bash scripts/run.sh example   install what is missing, build, run `ellipsect check` and
 #                                 `ellipsect render` on a bundled scene
 #   bash scripts/run.sh test      install what is missing, build, run the whole test suite
-#                                 (Release build, then an ASan+UBSan build)
+#                                 (Release build, then an ASan+UBSan build, then a short
+#                                 fixed-seed run of every fuzz target and its kept inputs)
+#   bash scripts/run.sh fuzz [NAME [SECONDS]]   the long run of one fuzz target or all
+#                                 (default 600 s each; docs/fuzzing.md)
 #   bash scripts/run.sh bench [NAME [ARGS]]   install what is missing, build, run
 #                                 bench/bench_NAME (default: batch, ellipsect vs FCL and libccd)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
 packages=(g++ cmake ninja-build pkg-config libeigen3-dev libhwy-dev libboost-dev libgtest-dev libgmock-dev libbenchmark-dev
-          libfcl-dev libccd-dev libcli11-dev nlohmann-json3-dev librsvg2-bin)
+          libfcl-dev libccd-dev libcli11-dev nlohmann-json3-dev librsvg2-bin clang libclang-rt-14-dev)
 
 install_missing() {
   local missing=()
@@ -30,6 +33,40 @@ build() {  # build DIR [cmake args...]
   shift
   cmake -S . -B "$dir" -G Ninja "$@" >/dev/null
   cmake --build "$dir" -j "$(nproc)"
+}
+
+# The libFuzzer targets (fuzz/): clang with the fuzzing instrumentation, ASan and UBSan.
+build_fuzz() {
+  cmake -S . -B build/fuzz -G Ninja -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+    -DELLIPSECT_BUILD_FUZZ=ON -DELLIPSECT_BUILD_TESTS=OFF -DELLIPSECT_BUILD_BENCH=OFF -DELLIPSECT_BUILD_TOOLS=OFF >/dev/null
+  cmake --build build/fuzz -j "$(nproc)" --target fuzz
+}
+
+fuzz_targets() {
+  local f
+  for f in fuzz/*_fuzz.cpp; do
+    f=${f#fuzz/}
+    echo "${f%_fuzz.cpp}"
+  done
+}
+
+# fuzz_check NAME: every kept input of fuzz/regressions/NAME/, then a reproducible run
+# (fixed seed and count) from the committed corpus fuzz/corpus/NAME/; new inputs go to a
+# scratch directory, never into the repository.
+fuzz_runs=20000
+fuzz_check() {
+  local name=$1 program=build/fuzz/fuzz/fuzz_$1 scratch log
+  local kept=(fuzz/regressions/"$name"/*)
+  if [ -e "${kept[0]}" ]; then
+    echo "==> fuzz_$name: ${#kept[@]} kept inputs"
+    log=$("$program" -timeout=30 "${kept[@]}" 2>&1) || { echo "$log"; return 1; }
+  fi
+  echo "==> fuzz_$name: $fuzz_runs runs, seed 1"
+  scratch=$(mktemp -d)
+  log=$("$program" -seed=1 -runs="$fuzz_runs" -max_len=4096 -timeout=10 -print_final_stats=1 "$scratch" \
+    fuzz/corpus/"$name" 2>&1) || { echo "$log"; rm -rf "$scratch"; return 1; }
+  rm -rf "$scratch"
+  echo "$log" | grep -E "^(Done|stat::peak_rss_mb)"
 }
 
 case "${1:-}" in
@@ -52,6 +89,19 @@ case "${1:-}" in
     build build/sanitize -DCMAKE_BUILD_TYPE=RelWithDebInfo -DELLIPSECT_SANITIZE=ON -DELLIPSECT_BUILD_TESTS=ON \
       -DELLIPSECT_BUILD_BENCH=OFF -DELLIPSECT_BUILD_TOOLS=ON
     (cd build/sanitize && ELLIPSECT_CASE_SCALE=0.05 ctest --output-on-failure --no-tests=error -j "$(nproc)")
+    build_fuzz
+    for name in $(fuzz_targets); do fuzz_check "$name"; done
+    ;;
+  fuzz)
+    install_missing
+    build_fuzz
+    # fuzz [NAME [SECONDS]]: new inputs are added to fuzz/corpus/NAME; failures are written
+    # as crash-* files in the current directory (docs/fuzzing.md: keep them as regressions).
+    for name in ${2:-$(fuzz_targets)}; do
+      [[ -f fuzz/${name}_fuzz.cpp ]] || { echo "no fuzz target $name (see fuzz/)" >&2; exit 2; }
+      build/fuzz/fuzz/fuzz_"$name" -max_total_time="${3:-600}" -max_len=4096 -timeout=10 -jobs="$(nproc)" \
+        -workers="$(nproc)" fuzz/corpus/"$name"
+    done
     ;;
   bench)
     install_missing
@@ -63,7 +113,7 @@ case "${1:-}" in
     "$program" --benchmark_repetitions=3 --benchmark_report_aggregates_only=true "${@:3}"
     ;;
   *)
-    echo "usage: bash scripts/run.sh example|test|bench [NAME [ARGS...]]" >&2
+    echo "usage: bash scripts/run.sh example|test|bench [NAME [ARGS...]]|fuzz [NAME [SECONDS]]" >&2
     exit 2
     ;;
 esac
