@@ -110,6 +110,14 @@ bool same_bits(const Eigen::MatrixBase<Derived>& x, const Eigen::MatrixBase<Deri
   return true;
 }
 
+// Equal bits, or both NaN (a NaN field negated flips only its sign bit).
+template <class Derived>
+bool same_bits_or_nan(const Eigen::MatrixBase<Derived>& x, const Eigen::MatrixBase<Derived>& y) {
+  for (Eigen::Index i = 0; i < x.size(); ++i)
+    if (!same_bits(x(i), y(i)) && !(std::isnan(x(i)) && std::isnan(y(i)))) return false;
+  return true;
+}
+
 template <class Derived>
 bool all_finite(const Eigen::MatrixBase<Derived>& x) {
   return x.allFinite();
