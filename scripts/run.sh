@@ -53,13 +53,13 @@ fuzz_targets() {
 # fuzz_check NAME: every kept input of fuzz/regressions/NAME/, then a reproducible run
 # (fixed seed and count) from the committed corpus fuzz/corpus/NAME/; new inputs go to a
 # scratch directory, never into the repository. Runs per target: about 20 s on two cores.
-declare -A fuzz_runs=([factories]=20000 [intersect2]=10000 [niemitalo]=10000 [queries]=3000 [scene]=2000)
+declare -A fuzz_runs=([factories]=100000 [intersect2]=5000 [niemitalo]=5000 [queries]=2000 [scene]=2000)
 fuzz_check() {
-  local name=$1 program=build/fuzz/fuzz/fuzz_$1 scratch log
+  local name=$1 program=build/fuzz/fuzz/fuzz_$1 scratch log status=0
   local kept=(fuzz/regressions/"$name"/*)
   if [ -e "${kept[0]}" ]; then
     echo "==> fuzz_$name: ${#kept[@]} kept inputs"
-    log=$("$program" -timeout=30 "${kept[@]}" 2>&1) || { echo "$log"; return 1; }
+    log=$("$program" -timeout=30 "${kept[@]}" 2>&1) || { echo "$log"; status=1; }
   fi
   local runs=${fuzz_runs[$name]:-2000}
   echo "==> fuzz_$name: $runs runs, seed 1"
@@ -68,6 +68,7 @@ fuzz_check() {
     fuzz/corpus/"$name" 2>&1) || { echo "$log"; rm -rf "$scratch"; return 1; }
   rm -rf "$scratch"
   echo "$log" | grep -E "^(Done|stat::peak_rss_mb)"
+  return $status
 }
 
 case "${1:-}" in
