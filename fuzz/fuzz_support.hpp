@@ -34,14 +34,14 @@ inline std::string& trace() {
 }  // namespace ellipsect::fuzz
 
 // Stops the run when `cond` is false; the remaining arguments are streamed into the message.
-#define FUZZ_CHECK(cond, ...)                                                                    \
-  do {                                                                                           \
-    if (!(cond)) {                                                                               \
-      std::ostringstream fuzz_detail_;                                                           \
-      fuzz_detail_.precision(17);                                                                \
-      fuzz_detail_ << "" __VA_ARGS__;                                                            \
-      ::ellipsect::fuzz::fail(#cond, __FILE__, __LINE__, fuzz_detail_.str());                    \
-    }                                                                                            \
+#define FUZZ_CHECK(cond, ...)                                                 \
+  do {                                                                        \
+    if (!(cond)) {                                                            \
+      std::ostringstream fuzz_detail_;                                        \
+      fuzz_detail_.precision(17);                                             \
+      fuzz_detail_ << "" __VA_ARGS__;                                         \
+      ::ellipsect::fuzz::fail(#cond, __FILE__, __LINE__, fuzz_detail_.str()); \
+    }                                                                         \
   } while (0)
 
 namespace ellipsect::fuzz {
@@ -99,10 +99,8 @@ private:
 
 // Equal bit patterns (NaN equals NaN of the same payload; 0 and -0 differ).
 template <class T>
-  requires std::is_floating_point_v<T>
-bool same_bits(T x, T y) {
-  return std::memcmp(&x, &y, sizeof(T)) == 0;
-}
+requires std::is_floating_point_v<T>
+bool same_bits(T x, T y) { return std::memcmp(&x, &y, sizeof(T)) == 0; }
 template <class Derived>
 bool same_bits(const Eigen::MatrixBase<Derived>& x, const Eigen::MatrixBase<Derived>& y) {
   for (Eigen::Index i = 0; i < x.size(); ++i)
@@ -124,8 +122,7 @@ bool all_finite(const Eigen::MatrixBase<Derived>& x) {
 }
 
 template <class T>
-  requires std::is_floating_point_v<T>
-std::string hex(T x) {
+requires std::is_floating_point_v<T> std::string hex(T x) {
   char buf[64];
   std::snprintf(buf, sizeof buf, "%a", static_cast<double>(x));
   return buf;

@@ -58,8 +58,8 @@ void run(Bytes& in) {
   }
   if (rel == Relation::separated) FUZZ_CHECK(r.count == 0, << "separated with " << r.count << " points");
   if (rel == Relation::touching)
-    FUZZ_CHECK(r.count == 1 && r.kinds[0] == CrossingKind::tangent, << "touching: " << r.count << " points, "
-                                                                    << transverse << " transverse");
+    FUZZ_CHECK(r.count == 1 && r.kinds[0] == CrossingKind::tangent,
+               << "touching: " << r.count << " points, " << transverse << " transverse");
   if (rel == Relation::a_contains_b || rel == Relation::b_contains_a)
     FUZZ_CHECK(transverse == 0, << to_string(rel) << " with " << transverse << " transverse crossings");
   FUZZ_CHECK(s.status == r.status && point_set(s) == point_set(r),
@@ -68,8 +68,8 @@ void run(Bytes& in) {
   const auto area = overlap_area(*a, *b);
   const auto area_swapped = overlap_area(*b, *a);
   FUZZ_CHECK(area.relation == rel, << to_string(area.relation) << " vs classify " << to_string(rel));
-  FUZZ_CHECK(same_bits(area.area, area_swapped.area), << "swap: area " << hex(area.area) << " vs "
-                                                      << hex(area_swapped.area));
+  FUZZ_CHECK(same_bits(area.area, area_swapped.area),
+             << "swap: area " << hex(area.area) << " vs " << hex(area_swapped.area));
   FUZZ_CHECK(std::isfinite(area.area) && area.area >= 0, << "area " << area.area);
   const double area_a = std::numbers::pi * double(a->radii()[0]) * double(a->radii()[1]);
   const double area_b = std::numbers::pi * double(b->radii()[0]) * double(b->radii()[1]);
@@ -78,8 +78,8 @@ void run(Bytes& in) {
   if (rel == Relation::separated || rel == Relation::touching) FUZZ_CHECK(area.area == 0, << "area " << area.area);
   if (std::isfinite(smaller)) {
     if (rel == Relation::a_contains_b || rel == Relation::b_contains_a) {
-      FUZZ_CHECK(std::abs(area.area - smaller) <= rel_tol * smaller, << "containment: area " << area.area
-                                                                      << ", smaller ellipse " << smaller);
+      FUZZ_CHECK(std::abs(area.area - smaller) <= rel_tol * smaller,
+                 << "containment: area " << area.area << ", smaller ellipse " << smaller);
     } else {
       FUZZ_CHECK(area.area <= smaller * (1 + rel_tol), << "area " << area.area << " > smaller ellipse " << smaller);
     }

@@ -58,12 +58,12 @@ void segment(Bytes& in) {
   const L size = std::abs(ax) + std::abs(ay) + std::abs(L(b[0])) + std::abs(L(b[1])) + std::abs(L(c[0])) +
                  std::abs(L(c[1])) + L(r);
   if (std::abs(dist - L(r)) > L(1e-9) * size)
-    FUZZ_CHECK((s.verdict == Verdict::collision) == (dist < L(r)), << "verdict " << to_string(s.verdict) << ", distance "
-                                                                   << double(dist) << ", radius " << double(r));
+    FUZZ_CHECK((s.verdict == Verdict::collision) == (dist < L(r)),
+               << "verdict " << to_string(s.verdict) << ", distance " << double(dist) << ", radius " << double(r));
   const L cross = dx * py - dy * px;
   if (std::abs(cross) > L(1e-12) * std::sqrt(len2) * std::hypot(px, py))
-    FUZZ_CHECK(s.side == (cross > 0 ? Side::left : Side::right), << "side " << to_string(s.side) << ", cross "
-                                                                 << double(cross));
+    FUZZ_CHECK(s.side == (cross > 0 ? Side::left : Side::right),
+               << "side " << to_string(s.side) << ", cross " << double(cross));
 }
 
 // True when a and b, each scaled by s about its own center, share a point (classify).
@@ -80,19 +80,21 @@ bool meet_scaled(const Ellipse2<T>& a, const Ellipse2<T>& b, double s) {
 // A decided verdict is wrong only when |mu - 1| <= rounding, and undecided happens only when
 // |mu - 1| <= band: tested at the edges of those intervals, widened by classify's accuracy.
 template <class T>
-void check_verdict(const char* name, const PolygonalOverlap& v, const Ellipse2<T>& a, const Ellipse2<T>& b,
-                   double band, double rounding) {
+void check_verdict(const char* name, const PolygonalOverlap& v, const Ellipse2<T>& a, const Ellipse2<T>& b, double band,
+                   double rounding) {
   const double margin = sizeof(T) >= sizeof(double) ? 1e-9 : 1e-4;
   const double limit = v.verdict == Verdict::undecided ? band : rounding;
   const double up = (1 + limit) * (1 + margin), down = (1 - limit) * (1 - margin);
-  const bool scalable = up * std::max(a.radii().maxCoeff(), b.radii().maxCoeff()) <= 1e-3 * std::numeric_limits<T>::max() &&
-                        down * std::min(a.radii().minCoeff(), b.radii().minCoeff()) >= 1e3 * std::numeric_limits<T>::min();
+  const bool scalable =
+      up * std::max(a.radii().maxCoeff(), b.radii().maxCoeff()) <= 1e-3 * std::numeric_limits<T>::max() &&
+      down * std::min(a.radii().minCoeff(), b.radii().minCoeff()) >= 1e3 * std::numeric_limits<T>::min();
   if (!scalable) return;
   // mu <= 1 + limit: scaled by `up` they meet. mu >= 1 - limit: scaled by `down` they do not.
   const bool upper = v.verdict == Verdict::undecided || v.verdict == Verdict::collision;
   const bool lower = v.verdict == Verdict::undecided || v.verdict == Verdict::no_collision;
-  if (upper) FUZZ_CHECK(meet_scaled(a, b, up), << name << " " << to_string(v.verdict) << " after " << v.iterations
-                                               << ", but apart when scaled by 1 + " << up - 1);
+  if (upper)
+    FUZZ_CHECK(meet_scaled(a, b, up), << name << " " << to_string(v.verdict) << " after " << v.iterations
+                                      << ", but apart when scaled by 1 + " << up - 1);
   if (lower && down > 0)
     FUZZ_CHECK(!meet_scaled(a, b, down), << name << " " << to_string(v.verdict) << " after " << v.iterations
                                          << ", but meeting when scaled by 1 - " << 1 - down);
@@ -105,7 +107,7 @@ void polygons(Bytes& in) {
   Vec2<T> c;
   for (int i = 0; i < 2; ++i) c[i] = static_cast<T>(in.number());
   const T r = static_cast<T>(in.number());
-  const int n = static_cast<int>(in.byte() % 34) - 2;  // -2 .. 31: both ends invalid
+  const int n = static_cast<int>(in.byte() % 34) - 2;   // -2 .. 31: both ends invalid
   const int k = static_cast<int>(in.byte() % 41) - 20;  // scale by 2^k
   const auto other = read_body<T, 2>(in);
   trace() += "ellipse " + describe(*e) + " circle " + hex(c) + " radius " + hex(r) + " n " + std::to_string(n) +
@@ -123,12 +125,15 @@ void polygons(Bytes& in) {
     const double rounding = 16 * (n + 2) * eps<T> * frame / (double(r) + minor);
     const double band = niemitalo_error_bound(1.0, n) * major / (double(r) + minor);
     check_verdict("polygonal_overlap", p, *e, ball, band, rounding);
-    const double cover = std::max(niemitalo_error_bound(major, n), major * std::sin(std::numbers::pi / std::ldexp(1.0, n + 2)));
+    const double cover =
+        std::max(niemitalo_error_bound(major, n), major * std::sin(std::numbers::pi / std::ldexp(1.0, n + 2)));
     check_verdict("circle_cover_overlap", q, *e, ball, cover / (double(r) + minor), rounding);
   }
   // Scaled by 2^k where every value stays a normal number: the same answers.
-  const auto normal = [&](double x) { return x == 0 || (std::abs(std::ldexp(x, k)) >= 1e3 * std::numeric_limits<T>::min() &&
-                                                         std::abs(std::ldexp(x, k)) <= 1e-3 * std::numeric_limits<T>::max()); };
+  const auto normal = [&](double x) {
+    return x == 0 || (std::abs(std::ldexp(x, k)) >= 1e3 * std::numeric_limits<T>::min() &&
+                      std::abs(std::ldexp(x, k)) <= 1e-3 * std::numeric_limits<T>::max());
+  };
   bool scalable = normal(r) && normal(frame);
   for (int i = 0; i < 2; ++i) scalable = scalable && normal(c[i]) && normal(e->center()[i]) && normal(e->radii()[i]);
   if (scalable) {
@@ -149,7 +154,8 @@ void polygons(Bytes& in) {
   const double band2 = niemitalo_error_bound(1.0, n) * double(ra.maxCoeff()) * rb.maxCoeff() / denominator;
   // In b's stretched frame the sizes grow by at most rb.max / rb.min.
   const double rounding2 = 16 * (n + 2) * eps<T> * frame2 * (rb.maxCoeff() / rb.minCoeff()) / (rb.minCoeff() + minor);
-  if (std::isfinite(band2) && std::isfinite(rounding2)) check_verdict("polygonal_overlap (two ellipses)", two, *e, *other, band2, rounding2);
+  if (std::isfinite(band2) && std::isfinite(rounding2))
+    check_verdict("polygonal_overlap (two ellipses)", two, *e, *other, band2, rounding2);
 }
 
 template <class T>

@@ -56,11 +56,12 @@ void check_distance(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b, Relation
     const Distance<T, N> s = is_signed ? signed_distance(b, a) : distance(b, a);
     const char* name = is_signed ? "signed_distance" : "distance";
     if (d.status == DistanceStatus::did_not_converge) continue;  // a reported status
-    FUZZ_CHECK(d.status == distance_status_of(rel), << name << " status " << to_string(d.status) << ", classify "
-                                                    << to_string(rel));
+    FUZZ_CHECK(d.status == distance_status_of(rel),
+               << name << " status " << to_string(d.status) << ", classify " << to_string(rel));
     if (distinct && s.status != DistanceStatus::did_not_converge) {
       FUZZ_CHECK(s.status == d.status && same_bits(s.distance, d.distance) && same_bits_or_nan(s.point_a, d.point_b) &&
-                     same_bits_or_nan(s.point_b, d.point_a) && same_bits_or_nan(Vec<T, N>(s.normal), Vec<T, N>(-d.normal)),
+                     same_bits_or_nan(s.point_b, d.point_a) &&
+                     same_bits_or_nan(Vec<T, N>(s.normal), Vec<T, N>(-d.normal)),
                  << name << " (a, b): " << to_string(d.status) << " " << hex(d.distance) << " n " << hex(d.normal)
                  << "; (b, a): " << to_string(s.status) << " " << hex(s.distance) << " n " << hex(s.normal));
     }
@@ -92,12 +93,12 @@ void check_contact(const Ellipsoid<T, N>& a, const Vec<T, N>& va, const Ellipsoi
                    same_bits(Vec<T, N>(s.normal), Vec<T, N>(-c.normal)),
                << to_string(c.status) << " (a, b): t " << hex(c.time) << " p " << hex(c.point) << "; (b, a): t "
                << hex(s.time) << " p " << hex(s.point));
-    FUZZ_CHECK(all_finite(c.point) && unit(c.normal), << to_string(c.status) << " point " << hex(c.point) << " normal "
-                                                      << hex(c.normal));
+    FUZZ_CHECK(all_finite(c.point) && unit(c.normal),
+               << to_string(c.status) << " point " << hex(c.point) << " normal " << hex(c.normal));
   }
   if (c.status == ContactStatus::hit)
-    FUZZ_CHECK(std::isfinite(c.time) && c.time > 0 && c.time <= t_max, << "hit at " << hex(c.time) << ", t_max "
-                                                                       << hex(t_max));
+    FUZZ_CHECK(std::isfinite(c.time) && c.time > 0 && c.time <= t_max,
+               << "hit at " << hex(c.time) << ", t_max " << hex(t_max));
   if (c.status == ContactStatus::touching_at_start || c.status == ContactStatus::overlapping_at_start)
     FUZZ_CHECK(c.time == 0, << to_string(c.status) << " time " << hex(c.time));
   if (c.status == ContactStatus::no_contact_in_window) FUZZ_CHECK(std::isnan(c.time), << "time " << hex(c.time));
@@ -148,19 +149,19 @@ void run(Bytes& in) {
     for (int i = 0; i < N; ++i) va[i] = static_cast<T>(in.number());
     for (int i = 0; i < N; ++i) vb[i] = static_cast<T>(in.number());
     const T t_max = in.flag() ? std::numeric_limits<T>::infinity() : static_cast<T>(in.number());
-    trace() += "pair " + std::to_string(k) + ": a " + describe(*a) + " b " + describe(*b) + " va " + hex(va) +
-               " vb " + hex(vb) + " t_max " + hex(t_max) + "; ";
+    trace() += "pair " + std::to_string(k) + ": a " + describe(*a) + " b " + describe(*b) + " va " + hex(va) + " vb " +
+               hex(vb) + " t_max " + hex(t_max) + "; ";
 
     const Relation rel = classify(*a, *b);
-    FUZZ_CHECK(classify(*b, *a) == mirrored(rel), << "classify(a, b) " << to_string(rel) << ", classify(b, a) "
-                                                  << to_string(classify(*b, *a)));
+    FUZZ_CHECK(classify(*b, *a) == mirrored(rel),
+               << "classify(a, b) " << to_string(rel) << ", classify(b, a) " << to_string(classify(*b, *a)));
     FUZZ_CHECK(overlap(*a, *b) == (rel != Relation::separated), << "overlap vs classify " << to_string(rel));
     FUZZ_CHECK(classify(*a, *a) == Relation::equal, << "classify(a, a) " << to_string(classify(*a, *a)));
     Options wide;
     wide.tolerance = 1e-6;
     const Relation rel_wide = classify(*a, *b, wide);
-    const bool distinct = !(same_bits(a->center(), b->center()) && same_bits(a->radii(), b->radii()) &&
-                            same_bits(a->axes(), b->axes()));
+    const bool distinct =
+        !(same_bits(a->center(), b->center()) && same_bits(a->radii(), b->radii()) && same_bits(a->axes(), b->axes()));
     check_distance<T, N>(*a, *b, rel, distinct);
     check_contact<T, N>(*a, va, *b, vb, t_max, rel, rel_wide);
     as.push_back(*a);

@@ -13,7 +13,8 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 packages=(g++ cmake ninja-build pkg-config libeigen3-dev libhwy-dev libboost-dev libgtest-dev libgmock-dev libbenchmark-dev
-          libfcl-dev libccd-dev libcli11-dev nlohmann-json3-dev librsvg2-bin clang libclang-rt-14-dev)
+          libfcl-dev libccd-dev libcli11-dev nlohmann-json3-dev librsvg2-bin
+          clang libclang-rt-14-dev)
 
 install_missing() {
   local missing=()
@@ -38,7 +39,8 @@ build() {  # build DIR [cmake args...]
 # The libFuzzer targets (fuzz/): clang with the fuzzing instrumentation, ASan and UBSan.
 build_fuzz() {
   cmake -S . -B build/fuzz -G Ninja -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-    -DELLIPSECT_BUILD_FUZZ=ON -DELLIPSECT_BUILD_TESTS=OFF -DELLIPSECT_BUILD_BENCH=OFF -DELLIPSECT_BUILD_TOOLS=OFF >/dev/null
+    -DELLIPSECT_BUILD_FUZZ=ON -DELLIPSECT_BUILD_TESTS=OFF -DELLIPSECT_BUILD_BENCH=OFF \
+    -DELLIPSECT_BUILD_TOOLS=OFF >/dev/null
   cmake --build build/fuzz -j "$(nproc)" --target fuzz
 }
 
@@ -52,20 +54,22 @@ fuzz_targets() {
 
 # fuzz_check NAME: every kept input of fuzz/regressions/NAME/, then a reproducible run
 # (fixed seed and count) from the committed corpus fuzz/corpus/NAME/; new inputs go to a
-# scratch directory, never into the repository. Runs per target: about 20 s on two cores.
+# scratch directory, never into the repository; a failing input is written to
+# build/fuzz/artifacts/. Runs per target: about 20 s on two cores.
 declare -A fuzz_runs=([factories]=100000 [intersect2]=5000 [niemitalo]=5000 [queries]=2000 [scene]=2000)
 fuzz_check() {
   local name=$1 program=build/fuzz/fuzz/fuzz_$1 scratch log status=0
-  local kept=(fuzz/regressions/"$name"/*)
+  local kept=(fuzz/regressions/"$name"/*) artifacts=build/fuzz/artifacts/
+  mkdir -p "$artifacts"
   if [ -e "${kept[0]}" ]; then
     echo "==> fuzz_$name: ${#kept[@]} kept inputs"
-    log=$("$program" -timeout=30 "${kept[@]}" 2>&1) || { echo "$log"; status=1; }
+    log=$("$program" -timeout=30 -artifact_prefix="$artifacts" "${kept[@]}" 2>&1) || { echo "$log"; status=1; }
   fi
   local runs=${fuzz_runs[$name]:-2000}
   echo "==> fuzz_$name: $runs runs, seed 1"
   scratch=$(mktemp -d)
-  log=$("$program" -seed=1 -runs="$runs" -max_len=4096 -timeout=10 -print_final_stats=1 "$scratch" \
-    fuzz/corpus/"$name" 2>&1) || { echo "$log"; rm -rf "$scratch"; return 1; }
+  log=$("$program" -seed=1 -runs="$runs" -max_len=4096 -timeout=10 -print_final_stats=1 \
+    -artifact_prefix="$artifacts" "$scratch" fuzz/corpus/"$name" 2>&1) || { echo "$log"; rm -rf "$scratch"; return 1; }
   rm -rf "$scratch"
   echo "$log" | grep -E "^(Done|stat::peak_rss_mb)"
   return $status
