@@ -73,7 +73,8 @@ void run(Bytes& in) {
   FUZZ_CHECK(std::isfinite(area.area) && area.area >= 0, << "area " << area.area);
   const double area_a = std::numbers::pi * double(a->radii()[0]) * double(a->radii()[1]);
   const double area_b = std::numbers::pi * double(b->radii()[0]) * double(b->radii()[1]);
-  const double smaller = std::min(area_a, area_b);
+  // Rounded to T: a float area below float's range is 0.
+  const double smaller = static_cast<T>(std::min(area_a, area_b));
   constexpr double rel_tol = sizeof(T) >= sizeof(double) ? 1e-12 : 1e-5;
   if (rel == Relation::separated || rel == Relation::touching) FUZZ_CHECK(area.area == 0, << "area " << area.area);
   if (std::isfinite(smaller)) {
