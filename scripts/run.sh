@@ -3,14 +3,18 @@
 #   bash scripts/run.sh example   install what is missing, build, run `ellipsect check` and
 #                                 `ellipsect render` on a bundled scene
 #   bash scripts/run.sh test      install what is missing, build, run the whole test suite
-#                                 (Release build, then an ASan+UBSan build)
+#                                 (Release build, then an ASan+UBSan build, then a short
+#                                 fixed-seed run of every fuzz target and its kept inputs)
+#   bash scripts/run.sh fuzz [NAME [SECONDS]]   the long run of one fuzz target or all
+#                                 (default 600 s each; docs/fuzzing.md)
 #   bash scripts/run.sh bench [NAME [ARGS]]   install what is missing, build, run
 #                                 bench/bench_NAME (default: batch, ellipsect vs FCL and libccd)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
 packages=(g++ cmake ninja-build pkg-config libeigen3-dev libhwy-dev libboost-dev libgtest-dev libgmock-dev libbenchmark-dev
-          libfcl-dev libccd-dev libcli11-dev nlohmann-json3-dev librsvg2-bin)
+          libfcl-dev libccd-dev libcli11-dev nlohmann-json3-dev librsvg2-bin
+          clang libclang-rt-14-dev)
 
 install_missing() {
   local missing=()
@@ -30,6 +34,45 @@ build() {  # build DIR [cmake args...]
   shift
   cmake -S . -B "$dir" -G Ninja "$@" >/dev/null
   cmake --build "$dir" -j "$(nproc)"
+}
+
+# The libFuzzer targets (fuzz/): clang with the fuzzing instrumentation, ASan and UBSan.
+build_fuzz() {
+  cmake -S . -B build/fuzz -G Ninja -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+    -DELLIPSECT_BUILD_FUZZ=ON -DELLIPSECT_BUILD_TESTS=OFF -DELLIPSECT_BUILD_BENCH=OFF \
+    -DELLIPSECT_BUILD_TOOLS=OFF >/dev/null
+  cmake --build build/fuzz -j "$(nproc)" --target fuzz
+}
+
+fuzz_targets() {
+  local f
+  for f in fuzz/*_fuzz.cpp; do
+    f=${f#fuzz/}
+    echo "${f%_fuzz.cpp}"
+  done
+}
+
+# fuzz_check NAME: every kept input of fuzz/regressions/NAME/, then a reproducible run
+# (fixed seed and count) from the committed corpus fuzz/corpus/NAME/; new inputs go to a
+# scratch directory, never into the repository; a failing input is written to
+# build/fuzz/artifacts/. Runs per target: about 20 s on two cores.
+declare -A fuzz_runs=([factories]=100000 [intersect2]=5000 [niemitalo]=5000 [queries]=2000 [scene]=2000)
+fuzz_check() {
+  local name=$1 program=build/fuzz/fuzz/fuzz_$1 scratch log status=0
+  local kept=(fuzz/regressions/"$name"/*) artifacts=build/fuzz/artifacts/
+  mkdir -p "$artifacts"
+  if [ -e "${kept[0]}" ]; then
+    echo "==> fuzz_$name: ${#kept[@]} kept inputs"
+    log=$("$program" -timeout=30 -artifact_prefix="$artifacts" "${kept[@]}" 2>&1) || { echo "$log"; status=1; }
+  fi
+  local runs=${fuzz_runs[$name]:-2000}
+  echo "==> fuzz_$name: $runs runs, seed 1"
+  scratch=$(mktemp -d)
+  log=$("$program" -seed=1 -runs="$runs" -max_len=4096 -timeout=10 -print_final_stats=1 \
+    -artifact_prefix="$artifacts" "$scratch" fuzz/corpus/"$name" 2>&1) || { echo "$log"; rm -rf "$scratch"; return 1; }
+  rm -rf "$scratch"
+  echo "$log" | grep -E "^(Done|stat::peak_rss_mb)"
+  return $status
 }
 
 case "${1:-}" in
@@ -52,6 +95,21 @@ case "${1:-}" in
     build build/sanitize -DCMAKE_BUILD_TYPE=RelWithDebInfo -DELLIPSECT_SANITIZE=ON -DELLIPSECT_BUILD_TESTS=ON \
       -DELLIPSECT_BUILD_BENCH=OFF -DELLIPSECT_BUILD_TOOLS=ON
     (cd build/sanitize && ELLIPSECT_CASE_SCALE=0.05 ctest --output-on-failure --no-tests=error -j "$(nproc)")
+    build_fuzz
+    failed=()
+    for name in $(fuzz_targets); do fuzz_check "$name" || failed+=("$name"); done
+    [ ${#failed[@]} -eq 0 ] || { echo "==> fuzz targets failed: ${failed[*]}" >&2; exit 1; }
+    ;;
+  fuzz)
+    install_missing
+    build_fuzz
+    # fuzz [NAME [SECONDS]]: new inputs are added to fuzz/corpus/NAME; failures are written
+    # as crash-* files in the current directory (docs/fuzzing.md: keep them as regressions).
+    for name in ${2:-$(fuzz_targets)}; do
+      [[ -f fuzz/${name}_fuzz.cpp ]] || { echo "no fuzz target $name (see fuzz/)" >&2; exit 2; }
+      build/fuzz/fuzz/fuzz_"$name" -max_total_time="${3:-600}" -max_len=4096 -timeout=10 -jobs="$(nproc)" \
+        -workers="$(nproc)" fuzz/corpus/"$name"
+    done
     ;;
   bench)
     install_missing
@@ -63,7 +121,7 @@ case "${1:-}" in
     "$program" --benchmark_repetitions=3 --benchmark_report_aggregates_only=true "${@:3}"
     ;;
   *)
-    echo "usage: bash scripts/run.sh example|test|bench [NAME [ARGS...]]" >&2
+    echo "usage: bash scripts/run.sh example|test|bench [NAME [ARGS...]]|fuzz [NAME [SECONDS]]" >&2
     exit 2
     ;;
 esac

@@ -276,6 +276,38 @@ Queries resolve_queries(const std::vector<std::string>& names, bool has_velocity
   return q;
 }
 
+// One pair's record and counts added to its block.
+template <int N>
+void add_record(BlockOut& o, Format format, std::uint64_t index, std::uint64_t line, const std::string* a,
+                const std::string* b, const PairResult<N>& r, const Queries& q) {
+  if (format == Format::json && !o.text.empty()) o.text += ",\n";
+  append_record<N>(o.text, format, index, line, a, b, r, q);
+  count<N>(o.counts, r, q);
+}
+
+// Runs item(k, block, scratch) for k in [0, n) in blocks of block_size on up to `threads`
+// threads; each block's text and counts start empty, and the first BadInput of a block
+// stops it and is kept as the block's error. Returns the number of blocks.
+template <class Item>
+std::size_t process_blocks(std::size_t n, int threads, std::vector<BlockOut>& blocks, const Item& item) {
+  const std::size_t n_blocks = (n + block_size - 1) / block_size;
+  if (blocks.size() < n_blocks) blocks.resize(n_blocks);
+  parallel_for(n_blocks, threads, [&](std::size_t blk) {
+    BlockOut& o = blocks[blk];
+    o.text.clear();
+    o.error.clear();
+    o.counts = Counters{};
+    RowScratch scratch;
+    const std::size_t end = std::min(n, (blk + 1) * block_size);
+    try {
+      for (std::size_t k = blk * block_size; k < end; ++k) item(k, o, scratch);
+    } catch (const BadInput& e) {
+      o.error = e.what();
+    }
+  });
+  return n_blocks;
+}
+
 // Writes records in input order as chunks complete; shared by both kinds of input.
 class RecordWriter {
 public:
@@ -382,32 +414,12 @@ int check_pairs_csv(const Input& in, const CheckOptions& opt, const Window& w, c
     return n > 0;
   };
   auto process = [&](const LineChunk& ch, std::vector<BlockOut>& blocks) {
-    const std::size_t n = ch.n;
-    const std::size_t n_blocks = (n + block_size - 1) / block_size;
-    if (blocks.size() < n_blocks) blocks.resize(n_blocks);
-    parallel_for(n_blocks, threads, [&](std::size_t blk) {
-      BlockOut& o = blocks[blk];
-      o.text.clear();
-      o.error.clear();
-      o.counts = Counters{};
-      RowScratch scratch;
-      const std::size_t end = std::min(n, (blk + 1) * block_size);
-      for (std::size_t k = blk * block_size; k < end; ++k) {
-        try {
-          const auto ab = parse_pair_row<N>(ch.lines[k], ch.numbers[k], columns, in.path, scratch);
-          const PairResult<N> r = evaluate<N>(ab.first, ab.second, w, q);
-          if (format == Format::json && !o.text.empty()) o.text += ",\n";
-          const std::string* a = columns.a.id >= 0 ? &ab.first.id : nullptr;
-          const std::string* b = columns.b.id >= 0 ? &ab.second.id : nullptr;
-          append_record<N>(o.text, format, ch.first + k, ch.numbers[k], a, b, r, q);
-          count<N>(o.counts, r, q);
-        } catch (const BadInput& e) {
-          o.error = e.what();
-          return;
-        }
-      }
+    return process_blocks(ch.n, threads, blocks, [&](std::size_t k, BlockOut& o, RowScratch& scratch) {
+      const auto ab = parse_pair_row<N>(ch.lines[k], ch.numbers[k], columns, in.path, scratch);
+      const std::string* a = columns.a.id >= 0 ? &ab.first.id : nullptr;
+      const std::string* b = columns.b.id >= 0 ? &ab.second.id : nullptr;
+      add_record<N>(o, format, ch.first + k, ch.numbers[k], a, b, evaluate<N>(ab.first, ab.second, w, q), q);
     });
-    return n_blocks;
   };
   const std::uint64_t total = run_pipeline<LineChunk>(read, process, writer, progress);
   if (total == 0) throw BadInput(in.path + ": no pairs (the file has only a header)");
@@ -534,27 +546,14 @@ int check_bodies(const Input& in, const CheckOptions& opt, const Window& w, cons
     return ch.n > 0;
   };
   auto process = [&](const JobChunk& ch, std::vector<BlockOut>& blocks) {
-    const std::size_t m = ch.n;
-    const std::size_t n_blocks = (m + block_size - 1) / block_size;
-    if (blocks.size() < n_blocks) blocks.resize(n_blocks);
-    parallel_for(n_blocks, threads, [&](std::size_t blk) {
-      BlockOut& o = blocks[blk];
-      o.text.clear();
-      o.error.clear();
-      o.counts = Counters{};
-      const std::size_t end = std::min(m, (blk + 1) * block_size);
-      for (std::size_t k = blk * block_size; k < end; ++k) {
-        const Job& jb = ch.jobs[k];
-        const Body<N>& a = bodies[jb.i];
-        const Body<N>& b = bodies[jb.j];
-        PairResult<N> r = jb.deduced ? sep : evaluate<N>(a, b, w, q);
-        if (jb.deduced && q.distance) r.distance = evaluate<N>(a, b, w, distance_only).distance;
-        if (format == Format::json && !o.text.empty()) o.text += ",\n";
-        append_record<N>(o.text, format, ch.first + k, 0, &a.id, &b.id, r, q);
-        count<N>(o.counts, r, q);
-      }
+    return process_blocks(ch.n, threads, blocks, [&](std::size_t k, BlockOut& o, RowScratch&) {
+      const Job& jb = ch.jobs[k];
+      const Body<N>& a = bodies[jb.i];
+      const Body<N>& b = bodies[jb.j];
+      PairResult<N> r = jb.deduced ? sep : evaluate<N>(a, b, w, q);
+      if (jb.deduced && q.distance) r.distance = evaluate<N>(a, b, w, distance_only).distance;
+      add_record<N>(o, format, ch.first + k, 0, &a.id, &b.id, r, q);
     });
-    return n_blocks;
   };
   const std::uint64_t index = run_pipeline<JobChunk>(read, process, writer, progress);
   writer.start();

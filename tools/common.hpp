@@ -51,7 +51,24 @@ inline std::string number_string(double x) {
   return s;
 }
 
-// A JSON string literal (quotes included).
+// Length (1 to 4) of the well-formed UTF-8 sequence starting at s[i] (RFC 3629: no overlong
+// forms, no surrogates, nothing above U+10FFFF), or 0 when the bytes there are not one.
+std::size_t utf8_sequence_length(std::string_view s, std::size_t i);
+
+// Offset of the first byte of `s` that does not begin a well-formed UTF-8 sequence, or npos
+// when all of `s` is UTF-8.
+std::size_t invalid_utf8_at(std::string_view s);
+
+// The UTF-8 replacement character U+FFFD, written for every byte that does not begin a
+// well-formed sequence when text of unknown encoding (a file name) is written as JSON or SVG.
+inline constexpr std::string_view utf8_replacement = "\xEF\xBF\xBD";
+
+// Appends the well-formed UTF-8 sequence starting at s[i], or U+FFFD when the byte there does
+// not begin one; returns the bytes of `s` consumed (>= 1).
+std::size_t append_utf8_sequence(std::string& out, std::string_view s, std::size_t i);
+
+// A JSON string literal (quotes included); always valid JSON: bytes that are not UTF-8 are
+// written as U+FFFD (ids never contain them: the scene readers reject them).
 void append_json_string(std::string& out, std::string_view s);
 
 // A CSV field, quoted when it holds a comma, a quote, a line break or leading/trailing

@@ -34,14 +34,20 @@ constexpr std::size_t max_labels = 40;
 
 std::string xml_escape(std::string_view s) {
   std::string out;
-  for (const char c : s) {
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    const char c = s[i];
+    const auto u = static_cast<unsigned char>(c);
+    if (u >= 0x80) {
+      i += append_utf8_sequence(out, s, i) - 1;
+      continue;
+    }
     switch (c) {
       case '&': out += "&amp;"; break;
       case '<': out += "&lt;"; break;
       case '>': out += "&gt;"; break;
       case '"': out += "&quot;"; break;
       case '\'': out += "&apos;"; break;
-      default: out += c;
+      default: out += u < 0x20 && c != '\t' && c != '\n' && c != '\r' ? utf8_replacement : std::string_view(&c, 1);
     }
   }
   return out;

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <functional>
@@ -23,7 +24,25 @@ using json = nlohmann::json;
 // within it the value is normalized (orthonormalized), beyond it rejected.
 constexpr double orientation_tolerance = 1e-6;
 
+// Deepest nesting of arrays and objects a JSON scene may have (a scene uses 5: the scene, its
+// bodies, a body, its rotation, a row). Deeper text is rejected before it is parsed, so that no
+// step (parsing, copying, printing, destroying) ever recurses as deep as the input.
+constexpr int max_json_depth = 64;
+
+// Longest excerpt of a JSON value quoted in an error message.
+constexpr std::size_t max_excerpt = 60;
+
 [[noreturn]] void fail(const std::string& where, const std::string& what) { throw BadInput(where + ": " + what); }
+
+// Ids are UTF-8 (JSON requires it; CSV ids are checked here), so every output can carry them.
+void check_utf8(const std::string& where, std::string_view id) {
+  const std::size_t bad = invalid_utf8_at(id);
+  if (bad == std::string_view::npos) return;
+  char hex[8];
+  std::snprintf(hex, sizeof hex, "0x%02X", static_cast<unsigned>(static_cast<unsigned char>(id[bad])));
+  fail(where, "not valid UTF-8 (byte " + std::string(hex) + " at offset " + std::to_string(bad) +
+                  " of the id; save the file as UTF-8)");
+}
 
 std::string base_name(const std::string& path) {
   const auto slash = path.find_last_of('/');
@@ -58,6 +77,32 @@ std::pair<std::size_t, std::size_t> line_column(const std::string& text, std::si
     }
   }
   return {line, col};
+}
+
+// Offset of the first '[' or '{' nested deeper than max_json_depth in `text` (strings
+// skipped), or npos.
+std::size_t too_deep_at(const std::string& text) {
+  int depth = 0;
+  bool in_string = false, escaped = false;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char ch = text[i];
+    if (in_string) {
+      if (escaped) {
+        escaped = false;
+      } else if (ch == '\\') {
+        escaped = true;
+      } else if (ch == '"') {
+        in_string = false;
+      }
+    } else if (ch == '"') {
+      in_string = true;
+    } else if (ch == '[' || ch == '{') {
+      if (++depth > max_json_depth) return i;
+    } else if (ch == ']' || ch == '}') {
+      --depth;  // unbalanced text is the parser's to report
+    }
+  }
+  return std::string::npos;
 }
 
 bool blank(const std::string& text) {
@@ -143,6 +188,17 @@ struct JsonCtx {
   const std::string& file;
   std::string at(const std::string& path) const { return file + ": " + path; }
 };
+
+// A value quoted in an error message: its JSON text, cut to max_excerpt bytes (at a UTF-8
+// character boundary).
+std::string excerpt(const json& j) {
+  std::string s = j.dump();
+  if (s.size() <= max_excerpt) return s;
+  std::size_t n = max_excerpt - 3;
+  while (n > 0 && (static_cast<unsigned char>(s[n]) & 0xC0) == 0x80) --n;
+  s.resize(n);
+  return s + "...";
+}
 
 std::string describe_type(const json& j) {
   if (j.is_number()) return "a number";
@@ -270,6 +326,11 @@ Input open_json(const std::string& path) {
   in.kind = InputKind::json;
   const std::string text = read_file(path);
   if (blank(text)) fail(path, "empty file (expected a JSON scene)");
+  if (const std::size_t deep = too_deep_at(text); deep != std::string::npos) {
+    const auto [line, col] = line_column(text, deep);
+    fail(path + ":" + std::to_string(line) + ":" + std::to_string(col),
+         "arrays and objects nested deeper than " + std::to_string(max_json_depth) + " levels");
+  }
   try {
     in.json = json::parse(text);
   } catch (const json::parse_error& e) {
@@ -306,7 +367,7 @@ Input open_json(const std::string& path) {
   if (j.contains("dimension")) {
     const json& d = j["dimension"];
     if (!d.is_number_integer() || (d.get<long long>() != 2 && d.get<long long>() != 3))
-      fail(c.at("$.dimension"), "must be 2 or 3, got " + d.dump());
+      fail(c.at("$.dimension"), "must be 2 or 3, got " + excerpt(d));
     in.dim = static_cast<int>(d.get<long long>());
   } else {
     const json& b0 = bodies[0];
@@ -322,7 +383,7 @@ Input open_json(const std::string& path) {
   if (j.contains("time_window")) {
     const json& w = j["time_window"];
     if (!w.is_array() || w.size() != 2)
-      fail(c.at("$.time_window"), "expected [start, end] (end may be null for no end), got " + w.dump());
+      fail(c.at("$.time_window"), "expected [start, end] (end may be null for no end), got " + excerpt(w));
     in.window.t0 = json_number(c, w[0], "$.time_window[0]");
     in.window.t1 = w[1].is_null() ? infinity : json_number(c, w[1], "$.time_window[1]");
     if (!(in.window.t1 >= in.window.t0))
@@ -477,6 +538,7 @@ Body<N> row_body(const RowCtx& r, const BodyColumns<N>& m) {
   if (m.id >= 0) {
     id = std::string(trim(r.fields[static_cast<std::size_t>(m.id)]));
     if (id.empty() && p.empty()) fail(r.at(m.id, "id"), "missing value");
+    check_utf8(r.at(m.id, p + "id"), id);
   }
   return Body<N>{std::move(id),
                  build_shape<N>(center, radii, o, [&r] { return r.path + ":" + std::to_string(r.line); }), velocity};
@@ -583,7 +645,7 @@ BodyScene<N> load_bodies(const Input& in) {
       for (std::size_t k = 0; k < pairs.size(); ++k) {
         const std::string path = "$.pairs[" + std::to_string(k) + "]";
         const json& p = pairs[k];
-        if (!p.is_array() || p.size() != 2) fail(c.at(path), "expected [id, id], got " + p.dump());
+        if (!p.is_array() || p.size() != 2) fail(c.at(path), "expected [id, id], got " + excerpt(p));
         std::uint32_t ij[2];
         for (std::size_t s = 0; s < 2; ++s) {
           const std::string spath = path + "[" + std::to_string(s) + "]";
@@ -659,6 +721,7 @@ std::size_t PairsFile::read(std::vector<IndexPair>& out, std::size_t max) {
       const char* name = s == 0 ? "a" : "b";
       const std::string_view id = trim(fields_[static_cast<std::size_t>(s == 0 ? col_a_ : col_b_)]);
       if (id.empty()) fail(where + ": column " + name, "missing value");
+      check_utf8(where + ": column " + name, id);
       const auto it = ids_.find(std::string(id));
       if (it == ids_.end()) fail(where + ": column " + name, "unknown body id \"" + std::string(id) + "\"");
       ij[s] = it->second;

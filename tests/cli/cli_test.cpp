@@ -1069,6 +1069,92 @@ TEST(CliBadInput, IoErrorsExitWithThree) {
   EXPECT_NE(unwritable.err.find("dir.json"), std::string::npos);
 }
 
+// A value nested 75,000 levels deep (a 160 KB file) in time_window, pairs or dimension made
+// `check` overflow its stack: parsing and destroying were iterative, but the error message
+// printed the value with nlohmann::json::dump(), which recurses once per level. Scenes are now
+// rejected before parsing when arrays and objects nest deeper than 64 levels (a scene needs 5),
+// and values quoted in messages are cut to 60 characters.
+TEST(CliBadInput, DeeplyNestedJsonValueIsRejectedNotACrash) {
+  const auto dir = work_dir();
+  const int depth = 75000;
+  const std::string deep = std::string(depth, '[') + std::string(depth, ']');
+  const std::string body = R"({"id": "a", "center": [0, 0], "radius": 1})";
+  for (const auto& [name, text] : std::vector<std::pair<std::string, std::string>>{
+           {"deep_time_window.json", "{\"bodies\": [" + body + "],\n \"time_window\": " + deep + "}"},
+           {"deep_pairs.json", "{\"bodies\": [" + body + "],\n \"pairs\": [" + deep + "]}"},
+           {"deep_dimension.json", "{\"dimension\": " + deep + ",\n \"bodies\": [" + body + "]}"},
+           {"deep_object.json", "{\"bodies\": [" + body + "], \"comment\": " +
+                                    [] {
+                                      std::string o;
+                                      for (int i = 0; i < depth; ++i) o += "{\"k\": ";
+                                      return o + "1" + std::string(depth, '}');
+                                    }() + "}"}}) {
+    const int line = name == "deep_time_window.json" || name == "deep_pairs.json" ? 2 : 1;
+    expect_bad_input({name, text, {name + ":" + std::to_string(line) + ":", "nested deeper than 64 levels"}}, dir);
+  }
+  // Brackets inside strings do not count.
+  const auto ok = dir / "brackets.json";
+  write_file(ok, "{\"title\": \"" + std::string(100, '[') + "\", \"bodies\": [" + body + "]}");
+  const Outcome r = run_cli({"check", ok.string()}, dir);
+  EXPECT_EQ(r.code, 0) << describe(r);
+  // Within the limit, the message quotes the value cut short.
+  const std::string nested = std::string(60, '[') + std::string(60, ']');
+  expect_bad_input({"nested_window.json", "{\"bodies\": [" + body + "], \"time_window\": " + nested + "}",
+                    {"$.time_window: expected [start, end]", "got " + std::string(57, '[') + "...\n"}}, dir);
+}
+
+// A bodies CSV with the id caf\xE9 (Latin-1) made `check` exit 0 with output that is not JSON:
+// ids were copied byte for byte. CSV ids (bodies, pairs CSV, pairs files) must now be UTF-8,
+// checked when read (JSON's parser already rejected such bytes); and text of unknown encoding
+// that reaches the output (the scene's file name) is written with U+FFFD in place of bytes that
+// are not UTF-8.
+TEST(CliBadInput, NonUtf8IdIsRejectedInEveryInputForm) {
+  const auto dir = work_dir();
+  const std::string cafe = "caf\xE9";
+  for (const std::string format : {"json", "csv"}) {
+    SCOPED_TRACE(format);
+    const std::vector<std::string> args = {"--format", format};
+    expect_bad_input({"bodies.csv", "id,x,y,rx,ry\n" + cafe + ",0,0,1,1\nb,1,0,1,1\n",
+                      {"bodies.csv:2: column id: not valid UTF-8 (byte 0xE9 at offset 3"}, args}, dir);
+    expect_bad_input({"pairs3.csv", "a_id,a_x,a_y,a_z,a_rx,a_ry,a_rz,b_id,b_x,b_y,b_z,b_rx,b_ry,b_rz\n"
+                                    "a,0,0,0,1,1,1,b,3,0,0,1,1,1\na,0,0,0,1,1,1,x\xC3\x28,3,0,0,1,1,1\n",
+                      {"pairs3.csv:3: column b_id: not valid UTF-8 (byte 0xC3 at offset 1"}, args}, dir);
+    expect_bad_input({"scene.json", "{\"bodies\": [{\"id\": \"" + cafe + "\", \"center\": [0, 0], \"radius\": 1}]}",
+                      {"scene.json:1:", "malformed JSON", "UTF-8"}, args}, dir);
+    write_file(dir / "pairs.csv", "a,b\na,b\n" + cafe + ",b\n");
+    std::vector<std::string> with_pairs = {"--pairs", (dir / "pairs.csv").string()};
+    with_pairs.insert(with_pairs.end(), args.begin(), args.end());
+    expect_bad_input({"bodies_ok.csv", "id,x,y,rx,ry\na,0,0,1,1\nb,1,0,1,1\n",
+                      {"pairs.csv:3: column a: not valid UTF-8"}, with_pairs, "pairs.csv"}, dir);
+  }
+  // Overlong forms, surrogates and code points above U+10FFFF are not UTF-8 either.
+  for (const std::string bad : {"\xC0\xAF", "\xED\xA0\x80", "\xF4\x90\x80\x80", "\xE2\x82"})
+    expect_bad_input({"bad.csv", "id,x,y,rx,ry\nz" + bad + ",0,0,1,1\n", {"bad.csv:2: column id: not valid UTF-8"}},
+                     dir);
+}
+
+// UTF-8 ids (2- and 4-byte sequences) come back unchanged in JSON and CSV output; a scene
+// whose file name is not UTF-8 still gives valid JSON, the name's bad byte replaced by U+FFFD.
+TEST(CliAnswers, Utf8IdsAndNonUtf8FileNamesGiveValidOutput) {
+  const auto dir = work_dir();
+  const std::string cafe = "caf\xC3\xA9", rocket = "\xF0\x9F\x9A\x80";
+  const fs::path scene = dir / "sc\xE9ne.csv";
+  write_file(scene, "id,x,y,rx,ry\n" + cafe + ",0,0,1,1\n" + rocket + ",1,0,1,1\n");
+  const Outcome j = run_cli({"check", scene.string()}, dir);
+  ASSERT_EQ(j.code, 0) << describe(j);
+  const json out = parse_json(j.out);
+  ASSERT_EQ(out["results"].size(), 1u);
+  EXPECT_EQ(out["results"][0]["a"].get<std::string>(), cafe);
+  EXPECT_EQ(out["results"][0]["b"].get<std::string>(), rocket);
+  EXPECT_EQ(out["results"][0]["relation"].get<std::string>(), "overlapping");
+  EXPECT_EQ(out["scene"].get<std::string>(), (dir / "sc\xEF\xBF\xBDne.csv").string());
+  const Outcome c = run_cli({"check", scene.string(), "--format", "csv"}, dir);
+  ASSERT_EQ(c.code, 0) << describe(c);
+  const auto lines = split_lines(c.out);
+  ASSERT_EQ(lines.size(), 2u) << c.out;
+  EXPECT_EQ(lines[1], "0," + cafe + "," + rocket + ",overlapping");
+}
+
 // ------------------------------------------------------------------------------------------
 // Render
 // ------------------------------------------------------------------------------------------

@@ -1,0 +1,190 @@
+// Fuzz target `queries`: classify, overlap, distance, signed_distance, first_contact and the
+// batch functions on two bodies (2D or 3D, double or float) decoded from the input, checked
+// against what their headers promise for every pair:
+//   classify    swapping the arguments mirrors the relation bit for bit; a body against a
+//               copy of itself is `equal`;
+//   overlap     exactly classify != separated;
+//   distance    same status as classify (separated, touching, overlapping for the others)
+//               unless did_not_converge; swapping two distinct bodies gives the same
+//               distance, swapped points and the negated normal, bit for bit; separated:
+//               distance > 0, overlapping: <= 0 (signed) or 0 with NaN points (distance());
+//               a number where one is promised (finite), a unit normal;
+//   contact     invalid_input exactly for a non-finite velocity or a NaN / negative t_max;
+//               the same status, time and point (normal negated) with a and b swapped; hit:
+//               time finite in (0, t_max], finite point, unit normal; touching_at_start:
+//               time 0; the start state agrees with classify away from the tangency band;
+//   batch       overlap, classify and first_contact equal the scalar answers bit for bit.
+#include "fuzz_support.hpp"
+
+#include <ellipsect/batch.hpp>
+#include <ellipsect/classify.hpp>
+#include <ellipsect/contact.hpp>
+#include <ellipsect/distance.hpp>
+
+#include <memory>
+#include <vector>
+
+namespace {
+
+using namespace ellipsect;
+using namespace ellipsect::fuzz;
+
+Relation mirrored(Relation r) {
+  if (r == Relation::a_contains_b) return Relation::b_contains_a;
+  if (r == Relation::b_contains_a) return Relation::a_contains_b;
+  return r;
+}
+
+DistanceStatus distance_status_of(Relation r) {
+  if (r == Relation::separated) return DistanceStatus::separated;
+  if (r == Relation::touching) return DistanceStatus::touching;
+  return DistanceStatus::overlapping;
+}
+
+template <class T>
+constexpr T unit_tolerance = sizeof(T) >= sizeof(double) ? T(1e-12) : T(1e-5);
+
+template <class T, int N>
+bool unit(const Vec<T, N>& v) {
+  return std::abs(v.norm() - T(1)) <= unit_tolerance<T>;
+}
+
+template <class T, int N>
+void check_distance(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b, Relation rel, bool distinct) {
+  for (const bool is_signed : {false, true}) {
+    const Distance<T, N> d = is_signed ? signed_distance(a, b) : distance(a, b);
+    const Distance<T, N> s = is_signed ? signed_distance(b, a) : distance(b, a);
+    const char* name = is_signed ? "signed_distance" : "distance";
+    if (d.status == DistanceStatus::did_not_converge) continue;  // a reported status
+    FUZZ_CHECK(d.status == distance_status_of(rel),
+               << name << " status " << to_string(d.status) << ", classify " << to_string(rel));
+    if (distinct && s.status != DistanceStatus::did_not_converge) {
+      FUZZ_CHECK(s.status == d.status && same_bits(s.distance, d.distance) && same_bits_or_nan(s.point_a, d.point_b) &&
+                     same_bits_or_nan(s.point_b, d.point_a) &&
+                     same_bits_or_nan(Vec<T, N>(s.normal), Vec<T, N>(-d.normal)),
+                 << name << " (a, b): " << to_string(d.status) << " " << hex(d.distance) << " n " << hex(d.normal)
+                 << "; (b, a): " << to_string(s.status) << " " << hex(s.distance) << " n " << hex(s.normal));
+    }
+    FUZZ_CHECK(std::isfinite(d.distance), << name << " distance " << d.distance);
+    if (d.status == DistanceStatus::separated) FUZZ_CHECK(d.distance > 0, << name << " " << hex(d.distance));
+    if (d.status == DistanceStatus::overlapping) FUZZ_CHECK(d.distance <= 0, << name << " " << hex(d.distance));
+    if (!is_signed && d.status == DistanceStatus::overlapping) {
+      FUZZ_CHECK(d.distance == 0 && d.point_a.hasNaN() && d.point_b.hasNaN() && d.normal.hasNaN(),
+                 << "distance() on overlapping bodies: " << hex(d.distance) << " " << hex(d.point_a));
+      continue;
+    }
+    FUZZ_CHECK(all_finite(d.point_a) && all_finite(d.point_b) && all_finite(d.normal),
+               << name << " " << to_string(d.status) << " points " << hex(d.point_a) << " " << hex(d.point_b)
+               << " normal " << hex(d.normal));
+    FUZZ_CHECK(unit(d.normal), << name << " |normal| - 1 = " << d.normal.norm() - T(1));
+  }
+}
+
+template <class T, int N>
+void check_contact(const Ellipsoid<T, N>& a, const Vec<T, N>& va, const Ellipsoid<T, N>& b, const Vec<T, N>& vb,
+                   T t_max, Relation rel, Relation rel_wide) {
+  const Contact<T, N> c = first_contact(a, va, b, vb, t_max);
+  const Contact<T, N> s = first_contact(b, vb, a, va, t_max);
+  const bool valid = all_finite(va) && all_finite(vb) && !std::isnan(t_max) && t_max >= 0;
+  FUZZ_CHECK((c.status == ContactStatus::invalid_input) == !valid, << "status " << to_string(c.status));
+  FUZZ_CHECK(s.status == c.status, << "(a, b): " << to_string(c.status) << ", (b, a): " << to_string(s.status));
+  if (c.status == ContactStatus::hit || c.status == ContactStatus::touching_at_start) {
+    FUZZ_CHECK(same_bits(s.time, c.time) && same_bits(s.point, c.point) &&
+                   same_bits(Vec<T, N>(s.normal), Vec<T, N>(-c.normal)),
+               << to_string(c.status) << " (a, b): t " << hex(c.time) << " p " << hex(c.point) << "; (b, a): t "
+               << hex(s.time) << " p " << hex(s.point));
+    FUZZ_CHECK(all_finite(c.point) && unit(c.normal),
+               << to_string(c.status) << " point " << hex(c.point) << " normal " << hex(c.normal));
+  }
+  if (c.status == ContactStatus::hit)
+    FUZZ_CHECK(std::isfinite(c.time) && c.time > 0 && c.time <= t_max,
+               << "hit at " << hex(c.time) << ", t_max " << hex(t_max));
+  if (c.status == ContactStatus::touching_at_start || c.status == ContactStatus::overlapping_at_start)
+    FUZZ_CHECK(c.time == 0, << to_string(c.status) << " time " << hex(c.time));
+  if (c.status == ContactStatus::no_contact_in_window) FUZZ_CHECK(std::isnan(c.time), << "time " << hex(c.time));
+  // Away from the tangency band (classify with a band 1e6 times wider is not `touching`),
+  // the start state is classify's.
+  if (!valid || c.status == ContactStatus::did_not_converge || rel_wide == Relation::touching) return;
+  const bool apart = c.status == ContactStatus::hit || c.status == ContactStatus::no_contact_in_window;
+  FUZZ_CHECK(apart == (rel == Relation::separated) && c.status != ContactStatus::touching_at_start,
+             << "contact " << to_string(c.status) << ", classify " << to_string(rel));
+}
+
+template <class T, int N>
+void check_batch(const std::vector<Ellipsoid<T, N>>& as, const std::vector<Ellipsoid<T, N>>& bs,
+                 const std::vector<Vec<T, N>>& vas, const std::vector<Vec<T, N>>& vbs, const std::vector<T>& t_maxes) {
+  Pairs<T, N> pairs;
+  for (std::size_t i = 0; i < as.size(); ++i) pairs.push_back(as[i], vas[i], bs[i], vbs[i], t_maxes[i]);
+  const std::size_t n = as.size();
+  std::unique_ptr<bool[]> o(new bool[n]);
+  std::vector<Relation> r(n);
+  std::vector<Contact<T, N>> c(n);
+  const BatchOptions one_thread{Options{}, 1};
+  overlap<T, N>(pairs, std::span<bool>(o.get(), n), one_thread);
+  classify<T, N>(pairs, std::span<Relation>(r), one_thread);
+  first_contact<T, N>(pairs, std::span<Contact<T, N>>(c), one_thread);
+  for (std::size_t i = 0; i < n; ++i) {
+    const Contact<T, N> sc = first_contact(as[i], vas[i], bs[i], vbs[i], t_maxes[i]);
+    FUZZ_CHECK(o[i] == overlap(as[i], bs[i]), << "batch overlap, pair " << i);
+    FUZZ_CHECK(r[i] == classify(as[i], bs[i]), << "batch classify, pair " << i << ": " << to_string(r[i]));
+    FUZZ_CHECK(c[i].status == sc.status && same_bits(c[i].time, sc.time) && same_bits(c[i].point, sc.point) &&
+                   same_bits(c[i].normal, sc.normal) && c[i].iterations == sc.iterations,
+               << "batch first_contact, pair " << i << ": " << to_string(c[i].status) << " " << hex(c[i].time)
+               << " vs scalar " << to_string(sc.status) << " " << hex(sc.time));
+  }
+}
+
+template <class T, int N>
+void run(Bytes& in) {
+  std::vector<Ellipsoid<T, N>> as, bs;
+  std::vector<Vec<T, N>> vas, vbs;
+  std::vector<T> t_maxes;
+  // Up to four pairs: each checked alone, then all of them through the batch functions.
+  for (int k = 0; k < 4 && in.remaining() > 0; ++k) {
+    const auto a = read_body<T, N>(in);
+    if (!a) return;
+    const auto b = read_partner<T, N>(in, *a);
+    if (!b) return;
+    Vec<T, N> va, vb;
+    for (int i = 0; i < N; ++i) va[i] = static_cast<T>(in.number());
+    for (int i = 0; i < N; ++i) vb[i] = static_cast<T>(in.number());
+    const T t_max = in.flag() ? std::numeric_limits<T>::infinity() : static_cast<T>(in.number());
+    trace() += "pair " + std::to_string(k) + ": a " + describe(*a) + " b " + describe(*b) + " va " + hex(va) + " vb " +
+               hex(vb) + " t_max " + hex(t_max) + "; ";
+
+    const Relation rel = classify(*a, *b);
+    FUZZ_CHECK(classify(*b, *a) == mirrored(rel),
+               << "classify(a, b) " << to_string(rel) << ", classify(b, a) " << to_string(classify(*b, *a)));
+    FUZZ_CHECK(overlap(*a, *b) == (rel != Relation::separated), << "overlap vs classify " << to_string(rel));
+    FUZZ_CHECK(classify(*a, *a) == Relation::equal, << "classify(a, a) " << to_string(classify(*a, *a)));
+    Options wide;
+    wide.tolerance = 1e-6;
+    const Relation rel_wide = classify(*a, *b, wide);
+    const bool distinct =
+        !(same_bits(a->center(), b->center()) && same_bits(a->radii(), b->radii()) && same_bits(a->axes(), b->axes()));
+    check_distance<T, N>(*a, *b, rel, distinct);
+    check_contact<T, N>(*a, va, *b, vb, t_max, rel, rel_wide);
+    as.push_back(*a);
+    bs.push_back(*b);
+    vas.push_back(va);
+    vbs.push_back(vb);
+    t_maxes.push_back(t_max);
+  }
+  if (!as.empty()) check_batch<T, N>(as, bs, vas, vbs, t_maxes);
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  Bytes in(data, size);
+  trace().clear();
+  const std::uint8_t kind = in.byte();
+  trace() = std::string(kind & 1 ? "float" : "double") + (kind & 2 ? " 3D; " : " 2D; ");
+  switch (kind % 4) {
+    case 0: run<double, 2>(in); break;
+    case 1: run<float, 2>(in); break;
+    case 2: run<double, 3>(in); break;
+    default: run<float, 3>(in); break;
+  }
+  return 0;
+}
