@@ -101,16 +101,16 @@ private:
 template <class T>
 requires std::is_floating_point_v<T>
 bool same_bits(T x, T y) { return std::memcmp(&x, &y, sizeof(T)) == 0; }
-template <class Derived>
-bool same_bits(const Eigen::MatrixBase<Derived>& x, const Eigen::MatrixBase<Derived>& y) {
+template <class X, class Y>
+bool same_bits(const Eigen::MatrixBase<X>& x, const Eigen::MatrixBase<Y>& y) {
   for (Eigen::Index i = 0; i < x.size(); ++i)
     if (!same_bits(x(i), y(i))) return false;
   return true;
 }
 
 // Equal bits, or both NaN (a NaN field negated flips only its sign bit).
-template <class Derived>
-bool same_bits_or_nan(const Eigen::MatrixBase<Derived>& x, const Eigen::MatrixBase<Derived>& y) {
+template <class X, class Y>
+bool same_bits_or_nan(const Eigen::MatrixBase<X>& x, const Eigen::MatrixBase<Y>& y) {
   for (Eigen::Index i = 0; i < x.size(); ++i)
     if (!same_bits(x(i), y(i)) && !(std::isnan(x(i)) && std::isnan(y(i)))) return false;
   return true;
