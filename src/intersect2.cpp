@@ -14,7 +14,7 @@
 //   below 1 there is one root on each side of a*, each solved in its distance from the
 //   nearer pole (a, or delta - a), which is tiny for nearly concentric pairs. When c_lo or
 //   c_hi vanishes the middle points are the mirror image of the hard-case point across O's
-//   axis and a vertex. Components of k below eps * e_max are zero (detail::reduce_settled).
+//   axis and a vertex. Components of k below eps * e_max are zero (detail::settled).
 // * Between consecutive critical points h is monotone: a transverse crossing wherever the
 //   ends lie beyond the band on opposite sides of 1, a tangent point at each critical
 //   point within the band. These are the comparisons classify makes (same functions, same
@@ -153,10 +153,8 @@ int critical_points(const Vec<R, 2>& e, const Vec<R, 2>& k, std::array<Point<R>,
         df = 2 * (tf * tf / y - tn * tn / x);
       };
       const R x = monotone_root<R>(s_minus_one, x_min, x_star, false, R(0));
-      Vec<R, 2> u;
-      u[near] = sign * c_near / x;
-      u[1 - near] = -sign * c_far / (delta - x);
-      out[m++] = on_o<R>(e, k, u);
+      const R u_near = sign * c_near / x, u_far = -sign * c_far / (delta - x);
+      near == lo ? add(u_near, u_far) : add(u_far, u_near);
     };
     middle(lo, R(1), c_lo, c_hi, cl, ch);
     middle(hi, R(-1), c_hi, c_lo, ch, cl);

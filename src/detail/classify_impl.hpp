@@ -29,17 +29,13 @@ bool identical(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b) noexcept {
   return a.center() == b.center() && a.radii() == b.radii() && a.axes() == b.axes();
 }
 
-// The reduction with the components of k of at most eps * e_max set to zero (nearly
-// concentric pairs: a center 1e-16 or a subnormal away). Moving O by that much changes
-// every reduced distance by no more than e's own rounding (eps e_max; reduced_rounding
-// allows 32 times that), whereas k_i that small underflows c_i = e_i k_i and the secular
-// root, and k_i (g_i + x)^-1 num overflows (a 1e-320 offset made the farthest point infinite).
+// The reduction with O's center settled (detail::settled): moving O by at most eps e_max
+// changes every reduced distance by no more than e's own rounding (reduced_rounding allows
+// 32 times that).
 template <class R, int N, class T>
 Reduced<R, N> reduce_settled(const Ellipsoid<T, N>& s, const Ellipsoid<T, N>& o) noexcept {
   Reduced<R, N> r = reduce<R>(s, o);
-  const R floor = std::numeric_limits<R>::epsilon() * r.e.maxCoeff();
-  for (int i = 0; i < N; ++i)
-    if (std::abs(r.k[i]) <= floor) r.k[i] = R(0);
+  r.k = settled<R, N>(r.e, r.k);
   return r;
 }
 
