@@ -1,6 +1,7 @@
 // Regressions of classify, intersect_boundaries and overlap_area found by fuzzing; each test
 // names the case and explains its cause. Expected answers come from the geometry (closed
 // forms) or from the 50-digit reference in tests/reference.
+#include <ellipsect/batch.hpp>
 #include <ellipsect/classify.hpp>
 #include <ellipsect/intersect2.hpp>
 
@@ -10,6 +11,7 @@
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -118,6 +120,12 @@ TEST(IntersectClassify, SwapSymmetryAtRadiusRatio1e107) {
   EXPECT_EQ(classify(b, a), Relation::b_contains_a);
   EXPECT_TRUE(overlap(a, b));
   EXPECT_TRUE(overlap(b, a));
+  // The batch filter runs the same certificate: the same answers.
+  const std::array<Ellipsoid3<double>, 2> first{a, b}, second{b, a};
+  std::array<Relation, 2> batch;
+  classify<double, 3>(first, second, batch);
+  EXPECT_EQ(batch[0], Relation::a_contains_b);
+  EXPECT_EQ(batch[1], Relation::b_contains_a);
 }
 
 // A circle of radius 0.05 a subnormal 2.4e-320 off the unit circle's center: contained.
