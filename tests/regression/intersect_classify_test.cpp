@@ -128,6 +128,29 @@ TEST(IntersectClassify, SwapSymmetryAtRadiusRatio1e107) {
   EXPECT_EQ(batch[1], Relation::b_contains_a);
 }
 
+// An ellipse 1e81 times smaller inside another, well away from its boundary: contained, so
+// overlap is true. In the reduced frame (the small ellipse is the unit ball) L has entries
+// ~1e81, and one-sided Jacobi measured a column pair's orthogonality as
+// |gamma| / sqrt(|w_p|^2 |w_q|^2): the product of the squared norms overflowed, the ratio
+// was 0, no rotation ran, and the "semi-axes" were L's non-orthogonal columns. classify
+// escaped through its wide-type re-decision; overlap, certain of its wrong gap, said false.
+// The norms are now square-rooted before the product.
+TEST(IntersectClassify, OverlapAtRadiusRatio1e81) {
+  const auto a = make_ellipse<double>({-7.5, -7.5}, std::atan2(0.97356397407241135, 0.2284145100214369),
+                                      {2.1022593045130522, 0.36228745053187528});
+  const auto b = make_ellipse<double>({-7.9563219788585373, -8.4864279106587581},
+                                      std::atan2(0.68654837078633391, 0.72708413170047281),
+                                      {2.3944199762187534e-81, 3.671045459046027e-81});
+  // b's center is well inside a (a's quadric there, in closed form), and b is 1e-81 small.
+  const Vec2<double> d = a.axes().transpose() * (b.center() - a.center());
+  ASSERT_LT(d.cwiseQuotient(a.radii()).squaredNorm(), 0.7);
+  EXPECT_EQ(classify(a, b), Relation::a_contains_b);
+  EXPECT_TRUE(overlap(a, b));
+  EXPECT_TRUE(overlap(b, a));
+  const double area_b = pi * 2.3944199762187534e-81 * 3.671045459046027e-81;
+  EXPECT_NEAR(overlap_area(a, b).area, area_b, 1e-15 * area_b);
+}
+
 // A circle of radius 0.05 a subnormal 2.4e-320 off the unit circle's center: contained.
 // In the reduced frame (the small circle is the unit ball) the farthest point of O was
 // k_i (x + e^2) / (g_i + x) with g_i + x ~ e_i k_i subnormal, so the quotient overflowed and
