@@ -25,12 +25,12 @@ namespace {
 // rounding could have flipped one of its comparisons.
 template <class R, class T, int N>
 detail::ReducedRelation decide(const Ellipsoid<T, N>& s, const Ellipsoid<T, N>& o, R tol) noexcept {
-  const auto red = detail::reduce<R>(s, o);
+  const auto red = detail::reduce_settled<R>(s, o);
   R margin;
   const auto rel = detail::classify_reduced<R, N>(red.e, red.k, tol, margin);
   if (margin > detail::reduced_rounding<R>(s, o, red.e, red.k)) return rel;
   using W = detail::Wide<R>;
-  const auto wide = detail::reduce<W>(s, o);
+  const auto wide = detail::reduce_settled<W>(s, o);
   W wide_margin;
   return detail::classify_reduced<W, N>(wide.e, wide.k, W(tol), wide_margin);
 }
@@ -41,6 +41,7 @@ template <class T, int N>
 Relation classify(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b, const Options& options) noexcept {
   using R = detail::Work<T>;
   using W = detail::Wide<R>;
+  if (detail::identical(a, b)) return Relation::equal;
   const detail::Scale scale = detail::scale_of(a, b);
   if (scale.range == detail::Range::scaled)
     return classify(detail::scaled(a, -scale.exponent), detail::scaled(b, -scale.exponent), options);
@@ -78,7 +79,7 @@ bool overlap(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b, const Options& 
   if (code != 0) return code > 0;
   const auto [s, o, a_is_s] = detail::order_pair(a, b);
   const R tol = R(options.tolerance);
-  const auto red = detail::reduce<R>(s, o);
+  const auto red = detail::reduce_settled<R>(s, o);
   const R gap = detail::gap_reduced<R, N>(red.e, red.k);
   // Outside the rounding of the band's outer edge the sign is certain; on it, classify's
   // own decision (with its wide-type fallback) keeps overlap == (classify != separated).

@@ -11,8 +11,10 @@
 //   S(a) = c_lo^2 / a^2 + c_hi^2 / (delta - a)^2, convex, with its minimum in closed form at
 //   a* = delta |c_lo|^(2/3) / (|c_lo|^(2/3) + |c_hi|^(2/3)), where
 //   S(a*) = (|c_lo|^(2/3) + |c_hi|^(2/3))^3 / delta^2 (the evolute, an astroid); when it is
-//   below 1 there is one root on each side of a*. When c_lo or c_hi vanishes the middle
-//   points are the mirror image of the hard-case point across O's axis and a vertex.
+//   below 1 there is one root on each side of a*, each solved in its distance from the
+//   nearer pole (a, or delta - a), which is tiny for nearly concentric pairs. When c_lo or
+//   c_hi vanishes the middle points are the mirror image of the hard-case point across O's
+//   axis and a vertex. Components of k below eps * e_max are zero (detail::settled).
 // * Between consecutive critical points h is monotone: a transverse crossing wherever the
 //   ends lie beyond the band on opposite sides of 1, a tangent point at each critical
 //   point within the band. These are the comparisons classify makes (same functions, same
@@ -135,23 +137,28 @@ int critical_points(const Vec<R, 2>& e, const Vec<R, 2>& k, std::array<Point<R>,
     out[m++] = on_o<R>(e, k, u);
   };
   if (c_lo != R(0) && c_hi != R(0)) {
-    const R cl = std::cbrt(c_lo * c_lo), ch = std::cbrt(c_hi * c_hi);
+    const R ql = std::cbrt(std::abs(c_lo)), qh = std::cbrt(std::abs(c_hi));
+    const R cl = ql * ql, ch = qh * qh;  // |c|^(2/3), without the underflow of c^2
     if (!((cl + ch) * std::sqrt(cl + ch) < delta)) return m;  // S(a*) >= 1: no middle roots
-    const R a_star = delta * cl / (cl + ch);
-    auto s_minus_one = [&](R a, R& f, R& df) {
-      const R b = delta - a, tl = c_lo / a, th = c_hi / b;
-      f = tl * tl + th * th - R(1);
-      df = 2 * (th * th / b - tl * tl / a);
+    // The root on each side of a*, solved for the distance x of the multiplier from the nearer
+    // pole (x = a on the left, delta - a on the right), where S = c_near^2 / x^2 +
+    // c_far^2 / (delta - x)^2 is decreasing on [|c_near|, x*]. Near a pole x is tiny and
+    // u_near = +-c_near / x keeps its digits; delta - a would cancel (a center 1e-16 off
+    // left the right root's u with no correct digit, h far from the boundary).
+    auto middle = [&](int near, R sign, R c_near, R c_far, R cl_near, R cl_far) {
+      const R x_star = delta * cl_near / (cl_near + cl_far), x_min = std::abs(c_near);
+      if (!(x_min < x_star)) return;
+      auto s_minus_one = [&](R x, R& f, R& df) {
+        const R y = delta - x, tn = c_near / x, tf = c_far / y;
+        f = tn * tn + tf * tf - R(1);
+        df = 2 * (tf * tf / y - tn * tn / x);
+      };
+      const R x = monotone_root<R>(s_minus_one, x_min, x_star, false, R(0));
+      const R u_near = sign * c_near / x, u_far = -sign * c_far / (delta - x);
+      near == lo ? add(u_near, u_far) : add(u_far, u_near);
     };
-    const R left = std::abs(c_lo), right = delta - std::abs(c_hi);  // S >= 1 at both
-    if (left < a_star) {
-      const R a = monotone_root<R>(s_minus_one, left, a_star, false, R(0));
-      add(c_lo / a, -c_hi / (delta - a));
-    }
-    if (a_star < right) {
-      const R a = monotone_root<R>(s_minus_one, a_star, right, true, R(0));
-      add(c_lo / a, -c_hi / (delta - a));
-    }
+    middle(lo, R(1), c_lo, c_hi, cl, ch);
+    middle(hi, R(-1), c_hi, c_lo, ch, cl);
   } else if (c_hi != R(0)) {  // c_lo = 0: the closest point is the hard case when |c_hi| < delta
     if (std::abs(c_hi) < delta) {
       mirrored(out[0], lo);
@@ -181,7 +188,7 @@ struct Common {
 template <class R, class T>
 Common<R> common_points(const Ellipse2<T>& s, const Ellipse2<T>& o, R tol, bool& doubt) noexcept {
   Common<R> out;
-  out.red = detail::reduce<R>(s, o);
+  out.red = detail::reduce_settled<R>(s, o);
   const Vec<R, 2>& e = out.red.e;
   const Vec<R, 2>& k = out.red.k;
   const R rounding = detail::reduced_rounding<R>(s, o, e, k);

@@ -1,12 +1,13 @@
 // Classification and overlap of two static bodies.
 //
-// Accuracy (tested against a 50-digit reference, tests/property/classify_test.cpp): the
+// Accuracy (tested against a 50-digit reference, tests/property/classify_property_test.cpp): the
 // relation is exact for every pair whose Perram-Wertheim contact scale factor mu (both
 // bodies scaled by mu about their centers just touch) and whose containment scale factors
 // differ from 1 by more than 2 * Options::tolerance (default 1e-12); a pair reported
 // `touching` has |mu - 1| <= 2 * tolerance. Swapping the arguments gives the mirrored
-// answer bit for bit (a_contains_b <-> b_contains_a). Scaling both bodies by 2^k changes
-// nothing, at any scale the factories accept (docs/method.md, section 7).
+// answer bit for bit (a_contains_b <-> b_contains_a), at any ratio of sizes. A body and a
+// bit-identical copy are `equal` (float and double, any aspect ratio). Scaling both bodies
+// by 2^k changes nothing, at any scale the factories accept (docs/method.md, section 7).
 #pragma once
 
 #include <ellipsect/options.hpp>

@@ -20,7 +20,8 @@
 // Accuracy (tested against a 50-digit reference, tests/property/intersect2_property_test.cpp:
 // quartic roots for the points, tanh-sinh quadrature for the area; random and adversarial
 // pairs: aspect ratios to 1e4, near tangency, containment, equal bodies, scale 1e-6 and
-// 1e6), with scale = largest radius of a + largest radius of b:
+// 1e6, nearly concentric pairs with center offsets 0, subnormal and 1e-300 .. 1e-8), with
+// scale = largest radius of a + largest radius of b:
 //   points  within 1e-12 * scale of both boundaries; a transverse crossing within
 //           1e-12 * scale / sin(crossing angle) of the exact one;
 //   kinds   the number of transverse crossings is exact outside the tangency band;

@@ -161,24 +161,33 @@ HWY_INLINE V level(const BodyLanes<V, N>& b, const V* w) {
 enum class Solver { closed_form, ldlt, mixed };
 inline constexpr double closed_form_aspect = 100;
 
-// The Perram-Wertheim function at l: C = (1 - l) Sa + l Sb, y = C^-1 r, A = y^T Sa y,
-// B = y^T Sb y, F = l (1 - l) r^T y, and the quadrics of the point x(l): qa = (1 - l)^2 A,
-// qb = l^2 B. F' = qa - qb, so at the maximizer qa = qb = F = mu^2.
+// The Perram-Wertheim function at l: C = m Sa + l Sb with m = 1 - l, y = C^-1 r,
+// A = y^T Sa y, B = y^T Sb y, F = l m r^T y, and the quadrics of the point x(l) = c_a + m Sa y
+// = c_b - l Sb y: qa = m^2 A, qb = l^2 B. F' = qa - qb, so at the maximizer qa = qb = F = mu^2.
+// The weights l and m are carried separately (each from its own formula, updated by the same
+// Newton step with opposite signs), never as 1 - l: swapping the bodies then swaps l and m
+// bit for bit and negates r and y exactly, so every certificate is exactly swap-symmetric,
+// and a weight far below eps (balls 1e100 apart in size) keeps its digits instead of making
+// 1 - l round to 1. F is homogeneous of degree 1 in (l, m) and x(l) solves C y = r for any
+// weights, so l + m = 1 up to rounding costs F a relative eps and the point nothing.
 template <class V, int N>
 struct PerramWertheim {
   using Mask = decltype(Lt(std::declval<V>(), std::declval<V>()));
   Solver solver;
   Mask closed;    // lanes solved in closed form (Solver::mixed)
-  V l, f, qa, qb;
-  Mask factored;  // det > 0 or D > 0: the values are meaningful
+  V l, m, f, qa, qb;
+  Mask factored;  // det or every pivot of D positive and normal: the values are meaningful
   V adj[N][N], inv_det, low[N][N], inv[N], a, b, sy_a[N], sy_b[N];
 
+  // The determinant and the pivots must be normal numbers: a subnormal one has lost digits
+  // and its reciprocal may overflow (3D balls 1e107 apart in size have det(C) ~ 1e-313, and
+  // an infinite F would certify separation).
   HWY_INLINE void factor(const V (&sa)[N][N], const V (&sb)[N][N]) {
-    const V one = Splat<V>(1), zero = Splat<V>(0), m = one - l;
+    const V one = Splat<V>(1), zero = Splat<V>(0), tiny = Splat<V>(std::numeric_limits<double>::min());
     V c[N][N];
     for (int i = 0; i < N; ++i)
       for (int j = 0; j <= i; ++j) c[i][j] = c[j][i] = m * sa[i][j] + l * sb[i][j];
-    auto closed_ok = Gt(l, zero), ldlt_ok = closed_ok;
+    auto closed_ok = And(Gt(l, zero), Gt(m, zero)), ldlt_ok = closed_ok;
     if (solver != Solver::ldlt) {
       if constexpr (N == 2) {
         adj[0][0] = c[1][1];
@@ -195,7 +204,7 @@ struct PerramWertheim {
       }
       const V det = dot<V, N>(c[0], adj[0]);
       inv_det = one / det;
-      closed_ok = And(closed_ok, Gt(det, zero));
+      closed_ok = And(closed_ok, Ge(det, tiny));
     }
     if (solver != Solver::closed_form) {
       V dg[N];
@@ -204,7 +213,7 @@ struct PerramWertheim {
         for (int k = 0; k < j; ++k) s = s - low[j][k] * low[j][k] * dg[k];
         dg[j] = s;
         inv[j] = one / s;
-        ldlt_ok = And(ldlt_ok, Gt(s, zero));
+        ldlt_ok = And(ldlt_ok, Ge(s, tiny));
         for (int i = j + 1; i < N; ++i) {
           V t = c[i][j];
           for (int k = 0; k < j; ++k) t = t - low[i][k] * low[j][k] * dg[k];
@@ -238,27 +247,30 @@ struct PerramWertheim {
       for (int i = 0; i < N; ++i) x[i] = IfThenElse(closed, xc[i], x[i]);
   }
 
-  // The Newton iterate l - F'/F'' (F'' from z = C^-1 (Sb - Sa) y: A' = -2 (Sa y).z,
-  // B' = -2 (Sb y).z), or l where it leaves (0, 1) or F'' >= 0.
-  HWY_INLINE V newton() const {
-    const V zero = Splat<V>(0), one = Splat<V>(1), two = Splat<V>(2), m = one - l;
+  // The Newton iterate: l - F'/F'' and m + F'/F'' (F'' from z = C^-1 (Sb - Sa) y:
+  // A' = -2 (Sa y).z, B' = -2 (Sb y).z), or (l, m) where it leaves (0, 1) or F'' >= 0.
+  HWY_INLINE void newton(V& l_next, V& m_next) const {
+    const V zero = Splat<V>(0), two = Splat<V>(2);
     V d[N], z[N];
     for (int i = 0; i < N; ++i) d[i] = sy_b[i] - sy_a[i];
     solve(d, z);
     const V curvature = zero - two * (m * a + l * b) - two * (m * m * dot<V, N>(sy_a, z) - l * l * dot<V, N>(sy_b, z));
-    const V next = l - (qa - qb) / curvature;
-    return IfThenElse(And(Lt(curvature, zero), And(Gt(next, zero), Lt(next, one))), next, l);
+    const V step = (qa - qb) / curvature;
+    const V next_l = l - step, next_m = m + step;
+    const auto take = And(Lt(curvature, zero), And(Gt(next_l, zero), Gt(next_m, zero)));
+    l_next = IfThenElse(take, next_l, l);
+    m_next = IfThenElse(take, next_m, m);
   }
 };
 
 template <class V, int N, class Mask>
-HWY_INLINE PerramWertheim<V, N> perram_wertheim(const V (&sa)[N][N], const V (&sb)[N][N], const V* r, V l,
+HWY_INLINE PerramWertheim<V, N> perram_wertheim(const V (&sa)[N][N], const V (&sb)[N][N], const V* r, V l, V m,
                                                 Solver solver, Mask closed) {
-  const V m = Splat<V>(1) - l;
   PerramWertheim<V, N> p;
   p.solver = solver;
   p.closed = closed;
   p.l = l;
+  p.m = m;
   p.factor(sa, sb);
   V y[N];
   p.solve(r, y);
@@ -313,7 +325,7 @@ HWY_INLINE V certify(const BodyLanes<V, N>& a, const BodyLanes<V, N>& b, V tol) 
   const V aspect = Splat<V>(1e4);
   auto gate = And(Le(a.rmax, aspect * a.rmin), Le(b.rmax, aspect * b.rmin));
   V world = zero;
-  for (int i = 0; i < N; ++i) world = world + Abs(a.c[i]) + Abs(b.c[i]);
+  for (int i = 0; i < N; ++i) world = world + (Abs(a.c[i]) + Abs(b.c[i]));
   world = world / Min(a.rmin, b.rmin);
   constexpr double ulp_scale = 1024 * std::numeric_limits<double>::epsilon();
   const V margin = Splat<V>(1e-6 + ulp_scale * 1e8) + Splat<V>(ulp_scale) * world;
@@ -331,14 +343,17 @@ HWY_INLINE V certify(const BodyLanes<V, N>& a, const BodyLanes<V, N>& b, V tol) 
   const Solver solver = all_lanes<V>(closed)            ? Solver::closed_form
                         : all_lanes<V>(Not(closed)) ? Solver::ldlt
                                                         : Solver::mixed;
-  auto p = perram_wertheim<V, N>(sa, sb, r, rho_a / (rho_a + rho_b), solver, closed);
+  const V rho = rho_a + rho_b;
+  auto p = perram_wertheim<V, N>(sa, sb, r, rho_a / rho, rho_b / rho, solver, closed);
   gate = And(gate, p.factored);
   const V pass = one + margin, deep = one - margin;
   auto certain = [&](const PerramWertheim<V, N>& q) { return And(gate, q.factored); };
   auto separated = Or(apart, And(certain(p), Ge(p.f, pass)));
   auto shared = AndNot(separated, Or(inside, And(certain(p), And(Le(p.qa, deep), Le(p.qb, deep)))));
   for (int it = 1; it <= rounds && !all_lanes<V>(Or(separated, shared)); ++it) {
-    p = perram_wertheim<V, N>(sa, sb, r, p.newton(), solver, closed);
+    V l, m;
+    p.newton(l, m);
+    p = perram_wertheim<V, N>(sa, sb, r, l, m, solver, closed);
     separated = Or(separated, And(certain(p), Ge(p.f, pass)));
     shared = AndNot(separated, Or(shared, And(certain(p), And(Le(p.qa, deep), Le(p.qb, deep)))));
   }

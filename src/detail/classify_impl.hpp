@@ -20,6 +20,25 @@ namespace ellipsect::detail {
 
 enum class ReducedRelation { separated, touching, overlapping, s_contains_o, o_contains_s, equal };
 
+// Bit-identical data: the same set, so `equal` without reduction. Reducing a body onto
+// itself would see its axes' rounding (orthonormal to ~eps, ~1e-7 for float data) times
+// its aspect ratio, which leaves the tangency band from aspect ~1e4 (double) or at once
+// (float).
+template <class T, int N>
+bool identical(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b) noexcept {
+  return a.center() == b.center() && a.radii() == b.radii() && a.axes() == b.axes();
+}
+
+// The reduction with O's center settled (detail::settled): moving O by at most eps e_max
+// changes every reduced distance by no more than e's own rounding (reduced_rounding allows
+// 32 times that).
+template <class R, int N, class T>
+Reduced<R, N> reduce_settled(const Ellipsoid<T, N>& s, const Ellipsoid<T, N>& o) noexcept {
+  Reduced<R, N> r = reduce<R>(s, o);
+  r.k = settled<R, N>(r.e, r.k);
+  return r;
+}
+
 template <class R, int N>
 R gap_reduced(const Vec<R, N>& e, const Vec<R, N>& k) noexcept {
   if (level_at_origin(e, k) <= R(0)) return -std::numeric_limits<R>::infinity();

@@ -80,7 +80,8 @@ void left_singular(Mat<R, N> w, Vec<R, N>& sigma, Mat<R, N>& u) noexcept {
     for (int p = 0; p < N - 1; ++p)
       for (int q = p + 1; q < N; ++q) {
         const R gamma = w.col(p).dot(w.col(q));
-        const R relative = std::abs(gamma) / std::sqrt(norm2[p] * norm2[q]);
+        // sqrt of each norm: their product overflows for columns beyond 1e77 (radius ratios).
+        const R relative = std::abs(gamma) / (std::sqrt(norm2[p]) * std::sqrt(norm2[q]));
         if (!(relative > eps)) continue;
         largest = std::max(largest, relative);
         const R zeta = (norm2[q] - norm2[p]) / (2 * gamma);

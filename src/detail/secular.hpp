@@ -191,6 +191,18 @@ BranchPoint<R, N> farthest(const Vec<R, N>& e, const Vec<R, N>& k) noexcept {
   return branch_point<R, N>(e, k, g, root, [&](int) { return v; }, [&](int i) { return e[i] * e[i]; });
 }
 
+// k with its components of at most eps * e_max set to zero: the query point moved by at most
+// eps e_max. Components that small (a center 1e-16 or a subnormal off the query point)
+// underflow c_i = e_i k_i and the secular root, and k_i num / (g_i + x) overflows (a 1e-320
+// offset made the farthest point infinite).
+template <class R, int N>
+Vec<R, N> settled(const Vec<R, N>& e, Vec<R, N> k) noexcept {
+  const R floor = std::numeric_limits<R>::epsilon() * e.maxCoeff();
+  for (int i = 0; i < N; ++i)
+    if (std::abs(k[i]) <= floor) k[i] = R(0);
+  return k;
+}
+
 // q(0) = sum (k_i / e_i)^2 - 1: positive when the origin is outside the ellipsoid.
 template <class R, int N>
 R level_at_origin(const Vec<R, N>& e, const Vec<R, N>& k) noexcept {

@@ -5,6 +5,8 @@
 // Claim under test (classify.hpp): the relation is exact whenever every tangency measure
 // of the reference (margin) is farther than 2 * tolerance from 1, and a pair reported
 // touching has |mu - 1| <= 2 * tolerance.
+#include <ellipsect/intersect2.hpp>
+
 #include "common.hpp"
 
 namespace {
@@ -129,5 +131,89 @@ TEST(ClassifyProperty, FloatMatchesReferenceOutsideFloatBand) {
     }
   }
 }
+
+// A body and a bit-identical copy of it are equal, for every valid body: float and double,
+// 2D and 3D, random poses and aspect ratios to 1e8; overlap agrees, and in 2D the boundaries
+// are reported equal and the overlap is the body's area.
+template <class T, int N>
+void check_equal_to_itself(int n, std::uint64_t seed) {
+  scenarios::detail::Rng rng(seed);
+  using namespace scenarios::detail;
+  for (int i = 0; i < n; ++i) {
+    const Vec<double, N> r = radii<N>(rng, log_uniform(rng, 1e-3, 1e3), log_uniform(rng, 1, 1e8));
+    const Vec<double, N> c = unit_vector<N>(rng) * uniform(rng, 0, 100);
+    const auto body =
+        Ellipsoid<T, N>::from_axes(c.template cast<T>(), rotation<N>(rng).template cast<T>(), r.template cast<T>());
+    const Ellipsoid<T, N> copy = body;
+    std::ostringstream what;
+    what.precision(17);
+    what << "i=" << i << " c=" << c.transpose() << " r=" << r.transpose();
+    ASSERT_EQ(classify(body, body), Relation::equal) << what.str();
+    ASSERT_EQ(classify(body, copy), Relation::equal) << what.str();
+    ASSERT_TRUE(overlap(body, copy)) << what.str();
+    if constexpr (N == 2) {
+      ASSERT_EQ(intersect_boundaries(body, copy).status, BoundaryStatus::equal) << what.str();
+      const double area = M_PI * double(body.radii()[0]) * double(body.radii()[1]);
+      const double tol = 4 * std::numeric_limits<T>::epsilon() * area;
+      ASSERT_NEAR(double(overlap_area(body, copy).area), area, tol) << what.str();
+    }
+  }
+}
+
+TEST(ClassifyProperty, BodyEqualsItself) {
+  check_equal_to_itself<double, 2>(cases(500), 11);
+  check_equal_to_itself<double, 3>(cases(500), 12);
+  check_equal_to_itself<float, 2>(cases(500), 13);
+  check_equal_to_itself<float, 3>(cases(500), 14);
+}
+
+// Radius ratios from 1e3 to 1e150: a small body at 1e-12, 0.5, 1 -+ 1e-6 or 3 times the
+// large body's smallest radius from its center (for balls: near the center, just inside,
+// just outside, far away). Swapping the arguments mirrors the answer and
+// overlap agrees; up to a ratio of 1e30 the answer matches the reference (beyond, the
+// reference's own 50 digits cannot represent 1 - lambda), and for two balls the closed form
+// (distance of the centers against the sum and the difference of the radii) at any ratio.
+template <int N>
+void check_extreme_radius_ratios(int n) {
+  scenarios::detail::Rng rng(31415);
+  using namespace scenarios::detail;
+  for (int i = 0; i < n; ++i) {
+    const bool balls = i % 3 == 0;
+    const double ratio = std::pow(10.0, uniform(rng, 3, i % 2 == 0 ? 30 : 150));
+    const Vec<double, N> ra = balls ? Vec<double, N>::Constant(1) : radii<N>(rng, 1, 10);
+    const Vec<double, N> rb = balls ? Vec<double, N>::Constant(1 / ratio) : radii<N>(rng, 1 / ratio, 10);
+    const Vec<double, N> dir = unit_vector<N>(rng);
+    const double where[] = {1e-12, 0.5, 1 - 1e-6, 1 + 1e-6, 3};
+    const double dist = where[i % 5] * (balls ? 1.0 : ra.minCoeff());
+    const auto a = Ellipsoid<double, N>::from_axes(Vec<double, N>::Constant(-7.5), rotation<N>(rng), ra);
+    const auto b = Ellipsoid<double, N>::from_axes(a.center() + dir * dist, rotation<N>(rng), rb);
+    std::ostringstream what;
+    what.precision(17);
+    what << "i=" << i << " ratio=" << ratio << " dist=" << dist << " a.c=" << a.center().transpose()
+         << " b.c=" << b.center().transpose() << " ra=" << ra.transpose() << " rb=" << rb.transpose();
+    const Relation got = classify(a, b);
+    ASSERT_EQ(classify(b, a), mirrored(got)) << what.str();
+    ASSERT_EQ(overlap(a, b), got != Relation::separated) << what.str();
+    ASSERT_EQ(overlap(b, a), got != Relation::separated) << what.str();
+    if (balls) {
+      const double d = (b.center() - a.center()).norm();
+      if (d + rb[0] < 1 - 1e-9) {
+        ASSERT_EQ(got, Relation::a_contains_b) << what.str();
+      } else if (d - rb[0] > 1 + 1e-9) {
+        ASSERT_EQ(got, Relation::separated) << what.str();
+      } else if (d - rb[0] < 1 - 1e-9 && d + rb[0] > 1 + 1e-9) {
+        ASSERT_EQ(got, Relation::overlapping) << what.str();
+      }
+    } else if (ratio <= 1e30) {
+      const auto r = ref::classify<N>(to_ref(a), to_ref(b), band);
+      if (r.margin > band) {
+        ASSERT_EQ(got, from_ref(r.relation)) << what.str();
+      }
+    }
+  }
+}
+
+TEST(ClassifyProperty, SwapSymmetricAtExtremeRadiusRatios2D) { check_extreme_radius_ratios<2>(cases(300)); }
+TEST(ClassifyProperty, SwapSymmetricAtExtremeRadiusRatios3D) { check_extreme_radius_ratios<3>(cases(300)); }
 
 }  // namespace
