@@ -66,7 +66,8 @@ void check_distance(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b, Relation
                  << "; (b, a): " << to_string(s.status) << " " << hex(s.distance) << " n " << hex(s.normal));
     }
     FUZZ_CHECK(std::isfinite(d.distance), << name << " distance " << d.distance);
-    if (d.status == DistanceStatus::separated) FUZZ_CHECK(d.distance > 0, << name << " " << hex(d.distance));
+    if (d.status == DistanceStatus::separated)
+      FUZZ_CHECK(d.distance >= 0 && !std::signbit(d.distance), << name << " " << hex(d.distance));
     if (d.status == DistanceStatus::overlapping) FUZZ_CHECK(d.distance <= 0, << name << " " << hex(d.distance));
     if (!is_signed && d.status == DistanceStatus::overlapping) {
       FUZZ_CHECK(d.distance == 0 && d.point_a.hasNaN() && d.point_b.hasNaN() && d.normal.hasNaN(),

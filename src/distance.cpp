@@ -183,6 +183,10 @@ Distance<T, N> solve(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b, const O
     out.distance = T(lower);
     if (R(out.distance) > lower) out.distance = std::nextafter(out.distance, -std::numeric_limits<T>::infinity());
   }
+  // The status is certified; rounding within the stated accuracy may leave the distance on
+  // the wrong side of 0 (or at -0), and clamping only moves it towards the true value.
+  if (out.status == DistanceStatus::separated && !(out.distance > T(0))) out.distance = T(0);
+  if (out.status == DistanceStatus::overlapping && out.distance > T(0)) out.distance = T(0);
   out.point_a = (a_is_s ? point_s : point_o).template cast<T>();
   out.point_b = (a_is_s ? point_o : point_s).template cast<T>();
   out.normal = (a_is_s ? best.at.n : Vec<R, N>(-best.at.n)).template cast<T>();

@@ -46,6 +46,9 @@ void require_positive(T value, const std::string& field) {
 template <class T, int N>
 void require_radii(const Vec<T, N>& radii) {
   for (int i = 0; i < N; ++i) require_positive(radii[i], "radii[" + std::to_string(i) + "]");
+  if (radii.maxCoeff() > Ellipsoid<T, N>::max_aspect_ratio * radii.minCoeff())
+    throw InputError("radii", "aspect ratio " + show(radii.maxCoeff() / radii.minCoeff()) + " exceeds the largest supported, " +
+                                  show(Ellipsoid<T, N>::max_aspect_ratio));
 }
 
 // Orthonormalize by Householder QR (the Q factor, column signs kept as given).

@@ -52,7 +52,7 @@
 namespace ellipsect {
 
 enum class DistanceStatus {
-  separated,         // gap larger than the tangency band: distance > 0
+  separated,         // gap larger than the tangency band: distance >= +0 (see Distance)
   touching,          // within Options::tolerance of touching (the band of classify)
   overlapping,       // interiors intersect (includes containment and equal bodies)
   did_not_converge,  // Options::max_iterations evaluations in a descent without converging
@@ -65,9 +65,9 @@ std::string_view to_string(DistanceStatus s) noexcept;
 template <class T, int N>
 struct Distance {
   DistanceStatus status = DistanceStatus::did_not_converge;
-  // Signed distance: the separation distance when separated (> 0), minus the penetration
-  // depth when overlapping (< 0; distance() reports 0 there), within the rounding of
-  // 0 when touching (either sign).
+  // Signed distance: the separation distance when separated (>= +0: a gap below the stated
+  // accuracy may round to 0), minus the penetration depth when overlapping (<= 0;
+  // distance() reports 0 there), within the rounding of 0 when touching (either sign).
   T distance;
   // Witness points, world frame: on the boundary of a and of b; point_b - point_a =
   // distance * normal (but see did_not_converge below). NaN for distance() on overlapping

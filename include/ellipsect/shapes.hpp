@@ -16,8 +16,9 @@
 // Aligned Eigen vectors and matrices (Eigen::Vector3d, ...) convert implicitly wherever a
 // Vec or Mat is taken.
 //
-// Range: every finite positive radius and finite center is accepted and supported by the
-// queries, from subnormals to the largest double: they rescale each pair by a power of two
+// Range: every finite center and every finite positive radius is accepted and supported by
+// the queries, from subnormals to the largest double, for bodies whose aspect ratio
+// (largest / smallest radius) is at most max_aspect_ratio = 1e8: they rescale each pair by a power of two
 // (exactly), and compute pairs whose radii differ by more than 2^160 or whose coordinates
 // exceed 2^340 times their largest radius in long double (docs/method.md, section 7).
 // float bodies are computed in double, which holds every float length squared or cubed.
@@ -103,6 +104,12 @@ public:
   // closer ones are kept as given.
   static constexpr T axes_tolerance = sizeof(T) >= sizeof(double) ? T(1e-9) : T(1e-5);
 
+  // Largest accepted aspect ratio, largest radius / smallest radius: the range in which the
+  // queries are tested against the reference. Far beyond it the stored axes' rounding (eps
+  // times the largest radius) exceeds the smallest radius, and a rotated body no longer has
+  // the shape its radii describe.
+  static constexpr T max_aspect_ratio = T(1e8);
+
   // The default body: the unit ball at the origin (center 0, axes the identity, radii 1),
   // valid like every other, so containers can be resized and arrays declared; a constant
   // expression, no allocation, no check.
@@ -114,7 +121,8 @@ public:
   }
 
   // center: finite; axes: finite, orthonormal columns (within axes_tolerance);
-  // radii: finite and > 0. Throws InputError naming the field otherwise.
+  // radii: finite and > 0 ("radii[i]"), aspect ratio at most max_aspect_ratio ("radii").
+  // Throws InputError naming the field otherwise.
   static Ellipsoid from_axes(const Vec<T, N>& center, const Mat<T, N>& axes, const Vec<T, N>& radii);
 
   // The quadric form (x - center)^T M (x - center) <= 1 (seed equations (1)-(2)); M must
