@@ -34,7 +34,7 @@ bool exact(double x, int k, double& y) {
 }
 
 template <int N>
-bool exact(const Vec<double, N>& v, int k, Vec<double, N>& out) {
+bool exact(const VecArg<double, N>& v, int k, Vec<double, N>& out) {
   for (int i = 0; i < N; ++i)
     if (!exact(v[i], k, out[i])) return false;
   return true;
