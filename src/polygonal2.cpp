@@ -331,6 +331,19 @@ SegmentFrame<T> segment_frame(const Vec2<T>& a, const Vec2<T>& b, const Circle<T
   return {{{s * q.x(), s * q.y()}, sr * sr}, {s * e.x(), s * e.y()}};
 }
 
+// cross(b - a, c - a) with the differences scaled by the exact power of two that brings
+// the larger into [1, 2) (both far below 1 underflowed): only its sign is used.
+template <class T>
+T side_of(const Vec2<T>& a, const Vec2<T>& b, const Vec2<T>& c) noexcept {
+  Vec2<T> e = b - a, q = c - a;
+  if (!e.allFinite() || !q.allFinite()) {  // overflow: halved, as in segment_frame
+    e = T(0.5) * b - T(0.5) * a;
+    q = T(0.5) * c - T(0.5) * a;
+  }
+  const T s = unit_scale(std::max(e.cwiseAbs().maxCoeff(), q.cwiseAbs().maxCoeff()));
+  return cross(Pt<T>{s * e.x(), s * e.y()}, Pt<T>{s * q.x(), s * q.y()});
+}
+
 template <class T>
 std::string show(T v) {
   std::ostringstream s;
@@ -361,8 +374,11 @@ template <class T>
 SegmentCircle segment_circle(const VecArg<T, 2>& a, const VecArg<T, 2>& b, const Circle<T>& circle) noexcept {
   if (!a.allFinite() || !b.allFinite()) return {Verdict::invalid_input, Side::on_line};
   const SegmentFrame<T> f = segment_frame(a, b, circle);
-  T side;
-  const bool hit = meets_segment(f.d, {T(0), T(0)}, f.end, side);
+  T ignored;
+  const bool hit = meets_segment(f.d, {T(0), T(0)}, f.end, ignored);
+  // The side at the scale of the segment and the center alone: in the frame above a radius
+  // far larger than both (2^824 against 1) made their cross product underflow to 0.
+  const T side = side_of(a, b, circle.center());
   return {hit ? Verdict::collision : Verdict::no_collision,
           side > T(0) ? Side::left : side < T(0) ? Side::right : Side::on_line};
 }
