@@ -212,7 +212,7 @@ void polygons(Bytes& in) {
     return;
   }
   FUZZ_CHECK(p.iterations == p.level, << "polygonal_overlap: " << show(p));
-  FUZZ_CHECK(q.iterations <= (1 << (n + 1)) - 1 && q.iterations >= q.level, << "circle_cover_overlap: " << show(q));
+  FUZZ_CHECK((long long)q.iterations <= (1LL << (n + 1)) - 1 && q.iterations >= q.level, << "circle_cover_overlap: " << show(q));
   const double major = e->radii().maxCoeff();
   const Vec2<double> off = (c - e->center()).template cast<double>();
   const double size = std::abs(off[0]) + std::abs(off[1]) + major + double(r);

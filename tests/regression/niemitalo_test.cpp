@@ -264,4 +264,20 @@ TEST(NiemitaloRegression, QuarticNeedleWithHugeMajorRadius) {
   EXPECT_NEAR(f.distance, 3, 1e-5);
 }
 
+// Fuzzing: segment_circle answered side on_line for a center 0.5 above a unit segment when
+// the radius was huge: the test's frame brings the largest of the lengths (the radius,
+// 1e300) to 1, and the cross product of the segment and the center, about 2^-1994 there,
+// underflowed to 0. The side is now taken at the scale of the segment and the center.
+TEST(NiemitaloRegression, SegmentCircleSideWithHugeRadius) {
+  for (double r : {1e300, 0x1.46170655f696ep+824, 1e-300, 0.0}) {
+    const auto c = make_circle<double>({0.5, 1}, r);
+    const auto s = segment_circle<double>({0, 0}, {1, 0}, c);
+    EXPECT_EQ(s.side, Side::left) << r;
+    EXPECT_EQ(s.verdict, r >= 1 ? Verdict::collision : Verdict::no_collision) << r;
+    EXPECT_EQ(segment_circle<double>({1, 0}, {0, 0}, c).side, Side::right) << r;
+    const auto below = segment_circle<double>({0, 0}, {1, 0}, make_circle<double>({0.5, -1e-300}, r));
+    EXPECT_EQ(below.side, Side::right) << r;
+  }
+}
+
 }  // namespace
