@@ -144,10 +144,14 @@ Outcome bisect(const Disk<T>& d, Pt<T> c0, Pt<T> c2, int max_level) noexcept {
 // Axis-aligned ellipse (w, h) with the center folded into the first quadrant (the ellipse
 // is symmetric about both axes, so its point nearest to the center stays there): level 0
 // is the edge (w, 0) -> (0, h) of the inscribed rhombus and the box [0, w] x [0, h].
+// A radius that underflowed to 0 (an ellipse far smaller than the offset) leaves a
+// degenerate rhombus, whose edge's line contains points outside it: "inside" also needs
+// the center within the box [0, w] x [0, h] (implied otherwise).
 template <class T>
 bool level_zero_collides(const Disk<T>& d, T w, T h) noexcept {
   T side;
-  return meets_segment(d, {w, 0}, {0, h}, side) || side >= T(0);  // an edge, or the center inside
+  return meets_segment(d, {w, 0}, {0, h}, side) ||  // an edge, or the center inside
+         (side >= T(0) && d.p.x <= w && d.p.y <= h);
 }
 
 template <class T>
@@ -273,11 +277,24 @@ T unit_scale(T size) noexcept {
   return std::bit_cast<T>(static_cast<U>((2 * bias - field) << mantissa));
 }
 
-// The disk's center in the ellipse's axes, folded into the first quadrant; all scaled by s.
+// The exact power of two that brings the largest of |offset| (componentwise), `major` and
+// `other` into [1, 2): every quantity of the test, squared, then stays in range (only parts
+// far below rounding underflow). Taken on halves: the offset of two finite points may
+// overflow.
+template <class T>
+T scene_scale(const Vec2<T>& from, const Vec2<T>& to, T major, T other) noexcept {
+  const T half = T(0.5);
+  const T m = std::max({std::abs(half * to.x() - half * from.x()), std::abs(half * to.y() - half * from.y()),
+                        half * major, half * other});
+  return half * unit_scale(m);
+}
+
+// The disk's center in the ellipse's axes, folded into the first quadrant; all scaled by s
+// (scene_scale: the scaled offset does not overflow, the world one may).
 template <class T>
 Disk<T> folded_disk(const Ellipse2<T>& e, const Circle<T>& c, T s) noexcept {
   const Mat2<T>& q = e.axes();
-  const T dx = s * (c.center().x() - e.center().x()), dy = s * (c.center().y() - e.center().y());
+  const T dx = s * c.center().x() - s * e.center().x(), dy = s * c.center().y() - s * e.center().y();
   const T r = s * c.radius();
   return {{std::abs(q(0, 0) * dx + q(1, 0) * dy), std::abs(q(0, 1) * dx + q(1, 1) * dy)}, r * r};
 }
@@ -314,6 +331,19 @@ SegmentFrame<T> segment_frame(const Vec2<T>& a, const Vec2<T>& b, const Circle<T
   return {{{s * q.x(), s * q.y()}, sr * sr}, {s * e.x(), s * e.y()}};
 }
 
+// cross(b - a, c - a) with the differences scaled by the exact power of two that brings
+// the larger into [1, 2) (both far below 1 underflowed): only its sign is used.
+template <class T>
+T side_of(const Vec2<T>& a, const Vec2<T>& b, const Vec2<T>& c) noexcept {
+  Vec2<T> e = b - a, q = c - a;
+  if (!e.allFinite() || !q.allFinite()) {  // overflow: halved, as in segment_frame
+    e = T(0.5) * b - T(0.5) * a;
+    q = T(0.5) * c - T(0.5) * a;
+  }
+  const T s = unit_scale(std::max(e.cwiseAbs().maxCoeff(), q.cwiseAbs().maxCoeff()));
+  return cross(Pt<T>{s * e.x(), s * e.y()}, Pt<T>{s * q.x(), s * q.y()});
+}
+
 template <class T>
 std::string show(T v) {
   std::ostringstream s;
@@ -344,8 +374,11 @@ template <class T>
 SegmentCircle segment_circle(const VecArg<T, 2>& a, const VecArg<T, 2>& b, const Circle<T>& circle) noexcept {
   if (!a.allFinite() || !b.allFinite()) return {Verdict::invalid_input, Side::on_line};
   const SegmentFrame<T> f = segment_frame(a, b, circle);
-  T side;
-  const bool hit = meets_segment(f.d, {T(0), T(0)}, f.end, side);
+  T ignored;
+  const bool hit = meets_segment(f.d, {T(0), T(0)}, f.end, ignored);
+  // The side at the scale of the segment and the center alone: in the frame above a radius
+  // far larger than both (2^824 against 1) made their cross product underflow to 0.
+  const T side = side_of(a, b, circle.center());
   return {hit ? Verdict::collision : Verdict::no_collision,
           side > T(0) ? Side::left : side < T(0) ? Side::right : Side::on_line};
 }
@@ -354,7 +387,7 @@ template <class T>
 PolygonalOverlap<T> polygonal_overlap(const Ellipse2<T>& ellipse, const Circle<T>& circle, int max_level) noexcept {
   if (!valid_level(max_level)) return {};
   const T major = ellipse.radii().maxCoeff();
-  const T s = unit_scale(major);
+  const T s = scene_scale<T>(ellipse.center(), circle.center(), major, circle.radius());
   const Outcome o = quadrant_test(folded_disk(ellipse, circle, s), s * ellipse.radii()[0], s * ellipse.radii()[1],
                                   max_level);
   return with_band(o, major, band_size<T>(circle.center() - ellipse.center(), major, circle.radius()), false);
@@ -363,11 +396,15 @@ PolygonalOverlap<T> polygonal_overlap(const Ellipse2<T>& ellipse, const Circle<T
 template <class T>
 PolygonalOverlap<T> polygonal_overlap(const Ellipse2<T>& a, const Ellipse2<T>& b, int max_level) noexcept {
   if (!valid_level(max_level)) return {};
-  const T s = unit_scale(b.radii().maxCoeff());
+  // Two exact powers of two: sb brings b's major radius into [1, 2) (the stretch factors),
+  // s the largest of the offset and the radii (positions). Stretched positions are then
+  // products of two numbers below 2 (the stretched frame is linear: scaled by sb s).
+  const T sb = unit_scale(b.radii().maxCoeff());
+  const T s = scene_scale<T>(a.center(), b.center(), std::max(a.radii().maxCoeff(), b.radii().maxCoeff()), T(0));
   const Mat2<T>& qa = a.axes();
   const Mat2<T>& qb = b.axes();
-  const Vec2<T> ra = s * a.radii(), rb = s * b.radii();
-  const Vec2<T> offset = s * (b.center() - a.center());
+  const Vec2<T> ra = s * a.radii(), rb = sb * b.radii(), rbs = s * b.radii();
+  const Vec2<T> offset = s * b.center() - s * a.center();
   const bool same = same_direction<T>(qa.col(0), qb.col(0)) && same_direction<T>(qa.col(1), qb.col(1));
   const bool swapped = same_direction<T>(qa.col(0), qb.col(1)) && same_direction<T>(qa.col(1), qb.col(0));
   Outcome o;
@@ -376,7 +413,7 @@ PolygonalOverlap<T> polygonal_overlap(const Ellipse2<T>& a, const Ellipse2<T>& b
     // and y by b's extent along x; b becomes the circle of radius w_b h_b.
     const T wb = same ? rb[0] : rb[1], hb = same ? rb[1] : rb[0];
     const Vec2<T> local = (qa.transpose() * offset).cwiseAbs();
-    const T r = wb * hb;
+    const T r = wb * (same ? rbs[1] : rbs[0]);
     o = quadrant_test(Disk<T>{{local.x() * hb, local.y() * wb}, r * r}, ra[0] * hb, ra[1] * wb, max_level);
   } else {
     // Rotation-stretch: A = diag(h_b, w_b) Q_b^T makes b the circle of radius w_b h_b; a's
@@ -387,7 +424,7 @@ PolygonalOverlap<T> polygonal_overlap(const Ellipse2<T>& a, const Ellipse2<T>& b
     const Vec2<T> u = stretch.cwiseProduct(to_b * (ra[0] * qa.col(0)));
     const Vec2<T> v = stretch.cwiseProduct(to_b * (ra[1] * qa.col(1)));
     const Pt<T> pu{u.x(), u.y()}, pv{v.x(), v.y()};
-    const T r = rb[0] * rb[1];
+    const T r = rb[0] * rbs[1];
     const Disk<T> d{{p.x(), p.y()}, r * r};
     o = cross(pu, pv) >= T(0) ? general_test(d, pu, pv, max_level) : general_test(d, pv, pu, max_level);
   }
@@ -400,7 +437,7 @@ template <class T>
 PolygonalOverlap<T> circle_cover_overlap(const Ellipse2<T>& ellipse, const Circle<T>& circle, int max_level) noexcept {
   if (!valid_level(max_level)) return {};
   const T major = ellipse.radii().maxCoeff();
-  const T s = unit_scale(major);
+  const T s = scene_scale<T>(ellipse.center(), circle.center(), major, circle.radius());
   const Outcome o = cover_test(folded_disk(ellipse, circle, s), s * ellipse.radii()[0], s * ellipse.radii()[1],
                                max_level);
   return with_band(o, major, band_size<T>(circle.center() - ellipse.center(), major, circle.radius()), true);

@@ -2,6 +2,7 @@
 
 #include "detail/niemitalo_quartic.hpp"
 #include "detail/reduce.hpp"
+#include "detail/scale.hpp"
 #include "detail/secular.hpp"
 
 #include <cmath>
@@ -96,10 +97,11 @@ QuarticPoint<T> closest_point_closed_form(const Ellipse2<T>& ellipse, const VecA
   return outside<T>(ellipse, fr, xx * fr.a, yy * fr.a, std::hypot(fr.c - xx * fr.a, fr.d - yy * fr.a));
 }
 
-template <class T>
-QuarticPoint<T> closest_point_quartic(const Ellipse2<T>& ellipse, const VecArg<T, 2>& x) noexcept {
-  using R = detail::Work<T>;
-  if (!x.allFinite()) return no_point<T>(QuarticStatus::invalid_input);
+namespace {
+
+// closest_point_quartic in precision R, on a body and point whose squares stay in range.
+template <class R, class T>
+QuarticPoint<T> quartic_in(const Ellipse2<T>& ellipse, const Vec2<T>& x) noexcept {
   const Frame<R> fr = frame<R>(ellipse, x);
   const R u = fr.c / fr.a, v = fr.d / fr.b;
   if (u * u + v * v <= R(1)) return no_point<T>(QuarticStatus::inside);
@@ -112,6 +114,27 @@ QuarticPoint<T> closest_point_quartic(const Ellipse2<T>& ellipse, const VecArg<T
   const auto p = detail::closest_from_outside<R, 2>(e, k, fr.a * fr.a * tau);
   const Vec2<R> foot = p.offset.cwiseAbs();  // center to the point, first quadrant
   return outside<R>(ellipse, fr, foot[fr.major], foot[1 - fr.major], p.norm);
+}
+
+}  // namespace
+
+// At the scale of the body and the point (detail/scale.hpp), as closest_point: as given,
+// rescaled by 2^-e with the lengths scaled back, or in long double. A major radius near
+// the top of the range made a^2 (the polish's start a^2 tau) overflow: a NaN point.
+template <class T>
+QuarticPoint<T> closest_point_quartic(const Ellipse2<T>& ellipse, const VecArg<T, 2>& x) noexcept {
+  using R = detail::Work<T>;
+  if (!x.allFinite()) return no_point<T>(QuarticStatus::invalid_input);
+  const detail::Scale scale = detail::scale_of<T>(ellipse.radii().maxCoeff(), ellipse.radii().minCoeff(),
+                                                  std::max(detail::max_abs(ellipse.center()), detail::max_abs(x)));
+  if (scale.range == detail::Range::native) return quartic_in<R>(ellipse, Vec2<T>(x));
+  if (scale.range == detail::Range::wide) return quartic_in<detail::Wide<R>>(ellipse, Vec2<T>(x));
+  const int e = scale.exponent;
+  QuarticPoint<T> q = quartic_in<R>(detail::scaled(ellipse, -e), Vec2<T>(detail::times_pow2(x, -e)));
+  if (q.status != QuarticStatus::outside) return q;
+  const T distance = std::ldexp(q.distance, e);
+  if (!(distance > T(0))) return no_point<T>(QuarticStatus::inside);
+  return {q.status, detail::times_pow2(q.point, e), distance};
 }
 
 #define ELLIPSECT_INSTANTIATE(T)                                                                         \

@@ -221,4 +221,63 @@ TEST(NiemitaloRegression, QuarticPointOnCircleIsNotOutside) {
   }
 }
 
+// Fuzzing: polygonal_overlap answered `collision` for an ellipse of radius about 1e-281 and
+// a unit circle 1.3e9 away. The scene was scaled to bring the ellipse's major radius to 1,
+// which took the offset to about 2^962 and its square to infinity (inf > inf is false, inf
+// <= inf true). The scale now comes from the whole scene: the largest of the offset and the
+// radii is brought to 1. Expected from geometry: the gap is 0x1.3368p+31 - 1 - radius.
+TEST(NiemitaloRegression, TinyEllipseFarFromCircleIsApart) {
+  const double radius = 0x1.ff00000013f6dp-932;
+  const auto e = make_ellipse<double>({0, 0}, 0.0, {radius, radius});
+  const auto c = make_circle<double>({0, 0x1.3368p+31}, 1.0);
+  const double gap = 0x1.3368p+31 - 1;
+  for (int n : {0, 5, 20}) {
+    for (const auto& r : {polygonal_overlap(e, c, n), circle_cover_overlap(e, c, n),
+                          polygonal_overlap(e, c.ellipse(), n)}) {
+      EXPECT_EQ(r.verdict, Verdict::no_collision) << n;
+      EXPECT_LE(r.gap_lo, gap) << n;
+      EXPECT_GE(r.gap_hi, gap) << n;
+    }
+    // The same far apart in the other direction and with the bodies swapped in size.
+    const auto big = make_ellipse<double>({0, 0x1.3368p+31}, 0.3, {2.0, 1.0});
+    EXPECT_EQ(polygonal_overlap(big, e, n).verdict, Verdict::no_collision) << n;
+    EXPECT_EQ(polygonal_overlap(e, big, n).verdict, Verdict::no_collision) << n;
+  }
+  // A circle reaching 1 beyond the tiny ellipse collides.
+  const auto touching = make_circle<double>({0, 0x1.3368p+31}, 0x1.3368p+31 + 1);
+  EXPECT_EQ(polygonal_overlap(e, touching, 5).verdict, Verdict::collision);
+}
+
+// Fuzzing: closest_point_quartic answered `outside` with a NaN point for an ellipse of
+// radii 8 and about 1.4e306 (a needle's flat side): the polish started at t = a^2 tau with
+// a^2 overflowing. Expected from geometry: within 1e-600 of the point the boundary is the
+// line x = 3 - 8, so the closest point is (-5, -8) at distance 3.
+TEST(NiemitaloRegression, QuarticNeedleWithHugeMajorRadius) {
+  const auto e = make_ellipse<double>({3, 0}, 0.0, {8, 0x1.f00005414p+1016});
+  const auto q = closest_point_quartic(e, Vec2<double>(-8, -8));
+  ASSERT_EQ(q.status, QuarticStatus::outside);
+  EXPECT_NEAR(q.point.x(), -5, 1e-14);
+  EXPECT_NEAR(q.point.y(), -8, 1e-14);
+  EXPECT_NEAR(q.distance, 3, 1e-14);
+  const auto f = closest_point_quartic(make_ellipse<float>({3, 0}, 0.0f, {8, 0x1.fp+126f}), Vec2<float>(-8, -8));
+  ASSERT_EQ(f.status, QuarticStatus::outside);
+  EXPECT_NEAR(f.distance, 3, 1e-5);
+}
+
+// Fuzzing: segment_circle answered side on_line for a center 0.5 above a unit segment when
+// the radius was huge: the test's frame brings the largest of the lengths (the radius,
+// 1e300) to 1, and the cross product of the segment and the center, about 2^-1994 there,
+// underflowed to 0. The side is now taken at the scale of the segment and the center.
+TEST(NiemitaloRegression, SegmentCircleSideWithHugeRadius) {
+  for (double r : {1e300, 0x1.46170655f696ep+824, 1e-300, 0.0}) {
+    const auto c = make_circle<double>({0.5, 1}, r);
+    const auto s = segment_circle<double>({0, 0}, {1, 0}, c);
+    EXPECT_EQ(s.side, Side::left) << r;
+    EXPECT_EQ(s.verdict, r >= 1 ? Verdict::collision : Verdict::no_collision) << r;
+    EXPECT_EQ(segment_circle<double>({1, 0}, {0, 0}, c).side, Side::right) << r;
+    const auto below = segment_circle<double>({0, 0}, {1, 0}, make_circle<double>({0.5, -1e-300}, r));
+    EXPECT_EQ(below.side, Side::right) << r;
+  }
+}
+
 }  // namespace
