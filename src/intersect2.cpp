@@ -296,18 +296,28 @@ BoundaryIntersection<T> intersect_boundaries(const Ellipse2<T>& a, const Ellipse
     const Vec<R, 2> ca = a.center().template cast<R>();
     const Mat<R, 2> axes_a = a.axes().template cast<R>();
     const Vec<R, 2> radii_a = a.radii().template cast<R>();
+    // Touching bodies have disjoint interiors, so one common point; when O is small against
+    // the tangency band (relative to S) several of its critical points lie in the band, and
+    // the one kept is O's point nearest S's center.
+    std::array<int, 4> use = {0, 1, 2, 3};
+    int count = c.count;
+    if (relation == Relation::touching && count > 1) {
+      for (int i = 1; i < c.count; ++i)
+        if (c.points[i].h < c.points[use[0]].h) use[0] = i;
+      count = 1;
+    }
     std::array<std::pair<R, int>, 4> order;
     std::array<Vec<R, 2>, 4> world;
-    for (int i = 0; i < c.count; ++i) {
-      world[i] = s.center().template cast<R>() + c.red.to_world * c.points[i].w;
+    for (int i = 0; i < count; ++i) {
+      world[i] = s.center().template cast<R>() + c.red.to_world * c.points[use[i]].w;
       const Vec<R, 2> u = (axes_a.transpose() * (world[i] - ca)).cwiseQuotient(radii_a);
       order[i] = {std::atan2(u[1], u[0]), i};
     }
-    sort_first(order, c.count, std::less<>());
-    out.count = c.count;
-    for (int i = 0; i < c.count; ++i) {
+    sort_first(order, count, std::less<>());
+    out.count = count;
+    for (int i = 0; i < count; ++i) {
       out.points[i] = world[order[i].second].template cast<T>();
-      out.kinds[i] = c.points[order[i].second].kind;
+      out.kinds[i] = c.points[use[order[i].second]].kind;
     }
   });
   return out;

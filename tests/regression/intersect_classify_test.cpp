@@ -164,4 +164,26 @@ TEST(IntersectClassify, SubnormalCenterOffset) {
   EXPECT_NEAR(overlap_area(a, b).area, pi * 0.05 * 0.05, 1e-16);
 }
 
+// An ellipse of radii (3, 1) at the origin on the boundary of a ball of radius R = 1e20
+// whose top is at the origin. The tangency band is relative to the rounder body, the ball,
+// so the pair is `touching` (every point of the small ellipse lies within 1e-12 R of the
+// ball's boundary), and every critical point of the ellipse's distance from the ball's
+// center fell in the band: intersect_boundaries returned two tangent points, the same
+// point twice, where a touching pair (disjoint interiors) has exactly one.
+TEST(IntersectClassify, TouchingSmallEllipseOnHugeBallHasOnePoint) {
+  Mat2<double> axes;
+  axes << -0x1.29fbebf632f94p-3, 0x1.fa8d2a028cf7bp-1, -0x1.fa8d2a028cf7bp-1, -0x1.29fbebf632f94p-3;
+  const auto a = Ellipse2<double>::from_axes({0x1p-991, 0}, axes, {3, 1});
+  for (const double r : {1e20, 1e100, 0x1.3c76f17ef8c82p+951}) {
+    const auto b = make_ball<double, 2>({0x0.00000fcfcfcfcp-1022, -r}, r);
+    ASSERT_EQ(classify(a, b), Relation::touching) << r;
+    for (const auto& x : {intersect_boundaries(a, b), intersect_boundaries(b, a)}) {
+      ASSERT_EQ(x.count, 1) << r;
+      EXPECT_EQ(x.kinds[0], CrossingKind::tangent);
+      // Within the accuracy the header states: 1e-12 * (3 + r) of both boundaries.
+      EXPECT_LE(std::abs((x.points[0] - b.center()).stableNorm() - r), 1e-12 * (3 + r)) << r;
+    }
+  }
+}
+
 }  // namespace
