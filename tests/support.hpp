@@ -1,5 +1,9 @@
-// Shared test helpers: case counts and scale.
+// Shared test helpers: case counts and scale, InputError expectations.
 #pragma once
+
+#include <ellipsect/shapes.hpp>
+
+#include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cstdlib>
@@ -13,6 +17,18 @@ inline int cases(int n) {
   const char* s = std::getenv("ELLIPSECT_CASE_SCALE");
   const double scale = s != nullptr ? std::atof(s) : 1.0;
   return std::max(20, static_cast<int>(n * scale));
+}
+
+// Runs f, expects InputError whose field() is `field`, named in the message.
+template <class F>
+void expect_field(F&& f, const std::string& field) {
+  try {
+    f();
+    ADD_FAILURE() << "no InputError for " << field;
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.field(), field) << e.what();
+    EXPECT_NE(std::string(e.what()).find(": " + field + ": "), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace ellipsect::testing

@@ -19,6 +19,7 @@
 // BallRadiusNamedRadius: make_ball checked its radius as the radii vector it builds and
 // reported "radii[0]", a field the caller never passed; it now reports "radius".
 #include <ellipsect/ellipsect.hpp>
+#include "tests/support.hpp"
 
 #include <gtest/gtest.h>
 
@@ -31,6 +32,7 @@
 
 namespace {
 
+using ellipsect::testing::expect_field;
 using namespace ellipsect;
 
 // The layout rule the headers' asserts rely on, checked against layouts known by hand
@@ -110,18 +112,6 @@ TEST(Abi, DefaultBodyIsTheUnitBallAtTheOrigin) {
   // default bodies one unit apart along x (centers 0 and 3, radii 1) are 1 apart.
   EXPECT_EQ(classify(e, make_ball<double, 3>({0, 0, 0}, 1)), Relation::equal);
   EXPECT_NEAR(distance(e, e.translated({3, 0, 0})).distance, 1.0, 1e-15);
-}
-
-// Runs f, expects InputError whose field() is `field`, named in the message.
-template <class F>
-void expect_field(F&& f, const std::string& field) {
-  try {
-    f();
-    ADD_FAILURE() << "no InputError for " << field;
-  } catch (const InputError& e) {
-    EXPECT_EQ(e.field(), field) << e.what();
-    EXPECT_NE(std::string(e.what()).find(": " + field + ": "), std::string::npos) << e.what();
-  }
 }
 
 TEST(Abi, QuaternionComponentsNamedInConstructorOrder) {

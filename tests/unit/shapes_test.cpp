@@ -1,5 +1,6 @@
 // Factories validate once and name the offending field.
 #include <ellipsect/shapes.hpp>
+#include "tests/support.hpp"
 
 #include <gtest/gtest.h>
 
@@ -9,20 +10,9 @@
 namespace {
 
 using namespace ellipsect;
+using ellipsect::testing::expect_field;
 constexpr double nan = std::numeric_limits<double>::quiet_NaN();
 constexpr double inf = std::numeric_limits<double>::infinity();
-
-// Runs f, expects InputError whose field() is `field`.
-template <class F>
-void expect_field(F&& f, const std::string& field) {
-  try {
-    f();
-    ADD_FAILURE() << "no InputError for " << field;
-  } catch (const InputError& e) {
-    EXPECT_EQ(e.field(), field) << e.what();
-    EXPECT_NE(std::string(e.what()).find(field), std::string::npos) << e.what();
-  }
-}
 
 TEST(Shapes, EllipseFromAngle) {
   const auto e = make_ellipse<double>({1, 2}, M_PI / 2, {3, 1});
