@@ -249,19 +249,24 @@ TEST(NiemitaloRegression, TinyEllipseFarFromCircleIsApart) {
 }
 
 // Fuzzing: closest_point_quartic answered `outside` with a NaN point for an ellipse of
-// radii 8 and about 1.4e306 (a needle's flat side): the polish started at t = a^2 tau with
-// a^2 overflowing. Expected from geometry: within 1e-600 of the point the boundary is the
-// line x = 3 - 8, so the closest point is (-5, -8) at distance 3.
+// radii 8 and about 1.4e306 (a needle's flat side; the factories now reject that aspect
+// ratio): the polish started at t = a^2 tau with a^2 overflowing. The same overflow, within
+// the supported aspect ratio: radii r = 2^992 and R = 1.4e306 (aspect 3.3e7), the point 2r
+// left of the center. Expected from geometry: near its minor vertex the boundary is
+// x = c - r (1 - y^2 / (2 R^2)), flat to far below rounding at y = -8, so the closest point
+// is (c - r, -8) at distance r.
 TEST(NiemitaloRegression, QuarticNeedleWithHugeMajorRadius) {
-  const auto e = make_ellipse<double>({3, 0}, 0.0, {8, 0x1.f00005414p+1016});
-  const auto q = closest_point_quartic(e, Vec2<double>(-8, -8));
+  const double r = 0x1p+992, big = 0x1.f00005414p+1016;
+  const auto e = make_ellipse<double>({3, 0}, 0.0, {r, big});
+  const auto q = closest_point_quartic(e, Vec2<double>(3 - 2 * r, -8));
   ASSERT_EQ(q.status, QuarticStatus::outside);
-  EXPECT_NEAR(q.point.x(), -5, 1e-14);
-  EXPECT_NEAR(q.point.y(), -8, 1e-14);
-  EXPECT_NEAR(q.distance, 3, 1e-14);
-  const auto f = closest_point_quartic(make_ellipse<float>({3, 0}, 0.0f, {8, 0x1.fp+126f}), Vec2<float>(-8, -8));
+  EXPECT_NEAR(q.point.x(), 3 - r, 1e-14 * r);
+  EXPECT_NEAR(q.point.y(), -8, 1e-13 * big);  // the header's accuracy: 1e-13 of the major radius
+  EXPECT_NEAR(q.distance, r, 1e-14 * r);
+  const float rf = 0x1p+101f, bigf = 0x1.fp+126f;
+  const auto f = closest_point_quartic(make_ellipse<float>({3, 0}, 0.0f, {rf, bigf}), Vec2<float>(3 - 2 * rf, -8));
   ASSERT_EQ(f.status, QuarticStatus::outside);
-  EXPECT_NEAR(f.distance, 3, 1e-5);
+  EXPECT_NEAR(f.distance, rf, 1e-5 * rf);
 }
 
 // Fuzzing: segment_circle answered side on_line for a center 0.5 above a unit segment when
