@@ -225,7 +225,7 @@ void polygons(Bytes& in) {
   const double bound = double(niemitalo_error_bound(*e, n)) + rho;
   if (r > 0) {
     const Ellipse2<T> ball = circle->ellipse();
-    check_band<T>("polygonal_overlap", p, *e, ball, n, std::isfinite(bound) ? T(std::min(bound * (1 + 1e-6), 1e300)) : T(-1));
+    check_band<T>("polygonal_overlap", p, *e, ball, n, std::isfinite(bound) ? T(bound * (1 + 1e-6)) : T(-1));
     check_band<T>("circle_cover_overlap", q, *e, ball, n, T(-1));
   }
   // Scaled by 2^k where every value stays a normal number: the same answers, the band scaled.
