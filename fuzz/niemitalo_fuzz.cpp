@@ -157,10 +157,14 @@ void check_band(const char* name, const PolygonalOverlap<T>& v, const Ellipse2<T
              << hex(v.gap_hi) << "], signed gap " << g);
 }
 
+// The same answer, the band scaled by s (bit for bit where both ends are normal numbers or
+// infinite: a subnormal rounding allowance, tiny scenes, cannot scale exactly).
 template <class T>
 bool same_result(const PolygonalOverlap<T>& x, const PolygonalOverlap<T>& y, T s) {
-  return x.verdict == y.verdict && x.level == y.level && x.iterations == y.iterations &&
-         same_bits(T(x.gap_lo * s), y.gap_lo) && same_bits(T(x.gap_hi * s), y.gap_hi);
+  const auto exact = [](T v) { return std::isinf(v) || std::isnormal(v); };
+  const auto same = [&](T u, T v) { return !(exact(u) && exact(v)) || same_bits(T(u * s), v); };
+  return x.verdict == y.verdict && x.level == y.level && x.iterations == y.iterations && same(x.gap_lo, y.gap_lo) &&
+         same(x.gap_hi, y.gap_hi);
 }
 
 template <class T>
@@ -221,7 +225,7 @@ void polygons(Bytes& in) {
   const double bound = double(niemitalo_error_bound(*e, n)) + rho;
   if (r > 0) {
     const Ellipse2<T> ball = circle->ellipse();
-    check_band<T>("polygonal_overlap", p, *e, ball, n, std::isfinite(bound) ? T(std::min(bound * (1 + 1e-6), 1e300)) : T(-1));
+    check_band<T>("polygonal_overlap", p, *e, ball, n, std::isfinite(bound) ? T(bound * (1 + 1e-6)) : T(-1));
     check_band<T>("circle_cover_overlap", q, *e, ball, n, T(-1));
   }
   // Scaled by 2^k where every value stays a normal number: the same answers, the band scaled.

@@ -331,8 +331,8 @@ SegmentFrame<T> segment_frame(const Vec2<T>& a, const Vec2<T>& b, const Circle<T
   return {{{s * q.x(), s * q.y()}, sr * sr}, {s * e.x(), s * e.y()}};
 }
 
-// cross(b - a, c - a) with the differences scaled by the exact power of two that brings
-// the larger into [1, 2) (both far below 1 underflowed): only its sign is used.
+// The sign of cross(b - a, c - a), each difference scaled by its own exact power of two
+// into [1, 2) (a common scale underflowed the product when one was far shorter).
 template <class T>
 T side_of(const Vec2<T>& a, const Vec2<T>& b, const Vec2<T>& c) noexcept {
   Vec2<T> e = b - a, q = c - a;
@@ -340,8 +340,8 @@ T side_of(const Vec2<T>& a, const Vec2<T>& b, const Vec2<T>& c) noexcept {
     e = T(0.5) * b - T(0.5) * a;
     q = T(0.5) * c - T(0.5) * a;
   }
-  const T s = unit_scale(std::max(e.cwiseAbs().maxCoeff(), q.cwiseAbs().maxCoeff()));
-  return cross(Pt<T>{s * e.x(), s * e.y()}, Pt<T>{s * q.x(), s * q.y()});
+  const T se = unit_scale(e.cwiseAbs().maxCoeff()), sq = unit_scale(q.cwiseAbs().maxCoeff());
+  return cross(Pt<T>{se * e.x(), se * e.y()}, Pt<T>{sq * q.x(), sq * q.y()});
 }
 
 template <class T>
