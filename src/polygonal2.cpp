@@ -17,6 +17,7 @@
 #include <ellipsect/polygonal2.hpp>
 
 #include "detail/niemitalo_polygon.hpp"
+#include "detail/show.hpp"
 
 #include <algorithm>
 #include <array>
@@ -344,23 +345,15 @@ T side_of(const Vec2<T>& a, const Vec2<T>& b, const Vec2<T>& c) noexcept {
   return cross(Pt<T>{se * e.x(), se * e.y()}, Pt<T>{sq * q.x(), sq * q.y()});
 }
 
-template <class T>
-std::string show(T v) {
-  std::ostringstream s;
-  s.precision(17);
-  s << v;
-  return s.str();
-}
-
 }  // namespace
 
 template <class T>
 Circle<T> make_circle(const VecArg<T, 2>& center, T radius) {
   for (int i = 0; i < 2; ++i)
     if (!std::isfinite(center[i]))
-      throw InputError("center[" + std::to_string(i) + "]", "must be finite (got " + show(center[i]) + ")");
+      throw InputError("center[" + std::to_string(i) + "]", "must be finite (got " + detail::show(center[i]) + ")");
   if (!std::isfinite(radius) || radius < T(0))
-    throw InputError("radius", "must be finite and >= 0 (got " + show(radius) + ")");
+    throw InputError("radius", "must be finite and >= 0 (got " + detail::show(radius) + ")");
   return Circle<T>(center, radius);
 }
 

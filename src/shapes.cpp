@@ -1,6 +1,7 @@
 #include <ellipsect/shapes.hpp>
 
 #include "detail/instantiate.hpp"
+#include "detail/show.hpp"
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/QR>
@@ -14,13 +15,7 @@
 namespace ellipsect {
 namespace {
 
-template <class T>
-std::string show(T v) {
-  std::ostringstream s;
-  s.precision(17);
-  s << v;
-  return s.str();
-}
+using detail::show;
 
 template <class Derived>
 void require_finite(const Eigen::MatrixBase<Derived>& m, const std::string& field) {

@@ -106,7 +106,9 @@ TEST(NiemitaloRegression, UndecidedBandIsReturnedInWorldUnits) {
     const double h = M_PI / std::ldexp(1.0, n + 2);
     EXPECT_NEAR(r.gap_hi, 2 * (1 / std::cos(h) - 1), 1e-12) << n;  // a's major radius is 2
     EXPECT_NEAR(r.gap_lo, -2 * (1 - std::cos(h)), 1e-12) << n;
-    if (width > 0) EXPECT_NEAR((r.gap_hi - r.gap_lo) / width, 0.25, 0.01) << n;
+    if (width > 0) {
+      EXPECT_NEAR((r.gap_hi - r.gap_lo) / width, 0.25, 0.01) << n;
+    }
     width = r.gap_hi - r.gap_lo;
   }
   EXPECT_GE(undecided, 3);
@@ -214,10 +216,14 @@ TEST(NiemitaloRegression, QuarticPointOnCircleIsNotOutside) {
     const double t = i * 0.000628;
     for (const auto& q : {closest_point_quartic(unit, Vec2<double>(std::cos(t), std::sin(t))),
                           closest_point_closed_form(unit, Vec2<double>(std::cos(t), std::sin(t)))}) {
-      if (q.status == QuarticStatus::outside) EXPECT_GT(q.distance, 0) << t;
+      if (q.status == QuarticStatus::outside) {
+        EXPECT_GT(q.distance, 0) << t;
+      }
     }
     const auto f = closest_point_quartic(make_ball<float, 2>({0, 0}, 1), Vec2<float>(std::cos(t), std::sin(t)));
-    if (f.status == QuarticStatus::outside) EXPECT_GT(f.distance, 0.0f) << t;
+    if (f.status == QuarticStatus::outside) {
+      EXPECT_GT(f.distance, 0.0f) << t;
+    }
   }
 }
 
