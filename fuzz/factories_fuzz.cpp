@@ -82,8 +82,10 @@ void from_axes_and_quadric(Bytes& in) {
     FUZZ_CHECK(same_bits(e.center(), center), << describe(e));
     const T cond = (e.radii().maxCoeff() / e.radii().minCoeff()) * (e.radii().maxCoeff() / e.radii().minCoeff());
     const T err = (e.quadric() - M).cwiseAbs().maxCoeff() / M.cwiseAbs().maxCoeff();
-    FUZZ_CHECK(
-        err <= 64 * eps * cond, << "quadric() off by " << err << " relative, cond " << cond << " " << describe(e));
+    // Where M's smallest eigenvalue is subnormal, quadric()'s entries carry fewer digits.
+    if (M.cwiseAbs().maxCoeff() / cond >= std::numeric_limits<T>::min() / eps)
+      FUZZ_CHECK(
+          err <= 64 * eps * cond, << "quadric() off by " << err << " relative, cond " << cond << " " << describe(e));
   } catch (const InputError& e) {
     check_field(e, {"center", "M"});
   }

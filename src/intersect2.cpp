@@ -347,6 +347,10 @@ OverlapArea<T> overlap_area(const Ellipse2<T>& a, const Ellipse2<T>& b, const Op
         using W = typename std::decay_t<decltype(c.red.e)>::Scalar;
         out.area = T(lens_area<W>(c) * W(s.radii()[0]) * W(s.radii()[1]));
       });
+      // The intersection lies inside both ellipses. When the smaller one lies within the
+      // tangency band of the larger (radius ratios beyond about 1e12) the lens is formed
+      // from crossings the band blurs; bounding it keeps the area within [0, smaller].
+      out.area = std::min(out.area, T(std::min(area_of(a), area_of(b))));
       break;
   }
   return out;

@@ -137,7 +137,8 @@ public:
   Eigen::Map<const Mat<T, N>> axes() const noexcept { return Eigen::Map<const Mat<T, N>>(axes_.data()); }
   Eigen::Map<const Vec<T, N>> radii() const noexcept { return Eigen::Map<const Vec<T, N>>(radii_.data()); }
 
-  // The quadric matrix M = axes diag(radii)^-2 axes^T.
+  // The quadric matrix M = axes diag(radii)^-2 axes^T (to rounding while radii^-2 is a normal
+  // number: beyond about 1e154 its entries become subnormal and lose digits).
   Mat<T, N> quadric() const noexcept;
   // The same shape moved by `offset`.
   Ellipsoid translated(const Vec<T, N>& offset) const;
