@@ -3,8 +3,8 @@
 #   bash scripts/run.sh example   install what is missing, build, run `ellipsect check` and
 #                                 `ellipsect render` on a bundled scene
 #   bash scripts/run.sh test      install what is missing, build, run the whole test suite
-#                                 (Release build, then an ASan+UBSan build, then a short
-#                                 fixed-seed run of every fuzz target and its kept inputs)
+#                                 (Release build, then an ASan+UBSan build, then every fuzz
+#                                 target on its kept inputs and corpus)
 #   bash scripts/run.sh fuzz [NAME [SECONDS]]   the long run of one fuzz target or all
 #                                 (default 600 s each; docs/fuzzing.md)
 #   bash scripts/run.sh bench [NAME [ARGS]]   install what is missing, build, run
