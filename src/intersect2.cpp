@@ -294,7 +294,7 @@ BoundaryIntersection<T> intersect_boundaries(const Ellipse2<T>& a, const Ellipse
   with_common_points<T>(s, pair.o, options, [&](const auto& c) {
     using R = typename std::decay_t<decltype(c.red.e)>::Scalar;
     const Vec<R, 2> ca = a.center().template cast<R>();
-    const Mat<R, 2> axes_a = a.axes().template cast<R>();
+    const Mat<R, 2> axes_a = detail::work_axes<R>(a);
     const Vec<R, 2> radii_a = a.radii().template cast<R>();
     // Touching bodies have disjoint interiors, so one common point; when O is small against
     // the tangency band (relative to S) several of its critical points lie in the band, and

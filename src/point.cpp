@@ -13,7 +13,7 @@ namespace {
 template <class R, class T, int N>
 ClosestPoint<T, N> solve(const Ellipsoid<T, N>& body, const Vec<T, N>& x) noexcept {
   // Frame of the body's axes with the query point at the origin.
-  const Mat<R, N> axes = body.axes().template cast<R>();
+  const Mat<R, N> axes = detail::work_axes<R>(body);
   const Vec<R, N> e = body.radii().template cast<R>();
   const Vec<R, N> k = axes.transpose() * (body.center().template cast<R>() - x.template cast<R>());
   const bool outside = detail::level_at_origin<R, N>(e, k) > R(0);

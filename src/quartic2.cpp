@@ -36,7 +36,7 @@ struct Frame {
 template <class R, class T>
 Frame<R> frame(const Ellipse2<T>& e, const Vec2<T>& x) noexcept {
   Frame<R> f;
-  f.local = e.axes().template cast<R>().transpose() * (x.template cast<R>() - e.center().template cast<R>());
+  f.local = detail::work_axes<R>(e).transpose() * (x.template cast<R>() - e.center().template cast<R>());
   f.major = e.radii()[0] >= e.radii()[1] ? 0 : 1;
   f.a = R(e.radii()[f.major]);
   f.b = R(e.radii()[1 - f.major]);
@@ -60,7 +60,7 @@ QuarticPoint<T> outside(const Ellipse2<T>& e, const Frame<R>& f, R along_major, 
   Vec2<R> local;
   local[f.major] = std::copysign(along_major, f.local[f.major]);
   local[1 - f.major] = std::copysign(along_minor, f.local[1 - f.major]);
-  const Vec2<R> world = e.center().template cast<R>() + e.axes().template cast<R>() * local;
+  const Vec2<R> world = e.center().template cast<R>() + detail::work_axes<R>(e) * local;
   return {QuarticStatus::outside, world.template cast<T>(), T(distance)};
 }
 

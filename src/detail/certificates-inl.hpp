@@ -37,6 +37,8 @@
 
 #include <ellipsect/shapes.hpp>
 
+#include "axes.hpp"
+
 #include <hwy/highway.h>
 
 #include <cmath>
@@ -133,13 +135,14 @@ BodyLanes<double, N> lanes_of(const Ellipsoid<T, N>& e, Fill fill) noexcept {
   b.rmax = largest<double, N>(r);
   b.rmin = smallest<double, N>(r);
   if (fill == Fill::balls) return b;
+  const Mat<double, N> axes = work_axes<double>(e);
   for (int i = 0; i < N; ++i)
-    for (int k = 0; k < N; ++k) w[i][k] = double(e.axes()(i, k)) * r[k];
+    for (int k = 0; k < N; ++k) w[i][k] = axes(i, k) * r[k];
   for (int i = 0; i < N; ++i)
     for (int j = i; j < N; ++j) b.s[i][j] = b.s[j][i] = dot<double, N>(w[i], w[j]);
   if (fill == Fill::quadric) {
     for (int i = 0; i < N; ++i)
-      for (int k = 0; k < N; ++k) w[i][k] = double(e.axes()(i, k)) / r[k];
+      for (int k = 0; k < N; ++k) w[i][k] = axes(i, k) / r[k];
     for (int i = 0; i < N; ++i)
       for (int j = i; j < N; ++j) b.m[i][j] = b.m[j][i] = dot<double, N>(w[i], w[j]);
   }

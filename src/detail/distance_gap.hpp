@@ -22,6 +22,8 @@
 
 #include <ellipsect/shapes.hpp>
 
+#include "axes.hpp"
+
 #include <Eigen/LU>
 
 #include <algorithm>
@@ -49,8 +51,8 @@ struct GapBodies {
 template <class R, int N, class T>
 GapBodies<R, N> gap_bodies(const Ellipsoid<T, N>& first, const Ellipsoid<T, N>& second) noexcept {
   GapBodies<R, N> g;
-  g.axes1 = first.axes().template cast<R>();
-  g.axes2 = second.axes().template cast<R>();
+  g.axes1 = work_axes<R>(first);
+  g.axes2 = work_axes<R>(second);
   g.radii1 = first.radii().template cast<R>();
   g.radii2 = second.radii().template cast<R>();
   g.b1 = g.radii1.asDiagonal() * g.axes1.transpose();

@@ -16,6 +16,7 @@
 
 #include <ellipsect/shapes.hpp>
 
+#include "axes.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -128,10 +129,10 @@ struct Reduced {
 
 template <class R, int N, class T>
 Reduced<R, N> reduce(const Ellipsoid<T, N>& s, const Ellipsoid<T, N>& o) noexcept {
-  const Mat<R, N> R0 = s.axes().template cast<R>();
+  const Mat<R, N> R0 = work_axes<R>(s);
   const Vec<R, N> a = s.radii().template cast<R>();
   const Mat<R, N> sT = a.cwiseInverse().asDiagonal() * R0.transpose();  // diag(1/a) R0^T
-  const Mat<R, N> L = sT * o.axes().template cast<R>() * o.radii().template cast<R>().asDiagonal();
+  const Mat<R, N> L = sT * work_axes<R>(o) * o.radii().template cast<R>().asDiagonal();
   Reduced<R, N> r;
   Mat<R, N> U;
   left_singular(L, r.e, U);

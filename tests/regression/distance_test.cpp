@@ -1,5 +1,7 @@
 // Regressions of distance / signed_distance, each named after its case, with the expected
 // values from the 50-digit reference (tests/reference/distance_reference.hpp).
+#include <ellipsect/classify.hpp>
+#include <ellipsect/contact.hpp>
 #include <ellipsect/distance.hpp>
 
 #include "scenarios/scenarios.hpp"
@@ -119,5 +121,32 @@ void check_unconverged_bounds() {
 
 TEST(DistanceRegression, UnconvergedFieldsAreACertifiedBound2D) { check_unconverged_bounds<2>(); }
 TEST(DistanceRegression, UnconvergedFieldsAreACertifiedBound3D) { check_unconverged_bounds<3>(); }
+
+// float bodies' axes are orthonormal to float rounding only (~6e-8), and the support
+// function A diag(r^2) A^T and the quadric A diag(r^-2) A^T of such axes describe bodies
+// 1e-7 apart: two float circles of radius 8 at (-8, -8) and (-8, 8), axes rotated by any
+// angle, were `touching` for classify (quadric) but `separated` for distance (support
+// function), a gap 1e5 times the tangency band. Every query now uses the axes' orthonormal
+// polar factor (detail/axes.hpp), so the circles are exactly tangent for all of them.
+// Found by fuzzing (fuzz/regressions/queries/float_distance_separated_classify_touching).
+TEST(DistanceRegression, FloatDistanceSeparatedClassifyTouching) {
+  int rotated = 0;
+  for (int k = 0; k < 64; ++k) {
+    const float angle = 0.1f * float(k);
+    const auto a = make_ellipse<float>({-8, -8}, angle, {8, 8});
+    const auto b = make_ellipse<float>({-8, 8}, angle, {8, 8});
+    const Mat2<double> axes = a.axes().cast<double>();
+    rotated += (axes.transpose() * axes - Mat2<double>::Identity()).norm() > 1e-12;
+    SCOPED_TRACE("angle " + std::to_string(angle));
+    EXPECT_EQ(classify(a, b), Relation::touching);
+    for (const auto& d : {distance(a, b), signed_distance(a, b), signed_distance(b, a)}) {
+      EXPECT_EQ(d.status, DistanceStatus::touching);
+      EXPECT_LE(std::abs(d.distance), 8e-12f);
+    }
+    const auto c = first_contact(a, Vec2<float>(0, 1), b, Vec2<float>(0, 0), 1.0f);
+    EXPECT_EQ(c.status, ContactStatus::touching_at_start);
+  }
+  EXPECT_GT(rotated, 32);  // most angles give axes that are not orthonormal in double
+}
 
 }  // namespace
