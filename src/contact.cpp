@@ -74,10 +74,27 @@ Contact<T, N> solve_contact(const Ellipsoid<T, N>& s, const Ellipsoid<T, N>& o, 
   auto finish = [&](ContactStatus status, R t, const detail::BranchPoint<R, N>* p) {
     out.status = status;
     out.time = T(t);
-    if (p != nullptr) {
+    if (p != nullptr && p->norm > R(0) && rounding(t) <= R(1)) {
       const Vec<R, N> z = p->point / p->norm;  // on the unit ball, i.e. on S's boundary
       out.point = (s.center().template cast<R>() + t * vs + red.to_world * z).template cast<T>();
       const Vec<R, N> n = (red.normal_map * z).normalized();
+      out.normal = (a_is_s ? n : Vec<R, N>(-n)).template cast<T>();
+    } else if (p != nullptr) {
+      // S is smaller than the rounding of O's coordinates in the reduced frame (radius
+      // ratios beyond 1/eps), where P's direction is noise: the normal is O's at S's
+      // center, -grad q_O (off by about S's size over O's radius of curvature), and the
+      // point S's support point along it.
+      Vec<R, N> cs, offset;
+      for (int i = 0; i < N; ++i) {
+        cs[i] = detail::mul_add(t, vs[i], ks[i]);
+        offset[i] = cs[i] - detail::mul_add(t, vo[i], ko[i]);
+      }
+      const Mat<R, N> axes_o = detail::work_axes<R>(o), axes_s = detail::work_axes<R>(s);
+      const Vec<R, N> radii_o = o.radii().template cast<R>(), radii_s = s.radii().template cast<R>();
+      const Vec<R, N> local = (axes_o.transpose() * offset).cwiseQuotient(radii_o).cwiseQuotient(radii_o);
+      const Vec<R, N> n = Vec<R, N>(-(axes_o * local)).normalized();
+      const Vec<R, N> w = radii_s.cwiseProduct(axes_s.transpose() * n);
+      out.point = (cs + axes_s * radii_s.cwiseProduct(w / w.norm())).template cast<T>();
       out.normal = (a_is_s ? n : Vec<R, N>(-n)).template cast<T>();
     }
     return out;

@@ -139,6 +139,29 @@ TEST(Scales, ContactBeyondTheLargestTimeIsNoContact) {
   EXPECT_LE((hit.normal - V3(1, 0, 0)).norm(), 1e-12);
 }
 
+// A unit circle meeting a circle R times larger: for R beyond 1/eps the unit body is
+// smaller than the rounding of the other's coordinates in the reduced frame, and at R = 1e30
+// (and in a fuzzed pair of radii 8 and 1.2e294 in long double) the reduced closest point
+// rounded to the origin: `hit` with the right time but a NaN point and normal. There the
+// normal now comes from the large body's quadric at the small one's center. Closed form:
+// b's center runs along y = 0.6 R and touches when its distance from a's is R + 1.
+TEST(Scales, HitOfASmallCircleOnAHugeOneHasAPointAndNormal) {
+  for (const double big : {1e3, 1e16, 1e20, 1e30, 1e50, 1e100, 1e200, 1e294}) {
+    SCOPED_TRACE("R = " + std::to_string(big));
+    const auto a = make_ball<double, 2>(V2(0, 0), big);
+    const auto b = make_ball<double, 2>(V2(3 * big, 0.6 * big), 1.0);
+    const long double R = big, x = std::sqrt((R + 1) * (R + 1) - 0.36L * R * R);
+    const V2 n(double(x / (R + 1)), double(0.6L * R / (R + 1)));
+    for (const bool swap : {false, true}) {
+      const auto c = swap ? first_contact(b, V2(-1, 0), a, V2(0, 0), inf) : first_contact(a, V2(0, 0), b, V2(-1, 0), inf);
+      ASSERT_EQ(c.status, ContactStatus::hit);
+      expect_relative(c.time, double(3 * R - x));
+      EXPECT_LE((c.point - double(R) * n).norm(), 1e-10 * big);
+      EXPECT_LE((c.normal - (swap ? V2(-n) : n)).norm(), 1e-9);
+    }
+  }
+}
+
 // Query point 1e-200 from a ball's center, on its diagonal: the secular bracket's upper end
 // |c| = |radius * offset| was formed as sqrt(sum c_i^2), whose squares (1e-397) underflow
 // to zero, so the bracket collapsed onto the largest single term and the point landed off
