@@ -4,7 +4,8 @@
 #                                 `ellipsect render` on a bundled scene
 #   bash scripts/run.sh test      install what is missing, build, run the whole test suite
 #                                 (Release build, then an ASan+UBSan build, then every fuzz
-#                                 target on its kept inputs and corpus)
+#                                 target on its kept inputs and corpus and a short seeded
+#                                 mutation run)
 #   bash scripts/run.sh fuzz [NAME [SECONDS]]   the long run of one fuzz target or all
 #                                 (default 600 s each; docs/fuzzing.md)
 #   bash scripts/run.sh bench [NAME [ARGS]]   install what is missing, build, run
@@ -64,6 +65,24 @@ fuzz_check() {
   log=$("$program" -timeout=30 -artifact_prefix="$artifacts" "${inputs[@]}" 2>&1) || { echo "$log"; return 1; }
 }
 
+# fuzz_mutate NAME RUNS: a short mutation run that is the same on every machine: seed 1,
+# RUNS executions in one process, the batch functions pinned to the portable SIMD target
+# (their coverage would otherwise follow the CPU, and with it the inputs tried), starting
+# from a copy of the committed corpus. -max_total_time only cuts a slow machine's run
+# short, to a prefix of the same sequence of inputs (docs/fuzzing.md).
+fuzz_mutate() {
+  local name=$1 runs=$2 corpus=build/fuzz/mutation/$1 artifacts=build/fuzz/artifacts/ log
+  rm -rf "$corpus"
+  mkdir -p "$corpus" "$artifacts"
+  cp fuzz/corpus/"$name"/* "$corpus"/
+  echo "==> fuzz_$name: seeded mutation run, $runs inputs"
+  log=$(ELLIPSECT_FUZZ_SIMD_TARGET=EMU128 build/fuzz/fuzz/fuzz_"$name" -seed=1 -runs="$runs" -max_total_time=180 \
+    -max_len=4096 -timeout=10 -artifact_prefix="$artifacts" "$corpus" 2>&1) || { echo "$log" | tail -40; return 1; }
+}
+
+# Inputs per target for the CI mutation run: about a minute each on one core.
+declare -A fuzz_runs=([factories]=600000 [queries]=30000 [intersect2]=300000 [niemitalo]=150000 [scene]=20000)
+
 case "${1:-}" in
   example)
     install_missing
@@ -86,7 +105,9 @@ case "${1:-}" in
     (cd build/sanitize && ELLIPSECT_CASE_SCALE=0.05 ctest --output-on-failure --no-tests=error -j "$(nproc)")
     build_fuzz
     failed=()
-    for name in $(fuzz_targets); do fuzz_check "$name" || failed+=("$name"); done
+    for name in $(fuzz_targets); do
+      fuzz_check "$name" && fuzz_mutate "$name" "${fuzz_runs[$name]:-100000}" || failed+=("$name")
+    done
     [ ${#failed[@]} -eq 0 ] || { echo "==> fuzz targets failed: ${failed[*]}" >&2; exit 1; }
     ;;
   fuzz)

@@ -192,12 +192,12 @@ Contact<T, N> first_contact(const Ellipsoid<T, N>& a, const VecArg<T, N>& veloci
   const detail::Scale scale = detail::scale_of(a, b);
   const bool wide = scale.range == detail::Range::wide;
   const int f = detail::time_exponent(scale, velocity_a, velocity_b);
-  auto beyond_window = [&](Contact<T, N>& c) {
+  auto beyond_window = [](Contact<T, N>& c) {
     if (!std::isfinite(c.time)) {
       c.status = ContactStatus::no_contact_in_window;
-      c.time = out.time;
-      c.point = out.point;
-      c.normal = out.normal;
+      c.time = std::numeric_limits<T>::quiet_NaN();
+      c.point.setConstant(c.time);
+      c.normal.setConstant(c.time);
     }
     return c;
   };
@@ -238,7 +238,9 @@ Contact<T, N> first_contact(const Ellipsoid<T, N>& a, const VecArg<T, N>& veloci
     W wide_doubt;
     out = solve_contact<W, T, N>(s, o, vs, vo, W(t_max), a_is_s, options, wide_doubt);
   }
-  return out;
+  // Speeds of any size can close at a subnormal relative speed, which time rescaling
+  // (by the larger speed) leaves alone.
+  return out.status == ContactStatus::hit ? beyond_window(out) : out;
 }
 
 #define ELLIPSECT_INSTANTIATE(T, N)                                                                            \

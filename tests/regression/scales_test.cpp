@@ -162,6 +162,24 @@ TEST(Scales, HitOfASmallCircleOnAHugeOneHasAPointAndNormal) {
   }
 }
 
+// Both bodies at speed 8, closing at a subnormal 5e-318: they would touch at about 1e317,
+// beyond the largest double. Time rescaling looks at the speeds (8), not at how fast the
+// bodies close, so the native solve ran Newton to t = inf and returned `hit` at time inf
+// with a NaN point (found by fuzzing). It is now no contact, as at every other scale.
+TEST(Scales, ClosingAtASubnormalSpeedIsNoContact) {
+  const auto a = make_ball<double, 2>(V2(0, 0), 1);
+  const auto b = make_ball<double, 2>(V2(0, 3), 1);
+  for (const bool swap : {false, true}) {
+    const V2 va(-8, 0), vb(-8, -0x0.00000000301p-1022);
+    const auto c = swap ? first_contact(b, vb, a, va, inf) : first_contact(a, va, b, vb, inf);
+    EXPECT_EQ(c.status, ContactStatus::no_contact_in_window);
+    EXPECT_TRUE(std::isnan(c.time) && c.point.hasNaN() && c.normal.hasNaN());
+  }
+  const auto hit = first_contact(a, V2(-8, 0), b, V2(-8, -1e-300), inf);  // gap 1 closes at 1e300
+  ASSERT_EQ(hit.status, ContactStatus::hit);
+  expect_relative(hit.time, 1e300);
+}
+
 // Query point 1e-200 from a ball's center, on its diagonal: the secular bracket's upper end
 // |c| = |radius * offset| was formed as sqrt(sum c_i^2), whose squares (1e-397) underflow
 // to zero, so the bracket collapsed onto the largest single term and the point landed off
