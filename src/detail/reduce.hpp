@@ -35,12 +35,19 @@ bool is_sphere_body(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b) noexcept
   const T ra = a.radii().maxCoeff() / a.radii().minCoeff();
   const T rb = b.radii().maxCoeff() / b.radii().minCoeff();
   if (ra != rb) return ra < rb;
-  auto less = [](const auto& x, const auto& y) {
-    return std::lexicographical_compare(x.data(), x.data() + x.size(), y.data(), y.data() + y.size());
+  // Ties: the raw data in a total order (radii, center, axes; -0 before +0), so that two
+  // bodies differing in any bit are ordered the same way whichever comes first.
+  auto compare = [](const auto& x, const auto& y) {
+    for (Eigen::Index i = 0; i < x.size(); ++i) {
+      const T u = x.data()[i], v = y.data()[i];
+      if (u != v) return u < v ? -1 : 1;
+      if (std::signbit(u) != std::signbit(v)) return std::signbit(u) ? -1 : 1;
+    }
+    return 0;
   };
-  if (a.radii() != b.radii()) return less(a.radii(), b.radii());
-  if (a.center() != b.center()) return less(a.center(), b.center());
-  return !less(b.axes(), a.axes());
+  if (const int c = compare(a.radii(), b.radii())) return c < 0;
+  if (const int c = compare(a.center(), b.center())) return c < 0;
+  return compare(b.axes(), a.axes()) >= 0;
 }
 
 // a * b + c with about one rounding: a hardware fma where the build has one, Dekker's exact

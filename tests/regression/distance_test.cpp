@@ -149,4 +149,21 @@ TEST(DistanceRegression, FloatDistanceSeparatedClassifyTouching) {
   EXPECT_GT(rotated, 32);  // most angles give axes that are not orthonormal in double
 }
 
+// Two equal circles whose centers differ only in the sign of a zero, (-0, -8) and (0, -8):
+// the rule that picks the sphere body compared the data with ==, which calls them equal,
+// so each call took its first argument, and swapping the arguments gave the same normal
+// instead of the negated one. Ties are now broken by a total order on the raw data (-0
+// before +0). Found by fuzzing (signed_distance_swap_bodies_differing_in_zero_sign).
+TEST(DistanceRegression, SignedDistanceSwapBodiesDifferingInZeroSign) {
+  const auto a = make_ellipse<float>({-0.0f, -8}, 1.7f, {8, 8});
+  const auto b = make_ellipse<float>({0.0f, -8}, 1.7f, {8, 8});
+  const auto ab = signed_distance(a, b), ba = signed_distance(b, a);
+  EXPECT_EQ(ab.status, DistanceStatus::overlapping);
+  EXPECT_EQ(ab.distance, -16.0f);
+  EXPECT_EQ(ba.distance, ab.distance);
+  EXPECT_EQ(ba.normal, Vec2<float>(-ab.normal));
+  EXPECT_EQ(ba.point_a, ab.point_b);
+  EXPECT_EQ(ba.point_b, ab.point_a);
+}
+
 }  // namespace
