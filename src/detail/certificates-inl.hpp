@@ -397,8 +397,14 @@ HWY_INLINE V swept_code(const BodyLanes<V, N>& a, const V* va, const BodyLanes<V
     v[i] = vb[i] - va[i];
     valid = And(valid, And(IsFinite(va[i]), IsFinite(vb[i])));
   }
+  V speed = Abs(v[0]);
+  for (int i = 1; i < N; ++i) speed = Max(speed, Abs(v[i]));
   const V vv = dot<V, N>(v, v);
-  const auto moving = Gt(vv, zero);
+  const auto moving = Gt(speed, zero);
+  // |v|^2 underflows for relative speeds below about 1e-154 (bodies at ordinary speeds
+  // closing very slowly: time rescaling follows the speeds, not their difference), and the
+  // closest approach would be taken at t = 0: such pairs take the exact path.
+  valid = And(valid, Or(Not(moving), Ge(vv, Splat<V>(std::numeric_limits<double>::min()))));
   V t = IfThenElse(moving, (zero - dot<V, N>(c0, v)) / IfThenElse(moving, vv, one), zero);
   valid = And(valid, IsFinite(t));
   t = Min(Max(t, zero), t_max);
