@@ -202,9 +202,16 @@ Contact<T, N> first_contact(const Ellipsoid<T, N>& a, const VecArg<T, N>& veloci
     return c;
   };
   if (scale.exponent != 0 || f != 0) {
+    // The sphere body is chosen before rescaling, which can merge two bodies that differ
+    // only below the smallest subnormal (swap symmetry needs the order they had).
     const int e = scale.exponent;
-    Contact<T, N> c = first_contact(detail::scaled(a, -e), detail::times_pow2(velocity_a, -e - f), detail::scaled(b, -e),
-                                    detail::times_pow2(velocity_b, -e - f), std::ldexp(t_max, f), options);
+    const bool swap = !detail::is_sphere_body(a, b);
+    const Ellipsoid<T, N>& first = swap ? b : a;
+    const Ellipsoid<T, N>& second = swap ? a : b;
+    Contact<T, N> c = first_contact(detail::scaled(first, -e), detail::times_pow2(swap ? velocity_b : velocity_a, -e - f),
+                                    detail::scaled(second, -e), detail::times_pow2(swap ? velocity_a : velocity_b, -e - f),
+                                    std::ldexp(t_max, f), options);
+    if (swap) c.normal = -c.normal;
     c.time = std::ldexp(c.time, -f);
     c.point = detail::times_pow2(c.point, e);
     return c.status == ContactStatus::hit ? beyond_window(c) : c;

@@ -31,6 +31,7 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <utility>
 
 namespace ellipsect {
 
@@ -202,8 +203,16 @@ Distance<T, N> solve_at_scale(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b
   const detail::Scale scale = detail::scale_of(a, b);
   if (scale.range == detail::Range::native) return solve<R>(a, b, options, penetration);
   if (scale.range == detail::Range::wide) return solve<detail::Wide<R>>(a, b, options, penetration);
+  // The sphere body is chosen before rescaling: rescaling can merge two bodies that differ
+  // only below the smallest subnormal, and swap symmetry needs the order they had.
   const int e = scale.exponent;
-  Distance<T, N> d = solve<R>(detail::scaled(a, -e), detail::scaled(b, -e), options, penetration);
+  const bool swap = !detail::is_sphere_body(a, b);
+  Distance<T, N> d = swap ? solve<R>(detail::scaled(b, -e), detail::scaled(a, -e), options, penetration)
+                          : solve<R>(detail::scaled(a, -e), detail::scaled(b, -e), options, penetration);
+  if (swap) {
+    std::swap(d.point_a, d.point_b);
+    d.normal = -d.normal;
+  }
   d.distance = std::ldexp(d.distance, e);
   d.point_a = detail::times_pow2(d.point_a, e);
   d.point_b = detail::times_pow2(d.point_b, e);
