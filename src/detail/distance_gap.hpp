@@ -58,7 +58,9 @@ GapBodies<R, N> gap_bodies(const Ellipsoid<T, N>& first, const Ellipsoid<T, N>& 
   g.b1 = g.radii1.asDiagonal() * g.axes1.transpose();
   g.b2 = g.radii2.asDiagonal() * g.axes2.transpose();
   g.r = second.center().template cast<R>() - first.center().template cast<R>();
-  g.r_norm = g.r.norm();
+  // Offsets whose squares leave the normal range (a 1e-159 center offset) lose digits in
+  // norm(), and r / |r| was 7e-8 off unit length.
+  g.r_norm = g.r.squaredNorm() >= std::numeric_limits<R>::min() ? g.r.norm() : g.r.stableNorm();
   return g;
 }
 

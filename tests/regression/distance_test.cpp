@@ -166,4 +166,19 @@ TEST(DistanceRegression, SignedDistanceSwapBodiesDifferingInZeroSign) {
   EXPECT_EQ(ba.point_b, ab.point_a);
 }
 
+// Two circles of radius 8 whose centers are 1e-159 apart: the line of centers r / |r|
+// started the descent, and |r| = sqrt(r . r) lost digits where r . r (1e-318) is
+// subnormal, so the normal returned was 7e-8 off unit length. Found by fuzzing
+// (signed_distance_normal_off_unit_offset_1e-159).
+TEST(DistanceRegression, SignedDistanceNormalOffUnitOffset1em159) {
+  for (const double offset : {1e-159, 3e-162, 1e-300}) {
+    const auto a = make_ball<double, 2>({0, -offset}, 8);
+    const auto b = make_ball<double, 2>({1e-306, 0}, 8);
+    const auto d = signed_distance(a, b);
+    EXPECT_EQ(d.status, DistanceStatus::overlapping);
+    EXPECT_NEAR(d.distance, -16, 1e-12 * 16);
+    EXPECT_NEAR(d.normal.norm(), 1, 1e-15);
+  }
+}
+
 }  // namespace
