@@ -77,7 +77,7 @@ Contact<T, N> solve_contact(const Ellipsoid<T, N>& s, const Ellipsoid<T, N>& o, 
     if (p != nullptr && p->norm > R(0) && rounding(t) <= R(1)) {
       const Vec<R, N> z = p->point / p->norm;  // on the unit ball, i.e. on S's boundary
       out.point = (s.center().template cast<R>() + t * vs + red.to_world * z).template cast<T>();
-      const Vec<R, N> n = (red.normal_map * z).normalized();
+      const Vec<R, N> n = detail::unit_vector<R, N>(red.normal_map * z);
       out.normal = (a_is_s ? n : Vec<R, N>(-n)).template cast<T>();
     } else if (p != nullptr) {
       // S is smaller than the rounding of O's coordinates in the reduced frame (radius
@@ -92,7 +92,7 @@ Contact<T, N> solve_contact(const Ellipsoid<T, N>& s, const Ellipsoid<T, N>& o, 
       const Mat<R, N> axes_o = detail::work_axes<R>(o), axes_s = detail::work_axes<R>(s);
       const Vec<R, N> radii_o = o.radii().template cast<R>(), radii_s = s.radii().template cast<R>();
       const Vec<R, N> local = (axes_o.transpose() * offset).cwiseQuotient(radii_o).cwiseQuotient(radii_o);
-      const Vec<R, N> n = Vec<R, N>(-(axes_o * local)).normalized();
+      const Vec<R, N> n = detail::unit_vector<R, N>(-(axes_o * local));
       const Vec<R, N> w = radii_s.cwiseProduct(axes_s.transpose() * n);
       out.point = (cs + axes_s * radii_s.cwiseProduct(w / w.norm())).template cast<T>();
       out.normal = (a_is_s ? n : Vec<R, N>(-n)).template cast<T>();

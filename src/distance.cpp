@@ -64,7 +64,7 @@ Start<R, N> start(const Ellipsoid<T, N>& s, const Ellipsoid<T, N>& o, W tol, boo
   st.normal.setZero();
   doubt = std::abs(q0) <= rounding;
   const auto p = q0 > W(0) ? detail::closest_from_outside<W, N>(red.e, red.k) : detail::closest_from_inside<W, N>(red.e, red.k);
-  if (p.norm > W(0)) st.normal = Vec<W, N>(red.normal_map * p.point).normalized().template cast<R>();
+  if (p.norm > W(0)) st.normal = detail::unit_vector<W, N>(red.normal_map * p.point).template cast<R>();
   if (q0 <= W(0)) {
     st.status = DistanceStatus::overlapping;
     return st;

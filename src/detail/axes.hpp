@@ -1,4 +1,4 @@
-// The axes every query computes with. A body's stored axes are orthonormal to the rounding
+// The axes and unit vectors every query computes with. A body's stored axes are orthonormal to the rounding
 // of T: ~1e-16 for double, well inside the tangency band; ~6e-8 for float, far outside it,
 // and then A diag(r^2) A^T and A diag(r^-2) A^T (the support function and the quadric)
 // would describe bodies 1e-7 apart, so that queries reading one or the other disagreed
@@ -8,6 +8,9 @@
 #pragma once
 
 #include <ellipsect/shapes.hpp>
+
+#include <cmath>
+#include <limits>
 
 namespace ellipsect::detail {
 
@@ -21,6 +24,19 @@ Mat<R, N> work_axes(const Ellipsoid<T, N>& e) noexcept {
     }
   }
   return x;
+}
+
+// v / |v|, also where |v|^2 leaves the normal range (Eigen's normalized() then loses digits
+// or returns v unchanged: a direction from centers 1e-162 apart came back 1e-164 long).
+// Zero and non-finite vectors come back unchanged.
+template <class R, int N>
+Vec<R, N> unit_vector(Vec<R, N> v) noexcept {
+  const R s = v.squaredNorm();
+  if (s >= std::numeric_limits<R>::min() && s <= std::numeric_limits<R>::max()) return v / std::sqrt(s);
+  const R m = v.cwiseAbs().maxCoeff();
+  if (!(m > R(0)) || !std::isfinite(m)) return v;
+  v /= m;
+  return v / v.norm();
 }
 
 }  // namespace ellipsect::detail

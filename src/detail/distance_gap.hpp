@@ -145,7 +145,7 @@ PwDirection<R, N> pw_direction(const GapBodies<R, N>& g) noexcept {
   const R rho1 = (g.b1 * g.r).norm(), rho2 = (g.b2 * g.r).norm();
   const R l = rho1 / (rho1 + rho2);
   const Vec<R, N> y = Mat<R, N>((R(1) - l) * p1 + l * p2).inverse() * g.r;  // closed form for N <= 3
-  return {y.normalized(), l * (R(1) - l) * g.r.dot(y)};
+  return {unit_vector<R, N>(y), l * (R(1) - l) * g.r.dot(y)};
 }
 
 // Smallest eigenvalue of a 1x1 or 2x2 symmetric matrix.

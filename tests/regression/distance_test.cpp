@@ -168,7 +168,10 @@ TEST(DistanceRegression, SignedDistanceSwapBodiesDifferingInZeroSign) {
 
 // Two circles of radius 8 whose centers are 1e-159 apart: the line of centers r / |r|
 // started the descent, and |r| = sqrt(r . r) lost digits where r . r (1e-318) is
-// subnormal, so the normal returned was 7e-8 off unit length. Found by fuzzing
+// subnormal, so the normal returned was 7e-8 off unit length; at 3e-162 the Perram-Wertheim
+// direction C^-1 r / |C^-1 r| came back 1e-164 long (Eigen's normalized() leaves a vector
+// whose squared norm underflows unchanged) and the descent ended in did_not_converge. Both
+// are normalized with scaling now (detail::unit_vector). Found by fuzzing
 // (signed_distance_normal_off_unit_offset_1e-159).
 TEST(DistanceRegression, SignedDistanceNormalOffUnitOffset1em159) {
   for (const double offset : {1e-159, 3e-162, 1e-300}) {
