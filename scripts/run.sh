@@ -10,8 +10,8 @@
 #   bash scripts/run.sh bench [NAME [ARGS]]   install what is missing, build, run
 #                                 bench/bench_NAME (default: batch, ellipsect vs FCL and libccd)
 #   bash scripts/run.sh demo [PORT]   build the demo page (WebAssembly) and serve it on
-#                                 http://127.0.0.1:PORT/ (default 8000); `test` also runs its
-#                                 browser test (web_test)
+#                                 http://127.0.0.1:PORT/ (default 8000)
+#   bash scripts/run.sh web       the page's browser test alone (`test` runs it too)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -140,6 +140,12 @@ case "${1:-}" in
     [[ -x $program ]] || { echo "no benchmark $program (see bench/)" >&2; exit 2; }
     "$program" --benchmark_repetitions=3 --benchmark_report_aggregates_only=true "${@:3}"
     ;;
+  web)
+    install_missing
+    cmake -S . -B build/release -G Ninja -DCMAKE_BUILD_TYPE=Release -DELLIPSECT_BUILD_TESTS=ON \
+      -DELLIPSECT_BUILD_BENCH=ON -DELLIPSECT_BUILD_TOOLS=ON >/dev/null
+    web_test
+    ;;
   demo)
     install_missing
     build_web
@@ -147,7 +153,7 @@ case "${1:-}" in
     /usr/bin/python3 -m http.server "${2:-8000}" --bind 127.0.0.1 --directory build/web/site
     ;;
   *)
-    echo "usage: bash scripts/run.sh example|test|demo [PORT]|bench [NAME [ARGS...]]|fuzz [NAME [SECONDS]]" >&2
+    echo "usage: bash scripts/run.sh example|test|web|demo [PORT]|bench [NAME [ARGS...]]|fuzz [NAME [SECONDS]]" >&2
     exit 2
     ;;
 esac

@@ -140,7 +140,7 @@ function flatten(prefix, obj) {
 
 function format(v) {
   if (typeof v === 'string') return v;
-  if (typeof v === 'number') return Number.isNaN(v) ? 'NaN' : Number.isFinite(v) ? v.toPrecision(6) : String(v);
+  if (typeof v === 'number') return Number.isInteger(v) || !Number.isFinite(v) ? String(v) : v.toPrecision(6);
   const parts = [];
   for (let i = 0; i < v.length; i += 2) parts.push('(' + format(v[i]) + ', ' + format(v[i + 1]) + ')');
   return parts.join(' ') || '–';
@@ -243,7 +243,7 @@ function ellipseCircleDemo() {
       v.segment([c.cx, c.cy], pt(a['quartic.point']), GREY, 1);
       v.dot(pt(a['quartic.point']), GREEN, {radius: 8, ring: true});
       v.dot(pt(a['closed.point']), a['closed.verdict'] === 'collision' ? RED : '#222');
-      if (a['closed.verdict'] === 'failed') v.label('The closed form failed (NaN); the ring is the robust quartic\'s point.', RED);
+      if (a['closed.verdict'] === 'failed') v.label('closed form: NaN', RED);
       this.drawHandles();
     },
     headline(a) {

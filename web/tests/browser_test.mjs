@@ -119,18 +119,21 @@ const scenarios = [
    actions: [['cover', false], ['body', 'parallel'], ['drag', 'b.center', [2, 1]]], expect: {verdict: 'collision'}},
   {name: 'polygonal-rotated-separated', demo: 'polygonal',
    actions: [['body', 'rotated'], ['drag', 'b.center', [5, 3.5]]], expect: {verdict: 'no_collision'}},
+  {name: 'polygonal-rotated-bisections', demo: 'polygonal',
+   actions: [['drag', 'b.center', [0.875, 3.125]]], expect: {verdict: 'no_collision', level: 5}},
 
-  {name: 'swept-hit', demo: 'swept',
-   actions: [['drag', 'b.velocity', [2.5, 1]], ['click', 'swept-to-contact']], expect: {status: 'hit', relation_t: 'touching'}},
-  {name: 'swept-no-contact', demo: 'swept',
-   actions: [['drag', 'b.velocity', [5, 3]], ['time', '2']], expect: {status: 'no_contact_in_window'}},
   {name: 'swept-overlapping-at-start', demo: 'swept',
    actions: [['drag', 'b.center', [-3, 0]]], expect: {status: 'overlapping_at_start'}},
+  {name: 'swept-no-contact', demo: 'swept',
+   actions: [['drag', 'b.center', [4, 1.5]], ['drag', 'b.velocity', [5, 3]], ['time', '2']],
+   expect: {status: 'no_contact_in_window'}},
+  {name: 'swept-hit', demo: 'swept',
+   actions: [['drag', 'b.velocity', [2.5, 1]], ['click', 'swept-to-contact']], expect: {status: 'hit', relation_t: 'touching'}},
 
-  {name: 'relation-overlapping', demo: 'relation',
-   actions: [['drag', 'b.center', [2, 0.5]]], expect: {relation: 'overlapping', 'distance.status': 'overlapping'}},
   {name: 'relation-separated', demo: 'relation',
    actions: [['drag', 'b.center', [5, 3]]], expect: {relation: 'separated', 'crossings.count': 0, area: 0}},
+  {name: 'relation-overlapping', demo: 'relation',
+   actions: [['drag', 'b.center', [2, 0.5]]], expect: {relation: 'overlapping', 'distance.status': 'overlapping'}},
 ];
 
 const results = [];
