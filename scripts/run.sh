@@ -78,9 +78,8 @@ fuzz_check() {
 # Emscripten's own is compiled here. Its JS optimizer needs Debian's acorn module, which a
 # Node from elsewhere does not look for: NODE_PATH.
 build_web() {
-  export NODE_PATH=/usr/share/nodejs
-  emcmake cmake -S web -B build/web -G Ninja >/dev/null
-  cmake --build build/web -j "$(nproc)"
+  NODE_PATH=/usr/share/nodejs emcmake cmake -S web -B build/web -G Ninja >/dev/null
+  NODE_PATH=/usr/share/nodejs cmake --build build/web -j "$(nproc)"
   echo "==> demo page: build/web/site/ ($(stat -c %s build/web/site/ellipsect.wasm) bytes of wasm)"
 }
 
