@@ -10,12 +10,21 @@
 #                                 (default 600 s each; docs/fuzzing.md)
 #   bash scripts/run.sh bench [NAME [ARGS]]   install what is missing, build, run
 #                                 bench/bench_NAME (default: batch, ellipsect vs FCL and libccd)
+#   bash scripts/run.sh demo [PORT]   build the demo page (WebAssembly) and serve it on
+#                                 http://127.0.0.1:PORT/ (default 8000)
+#   bash scripts/run.sh web       the page's browser test alone (`test` runs it too)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
 packages=(g++ cmake ninja-build pkg-config libeigen3-dev libhwy-dev libboost-dev libgtest-dev libgmock-dev libbenchmark-dev
           libfcl-dev libccd-dev libcli11-dev nlohmann-json3-dev librsvg2-bin
           clang libclang-rt-14-dev)
+# ---- web (the demo page, web/): Emscripten, Chromium for its browser test, Node and npm
+# for playwright-core. npm only where no npm is on the PATH (a Node from elsewhere bundles
+# its own, and Debian's npm would conflict with it).
+packages+=(emscripten chromium nodejs)
+command -v npm >/dev/null || packages+=(npm)
+# ---- end web
 
 install_missing() {
   local missing=()
@@ -83,6 +92,26 @@ fuzz_mutate() {
 # Inputs per target for the CI mutation run: about a minute each on one core.
 declare -A fuzz_runs=([factories]=600000 [queries]=30000 [intersect2]=300000 [niemitalo]=150000 [scene]=20000)
 
+# ---- web: the demo page (web/) --------------------------------------------------------
+# Debian's emscripten ships its system libraries prebuilt (a frozen cache), so nothing of
+# Emscripten's own is compiled here. Its JS optimizer needs Debian's acorn module, which a
+# Node from elsewhere does not look for: NODE_PATH.
+build_web() {
+  NODE_PATH=/usr/share/nodejs emcmake cmake -S web -B build/web -G Ninja >/dev/null
+  NODE_PATH=/usr/share/nodejs cmake --build build/web -j "$(nproc)"
+  echo "==> demo page: build/web/site/ ($(stat -c %s build/web/site/ellipsect.wasm) bytes of wasm)"
+}
+
+# The browser test (web/tests/browser_test.mjs): headless Chromium drives every demo and
+# compares the page with the native answers; screenshots and results in build/web/test-output.
+web_test() {
+  build_web
+  cmake --build build/release --target web_native_answers
+  (cd web && npm ci --no-audit --no-fund --loglevel=error)
+  node web/tests/browser_test.mjs build/web/site build/release/tests/web_native_answers build/web/test-output
+}
+# ---- end web
+
 case "${1:-}" in
   example)
     install_missing
@@ -99,6 +128,7 @@ case "${1:-}" in
     build build/release -DCMAKE_BUILD_TYPE=Release -DELLIPSECT_BUILD_TESTS=ON -DELLIPSECT_BUILD_BENCH=ON \
       -DELLIPSECT_BUILD_TOOLS=ON
     (cd build/release && ctest --output-on-failure --no-tests=error -j "$(nproc)")
+    web_test
     # Sanitizer pass: same suite, fewer random cases per property test.
     build build/sanitize -DCMAKE_BUILD_TYPE=RelWithDebInfo -DELLIPSECT_SANITIZE=ON -DELLIPSECT_BUILD_TESTS=ON \
       -DELLIPSECT_BUILD_BENCH=OFF -DELLIPSECT_BUILD_TOOLS=ON
@@ -130,8 +160,20 @@ case "${1:-}" in
     [[ -x $program ]] || { echo "no benchmark $program (see bench/)" >&2; exit 2; }
     "$program" --benchmark_repetitions=3 --benchmark_report_aggregates_only=true "${@:3}"
     ;;
+  web)
+    install_missing
+    cmake -S . -B build/release -G Ninja -DCMAKE_BUILD_TYPE=Release -DELLIPSECT_BUILD_TESTS=ON \
+      -DELLIPSECT_BUILD_BENCH=ON -DELLIPSECT_BUILD_TOOLS=ON >/dev/null
+    web_test
+    ;;
+  demo)
+    install_missing
+    build_web
+    echo "==> open http://127.0.0.1:${2:-8000}/ (Ctrl-C stops the server)"
+    /usr/bin/python3 -m http.server "${2:-8000}" --bind 127.0.0.1 --directory build/web/site
+    ;;
   *)
-    echo "usage: bash scripts/run.sh example|test|bench [NAME [ARGS...]]|fuzz [NAME [SECONDS]]" >&2
+    echo "usage: bash scripts/run.sh example|test|web|demo [PORT]|bench [NAME [ARGS...]]|fuzz [NAME [SECONDS]]" >&2
     exit 2
     ;;
 esac

@@ -28,6 +28,8 @@
 #include <sstream>
 #include <string>
 #include <type_traits>
+#include <utility>
+#include <vector>
 
 namespace ellipsect {
 
@@ -446,6 +448,33 @@ T niemitalo_error_bound(const Ellipse2<T>& ellipse, int level) noexcept {
   return niemitalo_error_bound(ellipse.radii().maxCoeff(), level);
 }
 
+template <class T>
+NiemitaloPolygons<T> niemitalo_polygons(const Ellipse2<T>& ellipse, int level) {
+  if (level < 0 || level > niemitalo_polygons_max_level)
+    throw InputError("level", "must be in [0, " + std::to_string(niemitalo_polygons_max_level) + "] (got " +
+                                  std::to_string(level) + ")");
+  const auto& k = detail::niemitalo_coefficients<T>();
+  const Vec2<T> u = ellipse.radii()[0] * ellipse.axes().col(0), v = ellipse.radii()[1] * ellipse.axes().col(1);
+  std::vector<Vec2<T>> rim{u, v, -u, -v};  // relative to the center
+  for (int t = 1; t <= level; ++t) {
+    std::vector<Vec2<T>> next;
+    next.reserve(2 * rim.size());
+    for (std::size_t i = 0; i < rim.size(); ++i) {
+      next.push_back(rim[i]);
+      next.push_back(k.inner[t] * (rim[i] + rim[(i + 1) % rim.size()]));
+    }
+    rim = std::move(next);
+  }
+  NiemitaloPolygons<T> p;
+  p.inscribed.reserve(rim.size());
+  p.circumscribed.reserve(rim.size());
+  for (std::size_t i = 0; i < rim.size(); ++i) {
+    p.inscribed.push_back(ellipse.center() + rim[i]);
+    p.circumscribed.push_back(ellipse.center() + k.outer[level] * (rim[i] + rim[(i + 1) % rim.size()]));
+  }
+  return p;
+}
+
 #define ELLIPSECT_INSTANTIATE(T)                                                                                     \
   template class Circle<T>;                                                                                         \
   template Circle<T> make_circle<T>(const VecArg<T, 2>&, T);                                                            \
@@ -454,7 +483,8 @@ T niemitalo_error_bound(const Ellipse2<T>& ellipse, int level) noexcept {
   template PolygonalOverlap<T> polygonal_overlap<T>(const Ellipse2<T>&, const Ellipse2<T>&, int) noexcept;          \
   template PolygonalOverlap<T> circle_cover_overlap<T>(const Ellipse2<T>&, const Circle<T>&, int) noexcept;         \
   template T niemitalo_error_bound<T>(T, int) noexcept;                                                             \
-  template T niemitalo_error_bound<T>(const Ellipse2<T>&, int) noexcept;
+  template T niemitalo_error_bound<T>(const Ellipse2<T>&, int) noexcept;                                          \
+  template NiemitaloPolygons<T> niemitalo_polygons<T>(const Ellipse2<T>&, int);
 ELLIPSECT_INSTANTIATE(float)
 ELLIPSECT_INSTANTIATE(double)
 #undef ELLIPSECT_INSTANTIATE

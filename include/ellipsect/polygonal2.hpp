@@ -77,6 +77,7 @@
 
 #include <limits>
 #include <string_view>
+#include <vector>
 
 namespace ellipsect {
 
@@ -180,5 +181,26 @@ T niemitalo_error_bound(T major_radius, int level) noexcept;
 // a, the first argument), in world units.
 template <class T>
 T niemitalo_error_bound(const Ellipse2<T>& ellipse, int level) noexcept;
+
+// The sandwich of one level, for drawing and inspection: the polygons that
+// polygonal_overlap builds for this ellipse (for two ellipses: a's; the stretch maps them
+// to the test's frame), computed with the same coefficients, world frame. The tests bisect
+// only the triangles the circle meets; these are all of them.
+template <class T>
+struct NiemitaloPolygons {
+  // 2^(level+2) vertices on the ellipse (to rounding), in the order of the parametrization
+  // center + axes diag(radii) (cos t, sin t), t increasing from 0.
+  std::vector<Vec2<T>> inscribed;
+  // As many corners: circumscribed[i] is where the tangents at inscribed[i] and
+  // inscribed[i + 1] (cyclically) meet, the outer corner of the triangle over that arc.
+  std::vector<Vec2<T>> circumscribed;
+};
+
+// Largest level niemitalo_polygons accepts (2^18 vertices per polygon).
+inline constexpr int niemitalo_polygons_max_level = 16;
+
+// Throws InputError("level") outside [0, niemitalo_polygons_max_level].
+template <class T>
+NiemitaloPolygons<T> niemitalo_polygons(const Ellipse2<T>& ellipse, int level);
 
 }  // namespace ellipsect

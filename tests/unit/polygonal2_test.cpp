@@ -292,8 +292,8 @@ TEST(CircleCoverOverlap, GapAtABoundaryPoint) {
 
 // The document's bound, checked on the polygons themselves: after n bisections every
 // corner of the circumscribed polygon, and every point of the inscribed polygon's edges,
-// lies within 2^(0.303 - 2n) * major of the ellipse. The polygons are built with the
-// coefficients the tests run with; distances come from closest_point. The worst case
+// lies within 2^(0.303 - 2n) * major of the ellipse. The polygons are niemitalo_polygons'
+// (the coefficients the tests run with); distances come from closest_point. The worst case
 // found is also checked against the exact circle-frame value
 // (1 / cos(pi / 2^(n+2)) - 1) * major, which is about a quarter of the document's bound.
 TEST(NiemitaloErrorBound, PolygonWithinTheBound) {
@@ -301,24 +301,13 @@ TEST(NiemitaloErrorBound, PolygonWithinTheBound) {
   for (double aspect : {1.0, 1.5, 4.0, 30.0, 1e3, 1e4}) {
     for (double angle : {0.0, 0.4}) {
       const auto e = make_ellipse<double>({0.3, -0.2}, angle, {1.0, 1.0 / aspect});
-      const Vec2<double> w = e.axes().col(0) * e.radii()[0], h = e.axes().col(1) * e.radii()[1];
-      std::vector<Vec2<double>> level{w, h};  // first quadrant of level 0; the rest is symmetric
       for (int n = 0; n <= 12; ++n) {
-        if (n > 0) {
-          std::vector<Vec2<double>> next;
-          for (std::size_t i = 0; i + 1 < level.size(); ++i) {
-            next.push_back(level[i]);
-            next.push_back(k.inner[n] * (level[i] + level[i + 1]));
-          }
-          next.push_back(level.back());
-          level = next;
-        }
+        const NiemitaloPolygons<double> p = niemitalo_polygons(e, n);
         double out = 0, in = 0;  // farthest corner outside, deepest chord point inside
-        for (std::size_t i = 0; i + 1 < level.size(); ++i) {
-          const Vec2<double> corner = e.center() + k.outer[n] * (level[i] + level[i + 1]);
-          out = std::max(out, closest_point(e, corner).signed_distance);
+        for (std::size_t i = 0; i < p.inscribed.size() / 4; ++i) {  // first quadrant; the rest is symmetric
+          out = std::max(out, closest_point(e, p.circumscribed[i]).signed_distance);
           for (int j = 1; j < 8; ++j) {
-            const Vec2<double> on_chord = e.center() + level[i] + (j / 8.0) * (level[i + 1] - level[i]);
+            const Vec2<double> on_chord = p.inscribed[i] + (j / 8.0) * (p.inscribed[i + 1] - p.inscribed[i]);
             in = std::max(in, -closest_point(e, on_chord).signed_distance);
           }
         }
@@ -339,6 +328,41 @@ TEST(NiemitaloErrorBound, PolygonWithinTheBound) {
   EXPECT_NEAR(niemitalo_error_bound(1.0, 0), std::exp2(0.303), 1e-15);
   EXPECT_NEAR(niemitalo_error_bound(1.0, 3) / niemitalo_error_bound(1.0, 2), 0.25, 1e-15);
   EXPECT_EQ(niemitalo_error_bound(make_ellipse<double>({5, 5}, 0.3, {0.5, 3}), 4), niemitalo_error_bound(3.0, 4));
+}
+
+// niemitalo_polygons: 2^(n+2) vertices on the ellipse in parametrization order (level 0:
+// the ends of the semi-axes), each level keeping the previous one's vertices, and corners
+// where neighbouring tangents meet (the corner is on both tangent lines).
+TEST(NiemitaloPolygons, VerticesOnTheEllipseCornersOnTheTangents) {
+  const auto e = make_ellipse<double>({1.5, -2}, 0.7, {3, 0.5});
+  const Mat2<double> m = e.quadric();
+  const auto p0 = niemitalo_polygons(e, 0);
+  ASSERT_EQ(p0.inscribed.size(), 4u);
+  EXPECT_LT((p0.inscribed[1] - (e.center() + 0.5 * e.axes().col(1))).norm(), 1e-15);
+  EXPECT_LT((p0.circumscribed[0] - (e.center() + 3 * e.axes().col(0) + 0.5 * e.axes().col(1))).norm(), 1e-14);
+  const auto p = niemitalo_polygons(e, 5);
+  ASSERT_EQ(p.inscribed.size(), 128u);
+  ASSERT_EQ(p.circumscribed.size(), 128u);
+  for (std::size_t i = 0; i < p.inscribed.size(); ++i) {
+    const Vec2<double> x = p.inscribed[i] - e.center(), y = p.inscribed[(i + 1) % 128] - e.center();
+    EXPECT_NEAR(x.dot(m * x), 1, 1e-14) << i;
+    const double t = std::atan2(e.axes().col(1).dot(x) / 0.5, e.axes().col(0).dot(x) / 3);
+    EXPECT_NEAR(std::remainder(t - i * M_PI / 64, 2 * M_PI), 0, 1e-13) << i;
+    const Vec2<double> c = p.circumscribed[i] - e.center();
+    EXPECT_NEAR(c.dot(m * x), 1, 1e-13) << i;  // the tangent at x is {z : z . M x = 1}
+    EXPECT_NEAR(c.dot(m * y), 1, 1e-13) << i;
+  }
+  EXPECT_EQ(p.inscribed[4], niemitalo_polygons(e, 3).inscribed[1]);
+  EXPECT_EQ(niemitalo_polygons(e, niemitalo_polygons_max_level).inscribed.size(),
+            std::size_t{4} << niemitalo_polygons_max_level);
+  for (int bad : {-1, niemitalo_polygons_max_level + 1}) {
+    try {
+      (void)niemitalo_polygons(e, bad);
+      ADD_FAILURE() << bad;
+    } catch (const InputError& err) {
+      EXPECT_EQ(err.field(), "level");
+    }
+  }
 }
 
 }  // namespace

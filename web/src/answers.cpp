@@ -1,0 +1,185 @@
+#include "answers.hpp"
+
+#include <ellipsect/ellipsect.hpp>
+
+#include <algorithm>
+#include <numbers>
+#include <stdexcept>
+
+namespace ellipsect::web {
+namespace {
+
+double get(const Params& p, const std::string& name) {
+  const auto it = p.find(name);
+  if (it == p.end()) throw std::out_of_range("missing parameter " + name);
+  return it->second;
+}
+
+Vec2<double> point(const Params& p, const std::string& x, const std::string& y) { return {get(p, x), get(p, y)}; }
+
+Ellipse2<double> ellipse(const Params& p, const std::string& n) {
+  return make_ellipse<double>(point(p, n + ".cx", n + ".cy"), get(p, n + ".angle"),
+                              point(p, n + ".r0", n + ".r1"));
+}
+
+Circle<double> circle(const Params& p, const std::string& n) {
+  return make_circle<double>(point(p, n + ".cx", n + ".cy"), get(p, n + ".r"));
+}
+
+std::vector<double> list(const Vec2<double>& v) { return {v.x(), v.y()}; }
+
+std::vector<double> list(const std::vector<Vec2<double>>& vs) {
+  std::vector<double> out;
+  out.reserve(2 * vs.size());
+  for (const auto& v : vs) out.insert(out.end(), {v.x(), v.y()});
+  return out;
+}
+
+std::string label(std::string_view s) { return std::string(s); }
+
+// The seed's demo 1: the closed form's foot of the normal from the circle's center; the
+// circle collides when the center is inside (the early out) or the foot within its radius.
+void add_closest(Answer& out, const std::string& name, const QuarticPoint<double>& q, double radius) {
+  const char* verdict = q.status == QuarticStatus::inside    ? "early_out"
+                        : q.status != QuarticStatus::outside ? "failed"
+                        : q.distance <= radius               ? "collision"
+                                                             : "no_collision";
+  out.insert(out.end(), {{name + ".status", label(to_string(q.status))},
+                         {name + ".point", list(q.point)},
+                         {name + ".distance", q.distance},
+                         {name + ".verdict", std::string(verdict)}});
+}
+
+const char* collides(bool hit) { return hit ? "collision" : "no_collision"; }
+
+// The exact answer for an ellipse and a circle (a point when the radius is 0).
+bool exact_overlap(const Ellipse2<double>& e, const Circle<double>& c) {
+  return c.radius() > 0 ? overlap(e, c.ellipse()) : closest_point(e, c.center()).signed_distance <= 0;
+}
+
+Answer ellipse_circle(const Params& p) {
+  const auto e = ellipse(p, "e");
+  const auto c = circle(p, "c");
+  Answer out;
+  add_closest(out, "closed", closest_point_closed_form(e, c.center()), c.radius());
+  add_closest(out, "quartic", closest_point_quartic(e, c.center()), c.radius());
+  out.emplace_back("exact", collides(exact_overlap(e, c)));
+  return out;
+}
+
+Answer segment(const Params& p) {
+  const SegmentCircle s = segment_circle<double>(point(p, "s.ax", "s.ay"), point(p, "s.bx", "s.by"), circle(p, "c"));
+  return {{"verdict", label(to_string(s.verdict))}, {"side", label(to_string(s.side))}};
+}
+
+// Polygons of the levels drawn: 0 .. min(deepest level examined, this).
+constexpr int drawn_levels = 8;
+
+Answer polygonal(const Params& p) {
+  const auto a = ellipse(p, "a");
+  const int max_level = static_cast<int>(get(p, "level"));
+  const bool is_circle = get(p, "body") == 0, cover = get(p, "cover") != 0;
+  PolygonalOverlap<double> r;
+  bool exact;
+  if (is_circle) {
+    const auto c = circle(p, "c");
+    r = cover ? circle_cover_overlap(a, c, max_level) : polygonal_overlap(a, c, max_level);
+    exact = exact_overlap(a, c);
+  } else {
+    const auto b = ellipse(p, "b");
+    r = polygonal_overlap(a, b, max_level);
+    exact = overlap(a, b);
+  }
+  Answer out{{"verdict", label(to_string(r.verdict))},
+             {"level", double(r.level)},
+             {"iterations", double(r.iterations)},
+             {"gap_lo", r.gap_lo},
+             {"gap_hi", r.gap_hi},
+             {"error_bound", niemitalo_error_bound(a, max_level)},
+             {"exact", collides(exact)}};
+  const int levels = std::clamp(r.level, 0, drawn_levels);
+  out.emplace_back("drawn_levels", double(levels + 1));
+  for (int n = 0; n <= levels; ++n) {
+    const NiemitaloPolygons<double> poly = niemitalo_polygons(a, n);
+    out.emplace_back("inscribed." + std::to_string(n), list(poly.inscribed));
+    out.emplace_back("circumscribed." + std::to_string(n), list(poly.circumscribed));
+  }
+  return out;
+}
+
+// Eberly's first contact, the bodies at the viewed time t, and the reduced frame at t
+// (his figures 2.2 and 3.1): Y = diag(1 / r_a) R_a^T (X - K_a) makes a the unit circle;
+// b becomes the quadric M2 = S^T M_b S (S the inverse map) about K2, whose principal axes
+// R (from_quadric) give Z = R^T Y, where b is axis-aligned. P: b's point nearest the origin.
+Answer swept(const Params& p) {
+  const auto a0 = ellipse(p, "a"), b0 = ellipse(p, "b");
+  const Vec2<double> va = point(p, "a.vx", "a.vy"), vb = point(p, "b.vx", "b.vy");
+  const double t = get(p, "t");
+  const Contact<double, 2> c = first_contact(a0, va, b0, vb, get(p, "t_max"));
+  const auto a = a0.translated(t * va), b = b0.translated(t * vb);
+
+  const Mat2<double> to_y = a.radii().cwiseInverse().asDiagonal() * a.axes().transpose();
+  const Mat2<double> from_y = a.axes() * a.radii().asDiagonal();
+  Mat2<double> m2 = from_y.transpose() * b.quadric() * from_y;
+  m2(0, 1) = m2(1, 0) = 0.5 * (m2(0, 1) + m2(1, 0));
+  const auto by = Ellipse2<double>::from_quadric(to_y * (b.center() - a.center()), m2);
+  const Mat2<double> to_z = by.axes().transpose();
+  const auto bz = Ellipse2<double>::from_axes(to_z * by.center(), Mat2<double>::Identity(), by.radii());
+  const ClosestPoint<double, 2> cp = closest_point(bz, Vec2<double>::Zero());
+
+  return {{"status", label(to_string(c.status))},
+          {"time", c.time},
+          {"point", list(c.point)},
+          {"normal", list(c.normal)},
+          {"iterations", double(c.iterations)},
+          {"relation_t", label(to_string(classify(a, b)))},
+          {"a_center_t", list(a.center())},
+          {"b_center_t", list(b.center())},
+          {"reduced.center", list(bz.center())},
+          {"reduced.radii", list(bz.radii())},
+          {"reduced.p", list(cp.point)},
+          {"reduced.velocity", list(to_z * to_y * (vb - va))}};
+}
+
+Answer relation(const Params& p) {
+  const auto a = ellipse(p, "a"), b = ellipse(p, "b");
+  const Distance<double, 2> d = signed_distance(a, b);
+  const BoundaryIntersection<double> x = intersect_boundaries(a, b);
+  const OverlapArea<double> area = overlap_area(a, b);
+  std::vector<double> points;
+  std::string kinds;
+  for (int i = 0; i < x.count; ++i) {
+    points.insert(points.end(), {x.points[i].x(), x.points[i].y()});
+    kinds += std::string(i ? "," : "") + std::string(to_string(x.kinds[i]));
+  }
+  const double area_a = std::numbers::pi * a.radii().prod(), area_b = std::numbers::pi * b.radii().prod();
+  return {{"relation", label(to_string(classify(a, b)))},
+          {"distance.status", label(to_string(d.status))},
+          {"distance", d.distance},
+          {"point_a", list(d.point_a)},
+          {"point_b", list(d.point_b)},
+          {"normal", list(d.normal)},
+          {"crossings.status", label(to_string(x.status))},
+          {"crossings.count", double(x.count)},
+          {"crossings.points", points},
+          {"crossings.kinds", kinds},
+          {"area", area.area},
+          {"iou", area.area / (area_a + area_b - area.area)}};
+}
+
+}  // namespace
+
+Answer answer(std::string_view demo, const Params& params) {
+  try {
+    if (demo == "ellipse_circle") return ellipse_circle(params);
+    if (demo == "segment_circle") return segment(params);
+    if (demo == "polygonal") return polygonal(params);
+    if (demo == "swept") return swept(params);
+    if (demo == "relation") return relation(params);
+  } catch (const InputError& e) {
+    return {{"error", e.field()}, {"message", std::string(e.what())}};
+  }
+  throw std::invalid_argument("no demo " + std::string(demo));
+}
+
+}  // namespace ellipsect::web
