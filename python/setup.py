@@ -2,8 +2,8 @@
 # which links the library target), so no source file is listed twice.
 #
 # Environment: ELLIPSECT_BUILD_DIR (default: build/python in the repository, kept between
-# installs so rebuilds are incremental), CMAKE_CXX_COMPILER_LAUNCHER (e.g. ccache),
-# CMAKE_BUILD_PARALLEL_LEVEL.
+# installs so rebuilds are incremental); CMake itself reads CMAKE_CXX_COMPILER_LAUNCHER
+# (e.g. ccache) and CMAKE_BUILD_PARALLEL_LEVEL.
 import os
 import subprocess
 import sys
@@ -29,8 +29,6 @@ class CMakeBuild(build_ext):
             f"-DPython3_EXECUTABLE={sys.executable}",
             f"-DCMAKE_LIBRARY_OUTPUT_DIRECTORY={out}",
         ]
-        if "CMAKE_CXX_COMPILER_LAUNCHER" in os.environ:
-            args.append(f"-DCMAKE_CXX_COMPILER_LAUNCHER={os.environ['CMAKE_CXX_COMPILER_LAUNCHER']}")
         subprocess.run(["cmake", "-S", str(ROOT), "-B", str(build), *args], check=True)
         subprocess.run(["cmake", "--build", str(build), "--target", "_ellipsect"], check=True)
 

@@ -3,8 +3,9 @@
 #   bash scripts/run.sh example   install what is missing, build, run `ellipsect check` and
 #                                 `ellipsect render` on a bundled scene
 #   bash scripts/run.sh test      install what is missing, build, run the whole test suite
-#                                 (Release build, then an ASan+UBSan build, then every fuzz
-#                                 target on its kept inputs and corpus)
+#                                 (Release build, the Python package's tests, then an
+#                                 ASan+UBSan build, then every fuzz target on its kept inputs
+#                                 and corpus)
 #   bash scripts/run.sh fuzz [NAME [SECONDS]]   the long run of one fuzz target or all
 #                                 (default 600 s each; docs/fuzzing.md)
 #   bash scripts/run.sh bench [NAME [ARGS]]   install what is missing, build, run
@@ -15,6 +16,10 @@ cd "$(dirname "$0")/.."
 packages=(g++ cmake ninja-build pkg-config libeigen3-dev libhwy-dev libboost-dev libgtest-dev libgmock-dev libbenchmark-dev
           libfcl-dev libccd-dev libcli11-dev nlohmann-json3-dev librsvg2-bin
           clang libclang-rt-14-dev)
+# The Python package (python/, python_test below): built by setuptools through CMake.
+packages+=(python3-dev python3-venv python3-pip python3-setuptools python3-wheel python3-pybind11 python3-numpy
+           python3-pytest python3-hypothesis python3-mpmath python3-matplotlib python3-dask python3-distributed
+           python3-pandas python3-shapely)
 
 install_missing() {
   local missing=()
@@ -64,6 +69,18 @@ fuzz_check() {
   log=$("$program" -timeout=30 -artifact_prefix="$artifacts" "${inputs[@]}" 2>&1) || { echo "$log"; return 1; }
 }
 
+# The Python package: a virtual environment build/venv from Debian's python3 (with its
+# packages), `pip install ./python` (the module built by the project's CMake, in build/python),
+# then its pytest suite (docs/python.md).
+python_test() {
+  [ -x build/venv/bin/python ] || /usr/bin/python3 -m venv --system-site-packages build/venv
+  local launcher
+  launcher=$(command -v ccache || true)
+  CMAKE_CXX_COMPILER_LAUNCHER=$launcher CMAKE_BUILD_PARALLEL_LEVEL=$(nproc) \
+    build/venv/bin/pip install -q --no-build-isolation ./python
+  build/venv/bin/python -m pytest -q python/tests
+}
+
 case "${1:-}" in
   example)
     install_missing
@@ -80,6 +97,7 @@ case "${1:-}" in
     build build/release -DCMAKE_BUILD_TYPE=Release -DELLIPSECT_BUILD_TESTS=ON -DELLIPSECT_BUILD_BENCH=ON \
       -DELLIPSECT_BUILD_TOOLS=ON
     (cd build/release && ctest --output-on-failure --no-tests=error -j "$(nproc)")
+    python_test
     # Sanitizer pass: same suite, fewer random cases per property test.
     build build/sanitize -DCMAKE_BUILD_TYPE=RelWithDebInfo -DELLIPSECT_SANITIZE=ON -DELLIPSECT_BUILD_TESTS=ON \
       -DELLIPSECT_BUILD_BENCH=OFF -DELLIPSECT_BUILD_TOOLS=ON
