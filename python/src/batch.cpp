@@ -32,7 +32,7 @@ const double* checked(py::handle obj, const std::string& name, std::vector<py::s
     throw py::type_error(name + ": expected a numpy array of float64, got " +
                          std::string(py::str(py::type::handle_of(obj).attr("__name__"))));
   const auto a = py::reinterpret_borrow<py::array>(obj);
-  if (!a.dtype().is(py::dtype::of<double>()))
+  if (!py::isinstance<py::array_t<double>>(a))  // float64 in native byte order
     throw py::type_error(name + ": expected dtype float64, got " + std::string(py::str(a.dtype())));
   trailing.insert(trailing.begin(), rows);
   std::vector<py::ssize_t> shape(a.shape(), a.shape() + a.ndim());

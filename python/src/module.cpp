@@ -244,7 +244,9 @@ void def_scalar(py::module_& m) {
       .def(py::init([](double tolerance, int max_iterations) { return Options{tolerance, max_iterations}; }),
            py::arg("tolerance") = Options{}.tolerance, py::arg("max_iterations") = Options{}.max_iterations)
       .def_readwrite("tolerance", &Options::tolerance)
-      .def_readwrite("max_iterations", &Options::max_iterations);
+      .def_readwrite("max_iterations", &Options::max_iterations)
+      .def(py::pickle([](const Options& o) { return py::make_tuple(o.tolerance, o.max_iterations); },
+                      [](const py::tuple& t) { return Options{t[0].cast<double>(), t[1].cast<int>()}; }));
 
   py::class_<Ellipse2<double>> ellipse(m, "Ellipse", "A validated ellipse (shapes.hpp).");
   ellipse.def(py::init([](const Row<2>& center, const Row<2>& radii, std::optional<double> angle,
