@@ -46,8 +46,8 @@ void check_overlapping_pairs(unsigned seed) {
     for (std::uint32_t j = i + 1; j < bodies.size(); ++j)
       if (overlap(bodies[i], bodies[j])) all.emplace_back(i, j);
   ASSERT_GT(all.size(), 20u) << "seed " << seed;
-  EXPECT_EQ(overlapping_pairs<T, N>(bodies), all) << "seed " << seed;
-  EXPECT_EQ(overlapping_pairs<T, N>(bodies, {.threads = 1}), all) << "seed " << seed;
+  EXPECT_EQ((overlapping_pairs<T, N>(bodies)), all) << "seed " << seed;
+  EXPECT_EQ((overlapping_pairs<T, N>(bodies, BatchOptions{Options{}, 1})), all) << "seed " << seed;
   const auto candidates = candidate_pairs<T, N>(bodies);
   EXPECT_TRUE(std::is_sorted(candidates.begin(), candidates.end()));
   EXPECT_TRUE(std::includes(candidates.begin(), candidates.end(), all.begin(), all.end()));
@@ -83,10 +83,10 @@ TEST(BroadPhase, SweptCandidatesHoldEveryContactInTheWindow) {
       EXPECT_TRUE(std::binary_search(swept.begin(), swept.end(), IndexPair(i, j))) << i << " " << j;
     }
   EXPECT_GT(contacts, 20u);
-  EXPECT_EQ(candidate_pairs<double, 3>(bodies, velocities, 0.0, 0.0), candidate_pairs<double, 3>(bodies));
+  EXPECT_EQ((candidate_pairs<double, 3>(bodies, velocities, 0.0, 0.0)), (candidate_pairs<double, 3>(bodies)));
   const auto endless = candidate_pairs<double, 3>(bodies, velocities, 0.0, std::numeric_limits<double>::infinity());
   EXPECT_TRUE(std::includes(endless.begin(), endless.end(), swept.begin(), swept.end()));
-  EXPECT_THROW(candidate_pairs<double, 3>(bodies, std::span(velocities).first(3), 0.0, 1.0), std::invalid_argument);
+  EXPECT_THROW((candidate_pairs<double, 3>(bodies, std::span(velocities).first(3), 0.0, 1.0)), std::invalid_argument);
 }
 
 }  // namespace
