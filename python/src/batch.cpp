@@ -224,69 +224,147 @@ std::span<const Ellipsoid<double, N>> span_of(const Bodies<N>& b) {
 
 py::object contact_arrays, distance_arrays;  // namedtuple classes, set in def_batch
 
+// Velocities and time windows of n moving pairs, checked.
+template <int N>
+struct Motion {
+  std::vector<Vec<double, N>> velocity_a, velocity_b;
+  std::vector<double> t_max;
+};
+
+template <int N>
+Motion<N> motion_of(std::size_t n, py::handle velocity_a, py::handle velocity_b, py::handle t_max) {
+  py::ssize_t rows = static_cast<py::ssize_t>(n);
+  const double* va = checked(velocity_a, "velocity_a", {N}, rows, "a");
+  const double* vb = checked(velocity_b, "velocity_b", {N}, rows, "a");
+  Motion<N> m;
+  if (py::isinstance<py::float_>(t_max) || py::isinstance<py::int_>(t_max)) {
+    m.t_max.assign(n, t_max.cast<double>());
+  } else {
+    const double* t = checked(t_max, "t_max", {}, rows, "a");
+    m.t_max.assign(t, t + n);
+  }
+  m.velocity_a.resize(n);
+  m.velocity_b.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    m.velocity_a[i] = row_vec<N>(va + i * N);
+    m.velocity_b[i] = row_vec<N>(vb + i * N);
+  }
+  return m;
+}
+
+// The answers of the three batch functions as arrays; run(span out) calls the library with
+// the GIL released.
+template <class Run>
+py::array_t<bool> overlap_array(std::size_t n, const Run& run) {
+  py::array_t<bool> out(static_cast<py::ssize_t>(n));
+  bool* p = out.mutable_data();
+  py::gil_scoped_release release;
+  run(std::span<bool>(p, n));
+  return out;
+}
+
+template <class Run>
+py::array_t<std::int8_t> classify_array(std::size_t n, const Run& run) {
+  py::array_t<std::int8_t> out(static_cast<py::ssize_t>(n));
+  std::int8_t* p = out.mutable_data();
+  py::gil_scoped_release release;
+  const auto relations = std::make_unique<Relation[]>(n);
+  run(std::span<Relation>(relations.get(), n));
+  for (std::size_t i = 0; i < n; ++i) p[i] = static_cast<std::int8_t>(relations[i]);
+  return out;
+}
+
+template <int N, class Run>
+py::object contact_array(std::size_t n, const Run& run) {
+  py::array_t<std::int8_t> status(static_cast<py::ssize_t>(n));
+  py::array_t<double> time(static_cast<py::ssize_t>(n));
+  py::array_t<double> point({py::ssize_t(n), py::ssize_t(N)}), normal({py::ssize_t(n), py::ssize_t(N)});
+  std::int8_t* s = status.mutable_data();
+  double *t = time.mutable_data(), *p = point.mutable_data(), *q = normal.mutable_data();
+  {
+    py::gil_scoped_release release;
+    std::vector<Contact<double, N>> out(n);
+    run(std::span<Contact<double, N>>(out));
+    for (std::size_t i = 0; i < n; ++i) {
+      s[i] = static_cast<std::int8_t>(out[i].status);
+      t[i] = out[i].time;
+      Eigen::Map<Vec<double, N>>{p + i * N} = out[i].point;
+      Eigen::Map<Vec<double, N>>{q + i * N} = out[i].normal;
+    }
+  }
+  return contact_arrays(status, time, point, normal);
+}
+
 template <int N>
 void def_batch_queries(py::module_& m) {
   using B = Bodies<N>;
+  using P = Pairs<double, N>;
+  const std::string suffix = std::to_string(N);
+  py::class_<P>(m, ("Pairs" + suffix).c_str(),
+                "Pairs prepared once for repeated overlap / classify / first_contact (batch.hpp's Pairs).")
+      .def("__len__", &P::size);
+  m.def("pairs",
+        [](const B& a, const B& b, py::handle velocity_a, py::handle velocity_b, py::handle t_max) {
+          const std::size_t n = paired(a, b);
+          const bool moving = !velocity_a.is_none() || !velocity_b.is_none();
+          const Motion<N> motion = moving ? motion_of<N>(n, velocity_a, velocity_b, t_max) : Motion<N>{};
+          py::gil_scoped_release release;
+          P out;
+          out.reserve(n);
+          for (std::size_t i = 0; i < n; ++i) {
+            if (moving)
+              out.push_back(a.items[i], motion.velocity_a[i], b.items[i], motion.velocity_b[i], motion.t_max[i]);
+            else
+              out.push_back(a.items[i], b.items[i]);
+          }
+          return out;
+        },
+        py::arg("a"), py::arg("b"), py::arg("velocity_a") = py::none(), py::arg("velocity_b") = py::none(),
+        py::arg("t_max") = 0.0,
+        "Pairs (a[i], b[i]), with velocities and time windows for first_contact (static pairs without).");
   m.def("overlap",
         [](const B& a, const B& b, const Options& o, int threads) {
-          py::array_t<bool> out(py::ssize_t(paired(a, b)));
-          py::gil_scoped_release release;
-          overlap<double, N>(span_of(a), span_of(b), std::span<bool>(out.mutable_data(), a.items.size()),
-                             {o, threads});
-          return out;
+          return overlap_array(paired(a, b), [&](std::span<bool> out) {
+            overlap<double, N>(span_of(a), span_of(b), out, {o, threads});
+          });
+        },
+        py::arg("a"), py::arg("b"), py::arg("options") = Options{}, py::arg("threads") = 0);
+  m.def("overlap",
+        [](const P& pairs, const Options& o, int threads) {
+          return overlap_array(pairs.size(), [&](std::span<bool> out) { overlap(pairs, out, {o, threads}); });
+        },
+        py::arg("pairs"), py::arg("options") = Options{}, py::arg("threads") = 0);
+  m.def("classify",
+        [](const B& a, const B& b, const Options& o, int threads) {
+          return classify_array(paired(a, b), [&](std::span<Relation> out) {
+            classify<double, N>(span_of(a), span_of(b), out, {o, threads});
+          });
         },
         py::arg("a"), py::arg("b"), py::arg("options") = Options{}, py::arg("threads") = 0);
   m.def("classify",
-        [](const B& a, const B& b, const Options& o, int threads) {
-          const std::size_t n = paired(a, b);
-          py::array_t<std::int8_t> out(static_cast<py::ssize_t>(n));
-          std::int8_t* p = out.mutable_data();
-          py::gil_scoped_release release;
-          const auto relations = std::make_unique<Relation[]>(n);
-          classify<double, N>(span_of(a), span_of(b), std::span<Relation>(relations.get(), n), {o, threads});
-          for (std::size_t i = 0; i < n; ++i) p[i] = static_cast<std::int8_t>(relations[i]);
-          return out;
+        [](const P& pairs, const Options& o, int threads) {
+          return classify_array(pairs.size(), [&](std::span<Relation> out) { classify(pairs, out, {o, threads}); });
         },
-        py::arg("a"), py::arg("b"), py::arg("options") = Options{}, py::arg("threads") = 0);
+        py::arg("pairs"), py::arg("options") = Options{}, py::arg("threads") = 0);
   m.def("first_contact",
         [](const B& a, py::handle velocity_a, const B& b, py::handle velocity_b, py::handle t_max, const Options& o,
            int threads) {
           const std::size_t n = paired(a, b);
-          py::ssize_t rows = py::ssize_t(n);
-          const double* va = checked(velocity_a, "velocity_a", {N}, rows, "a");
-          const double* vb = checked(velocity_b, "velocity_b", {N}, rows, "a");
-          std::vector<double> windows;
-          if (py::isinstance<py::float_>(t_max) || py::isinstance<py::int_>(t_max)) {
-            windows.assign(n, t_max.cast<double>());
-          } else {
-            const double* t = checked(t_max, "t_max", {}, rows, "a");
-            windows.assign(t, t + n);
-          }
-          py::array_t<std::int8_t> status(static_cast<py::ssize_t>(n));
-          py::array_t<double> time(static_cast<py::ssize_t>(n));
-          py::array_t<double> point({py::ssize_t(n), py::ssize_t(N)}), normal({py::ssize_t(n), py::ssize_t(N)});
-          std::int8_t* s = status.mutable_data();
-          double *t = time.mutable_data(), *p = point.mutable_data(), *q = normal.mutable_data();
-          {
-            py::gil_scoped_release release;
-            std::vector<Vec<double, N>> vel_a(n), vel_b(n);
-            for (std::size_t i = 0; i < n; ++i) {
-              vel_a[i] = row_vec<N>(va + i * N);
-              vel_b[i] = row_vec<N>(vb + i * N);
-            }
-            std::vector<Contact<double, N>> out(n);
-            first_contact<double, N>(span_of(a), vel_a, span_of(b), vel_b, windows, out, {o, threads});
-            for (std::size_t i = 0; i < n; ++i) {
-              s[i] = static_cast<std::int8_t>(out[i].status);
-              t[i] = out[i].time;
-              Eigen::Map<Vec<double, N>>{p + i * N} = out[i].point;
-              Eigen::Map<Vec<double, N>>{q + i * N} = out[i].normal;
-            }
-          }
-          return contact_arrays(status, time, point, normal);
+          const Motion<N> motion = motion_of<N>(n, velocity_a, velocity_b, t_max);
+          return contact_array<N>(n, [&](std::span<Contact<double, N>> out) {
+            first_contact<double, N>(span_of(a), motion.velocity_a, span_of(b), motion.velocity_b, motion.t_max, out,
+                                     {o, threads});
+          });
         },
         py::arg("a"), py::arg("velocity_a"), py::arg("b"), py::arg("velocity_b"), py::arg("t_max"),
         py::arg("options") = Options{}, py::arg("threads") = 0);
+  m.def("first_contact",
+        [](const P& pairs, const Options& o, int threads) {
+          return contact_array<N>(pairs.size(), [&](std::span<Contact<double, N>> out) {
+            first_contact(pairs, out, {o, threads});
+          });
+        },
+        py::arg("pairs"), py::arg("options") = Options{}, py::arg("threads") = 0);
   using Query = Distance<double, N> (*)(const Ellipsoid<double, N>&, const Ellipsoid<double, N>&,
                                         const Options&) noexcept;
   for (const auto& [name, query] : {std::pair<const char*, Query>{"distance", &distance<double, N>},

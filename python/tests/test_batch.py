@@ -79,3 +79,18 @@ def test_take_selects_rows():
     assert same_bits(picked.centers, [sa[3].center, sa[3].center, sa[0].center])
     with pytest.raises(IndexError):
         a.take(np.array([20]))
+
+
+@pytest.mark.parametrize("dim", [2, 3])
+def test_prepared_pairs_equal_bodies(dim):
+    a, _ = MAKERS[dim](300, seed=12)
+    b, _ = MAKERS[dim](300, seed=13)
+    rng = np.random.default_rng(14)
+    va, vb, t_max = rng.normal(size=(300, dim)), rng.normal(size=(300, dim)), rng.uniform(0, 3, 300)
+    static = ellipsect.pairs(a, b)
+    assert len(static) == 300
+    assert np.array_equal(ellipsect.overlap(static), ellipsect.overlap(a, b))
+    assert np.array_equal(ellipsect.classify(static, threads=1), ellipsect.classify(a, b))
+    got = ellipsect.first_contact(ellipsect.pairs(a, b, va, vb, t_max))
+    want = ellipsect.first_contact(a, va, b, vb, t_max)
+    assert all(same_bits(x, y) for x, y in zip(got, want))
