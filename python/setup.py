@@ -1,8 +1,8 @@
 # Builds the extension ellipsect._ellipsect with the project's CMake (target _ellipsect,
 # which links the library target), so no source file is listed twice.
 #
-# Environment: ELLIPSECT_BUILD_DIR (default: build/python in the repository, kept between
-# installs so rebuilds are incremental); CMake itself reads CMAKE_CXX_COMPILER_LAUNCHER
+# Environment: ELLIPSECT_BUILD_DIR (relative to the repository; default build/python, kept
+# between installs so rebuilds are incremental); CMake itself reads CMAKE_CXX_COMPILER_LAUNCHER
 # (e.g. ccache) and CMAKE_BUILD_PARALLEL_LEVEL.
 import os
 import subprocess
@@ -18,7 +18,7 @@ ROOT = Path(__file__).resolve().parent.parent
 class CMakeBuild(build_ext):
     def build_extension(self, ext):
         out = Path(self.get_ext_fullpath(ext.name)).resolve().parent
-        build = Path(os.environ.get("ELLIPSECT_BUILD_DIR", ROOT / "build" / "python"))
+        build = ROOT / os.environ.get("ELLIPSECT_BUILD_DIR", "build/python")
         args = [
             "-G", "Ninja",
             "-DCMAKE_BUILD_TYPE=Release",

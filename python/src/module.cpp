@@ -286,5 +286,5 @@ PYBIND11_MODULE(_ellipsect, m) {
   ellipsect::python::def_errors(m);
   ellipsect::python::def_scalar(m);
   ellipsect::python::def_batch(m);
-  m.attr("simd_target") = py::cpp_function(&ellipsect::simd_target);
+  m.def("simd_target", &ellipsect::simd_target, "The instruction set the batch functions use (batch.hpp).");
 }

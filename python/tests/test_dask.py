@@ -46,7 +46,7 @@ def test_cluster_equals_one_process(client, dim):
     assert all(same_bits(x, y) for x, y in zip(got, want))
     if dim == 2:
         assert same_bits(ed.iou(a, b).compute(), ellipsect.iou(la, lb))
-        assert same_bits(ed.overlap_area(a, b).compute(scheduler="sync"), ellipsect.overlap_area(la, lb))
+        assert same_bits(ed.overlap_area(a, b).compute(), ellipsect.overlap_area(la, lb))
 
 
 def test_mismatched_bodies():
