@@ -163,6 +163,32 @@ py::array_t<double> rows_of(std::size_t n, std::vector<py::ssize_t> dims, const 
 }
 
 template <int N>
+py::array_t<double> centers_of(const Bodies<N>& b) {
+  return rows_of(b.items.size(), {N},
+                 [&](std::size_t i, double* p) { Eigen::Map<Vec<double, N>>{p} = b.items[i].center(); });
+}
+
+template <int N>
+py::array_t<double> radii_of(const Bodies<N>& b) {
+  return rows_of(b.items.size(), {N},
+                 [&](std::size_t i, double* p) { Eigen::Map<Vec<double, N>>{p} = b.items[i].radii(); });
+}
+
+template <int N>
+py::array_t<double> rotations_of(const Bodies<N>& b) {
+  return rows_of(b.items.size(), {N, N}, [&](std::size_t i, double* p) {
+    Eigen::Map<Eigen::Matrix<double, N, N, Eigen::RowMajor>>{p} = b.items[i].axes();
+  });
+}
+
+// Pickled as (centers, radii, rotations), which rebuild every body bit for bit (from_axes
+// keeps axes that are orthonormal to working precision as given).
+template <int N>
+py::tuple state_of(const Bodies<N>& b) {
+  return py::make_tuple(centers_of(b), radii_of(b), rotations_of(b));
+}
+
+template <int N>
 py::class_<Bodies<N>> def_bodies(py::module_& m, const char* name, const char* scalar) {
   using B = Bodies<N>;
   py::class_<B> c(m, name);
@@ -186,26 +212,10 @@ py::class_<Bodies<N>> def_bodies(py::module_& m, const char* name, const char* s
              return out;
            },
            py::arg("indices"), "The bodies at `indices` (a 1-D integer array), in that order.")
-      .def_property_readonly("centers",
-                             [](const B& b) {
-                               return rows_of(b.items.size(), {N}, [&](std::size_t i, double* p) {
-                                 Eigen::Map<Vec<double, N>>{p} = b.items[i].center();
-                               });
-                             })
-      .def_property_readonly("radii",
-                             [](const B& b) {
-                               return rows_of(b.items.size(), {N}, [&](std::size_t i, double* p) {
-                                 Eigen::Map<Vec<double, N>>{p} = b.items[i].radii();
-                               });
-                             })
-      .def_property_readonly(
-          "rotations",
-          [](const B& b) {
-            return rows_of(b.items.size(), {N, N}, [&](std::size_t i, double* p) {
-              Eigen::Map<Eigen::Matrix<double, N, N, Eigen::RowMajor>>{p} = b.items[i].axes();
-            });
-          },
-          "(n, N, N): the axes of body i are the columns of rotations[i].");
+      .def_property_readonly("centers", &centers_of<N>)
+      .def_property_readonly("radii", &radii_of<N>)
+      .def_property_readonly("rotations", &rotations_of<N>,
+                             "(n, N, N): the axes of body i are the columns of rotations[i].");
   return c;
 }
 
@@ -454,12 +464,14 @@ void def_batch(py::module_& m) {
   def_bodies<2>(m, "Ellipses", "Ellipse")
       .def(py::init(&make_ellipses), py::kw_only(), py::arg("centers"), py::arg("radii"),
            py::arg("angles") = py::none(), py::arg("rotations") = py::none(),
-           "n ellipses from float64 arrays: centers (n, 2), radii (n, 2), and angles (n,) or rotations (n, 2, 2).");
+           "n ellipses from float64 arrays: centers (n, 2), radii (n, 2), and angles (n,) or rotations (n, 2, 2).")
+      .def(py::pickle(&state_of<2>, [](const py::tuple& t) { return make_ellipses(t[0], t[1], py::none(), t[2]); }));
   def_bodies<3>(m, "Ellipsoids", "Ellipsoid")
       .def(py::init(&make_ellipsoids), py::kw_only(), py::arg("centers"), py::arg("radii"),
            py::arg("quaternions") = py::none(), py::arg("rotations") = py::none(),
            "n ellipsoids from float64 arrays: centers (n, 3), radii (n, 3), and quaternions (n, 4) as (w, x, y, z) "
-           "or rotations (n, 3, 3).");
+           "or rotations (n, 3, 3).")
+      .def(py::pickle(&state_of<3>, [](const py::tuple& t) { return make_ellipsoids(t[0], t[1], py::none(), t[2]); }));
   def_batch_queries<2>(m);
   def_batch_queries<3>(m);
   def_areas(m);

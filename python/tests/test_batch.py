@@ -94,3 +94,14 @@ def test_prepared_pairs_equal_bodies(dim):
     got = ellipsect.first_contact(ellipsect.pairs(a, b, va, vb, t_max))
     want = ellipsect.first_contact(a, va, b, vb, t_max)
     assert all(same_bits(x, y) for x, y in zip(got, want))
+
+
+@pytest.mark.parametrize("dim", [2, 3])
+def test_batches_pickle_bit_for_bit(dim):
+    import pickle
+
+    a, _ = MAKERS[dim](100, seed=15)
+    again = pickle.loads(pickle.dumps(a))
+    assert type(again) is type(a) and len(again) == 100
+    for field in ("centers", "radii", "rotations"):
+        assert same_bits(getattr(again, field), getattr(a, field))
