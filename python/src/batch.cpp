@@ -1,5 +1,6 @@
-// Batches of bodies from numpy arrays (Ellipses, Ellipsoids) and the queries over pairs of
-// them: the library's batch functions (overlap, classify, first_contact, overlapping_pairs)
+// Batches of bodies from numpy arrays (Ellipses, Ellipsoids), batch.hpp's Pairs prepared
+// from two of them (ellipsect.pairs), and the queries over pairs: the library's batch
+// functions (overlap, classify, first_contact, overlapping_pairs)
 // or the scalar function on every pair in parallel_for (distance, signed_distance,
 // overlap_area, iou). Arrays are checked (type, dtype, shape, contiguity, rows) before
 // any work; the GIL is released while the library runs.
