@@ -3,7 +3,8 @@
 #   bash scripts/run.sh example   install what is missing, build, run `ellipsect check` and
 #                                 `ellipsect render` on a bundled scene
 #   bash scripts/run.sh test      install what is missing, build, run the whole test suite
-#                                 (Release build, then an ASan+UBSan build, then every fuzz
+#                                 (Release build, the demo page's browser test, the Python
+#                                 package's tests, then an ASan+UBSan build, then every fuzz
 #                                 target on its kept inputs and corpus and a short seeded
 #                                 mutation run)
 #   bash scripts/run.sh fuzz [NAME [SECONDS]]   the long run of one fuzz target or all
@@ -25,6 +26,10 @@ packages=(g++ cmake ninja-build pkg-config libeigen3-dev libhwy-dev libboost-dev
 packages+=(emscripten chromium nodejs)
 command -v npm >/dev/null || packages+=(npm)
 # ---- end web
+# The Python package (python/, python_test below): built by setuptools through CMake.
+packages+=(python3-dev python3-venv python3-pip python3-setuptools python3-wheel python3-pybind11 python3-numpy
+           python3-pytest python3-hypothesis python3-mpmath python3-matplotlib python3-dask python3-distributed
+           python3-pandas python3-shapely)
 
 install_missing() {
   local missing=()
@@ -112,6 +117,18 @@ web_test() {
 }
 # ---- end web
 
+# The Python package: a virtual environment build/venv from Debian's python3 (with its
+# packages), `pip install ./python` (the module built by the project's CMake, in build/python),
+# then its pytest suite (docs/python.md).
+python_test() {
+  [ -x build/venv/bin/python ] || /usr/bin/python3 -m venv --system-site-packages build/venv
+  local launcher
+  launcher=$(command -v ccache || true)
+  CMAKE_CXX_COMPILER_LAUNCHER=$launcher CMAKE_BUILD_PARALLEL_LEVEL=$(nproc) \
+    build/venv/bin/pip install -q --no-build-isolation ./python
+  build/venv/bin/python -m pytest -q python/tests
+}
+
 case "${1:-}" in
   example)
     install_missing
@@ -129,6 +146,7 @@ case "${1:-}" in
       -DELLIPSECT_BUILD_TOOLS=ON
     (cd build/release && ctest --output-on-failure --no-tests=error -j "$(nproc)")
     web_test
+    python_test
     # Sanitizer pass: same suite, fewer random cases per property test.
     build build/sanitize -DCMAKE_BUILD_TYPE=RelWithDebInfo -DELLIPSECT_SANITIZE=ON -DELLIPSECT_BUILD_TESTS=ON \
       -DELLIPSECT_BUILD_BENCH=OFF -DELLIPSECT_BUILD_TOOLS=ON

@@ -323,6 +323,17 @@ BoundaryIntersection<T> intersect_boundaries(const Ellipse2<T>& a, const Ellipse
   return out;
 }
 
+namespace {
+
+// pi r0 r1, in the working precision.
+template <class T>
+detail::Work<T> area_of(const Ellipse2<T>& e) {
+  using R = detail::Work<T>;
+  return std::numbers::pi_v<R> * R(e.radii()[0]) * R(e.radii()[1]);
+}
+
+}  // namespace
+
 template <class T>
 OverlapArea<T> overlap_area(const Ellipse2<T>& a, const Ellipse2<T>& b, const Options& options) noexcept {
   if (const detail::Scale scale = detail::scale_of(a, b); scale.range == detail::Range::scaled) {
@@ -331,8 +342,6 @@ OverlapArea<T> overlap_area(const Ellipse2<T>& a, const Ellipse2<T>& b, const Op
     out.area = std::ldexp(out.area, 2 * e);  // +inf beyond the largest finite T
     return out;
   }
-  using R = detail::Work<T>;
-  auto area_of = [](const Ellipse2<T>& e) { return std::numbers::pi_v<R> * R(e.radii()[0]) * R(e.radii()[1]); };
   OverlapArea<T> out{T(0), classify(a, b, options)};
   const auto pair = detail::order_pair(a, b);
   const Ellipse2<T>& s = pair.s;
@@ -356,6 +365,15 @@ OverlapArea<T> overlap_area(const Ellipse2<T>& a, const Ellipse2<T>& b, const Op
   return out;
 }
 
+template <class T>
+T intersection_over_union(const Ellipse2<T>& a, const Ellipse2<T>& b, const Options& options) noexcept {
+  if (const detail::Scale scale = detail::scale_of(a, b); scale.range == detail::Range::scaled)
+    return intersection_over_union(detail::scaled(a, -scale.exponent), detail::scaled(b, -scale.exponent), options);
+  using R = detail::Work<T>;
+  const R common = R(overlap_area(a, b, options).area);
+  return T(common / (area_of(a) + area_of(b) - common));
+}
+
 template BoundaryIntersection<float> intersect_boundaries<float>(const Ellipse2<float>&, const Ellipse2<float>&,
                                                                  const Options&) noexcept;
 template BoundaryIntersection<double> intersect_boundaries<double>(const Ellipse2<double>&, const Ellipse2<double>&,
@@ -363,5 +381,8 @@ template BoundaryIntersection<double> intersect_boundaries<double>(const Ellipse
 template OverlapArea<float> overlap_area<float>(const Ellipse2<float>&, const Ellipse2<float>&, const Options&) noexcept;
 template OverlapArea<double> overlap_area<double>(const Ellipse2<double>&, const Ellipse2<double>&,
                                                   const Options&) noexcept;
+template float intersection_over_union<float>(const Ellipse2<float>&, const Ellipse2<float>&, const Options&) noexcept;
+template double intersection_over_union<double>(const Ellipse2<double>&, const Ellipse2<double>&,
+                                                const Options&) noexcept;
 
 }  // namespace ellipsect

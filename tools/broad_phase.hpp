@@ -1,7 +1,5 @@
-// Broad phase: the pairs of bodies whose axis-aligned bounding boxes meet, by sweep and
-// prune along x. A pair it leaves out is certainly separated (and, for swept boxes, never
-// touches in the window): boxes are exact for ellipsoids and padded by 1e-9 of each body's
-// size plus rounding of its coordinates, far more than the tangency band of classify.
+// The program's broad phase: the library's sweep and prune (ellipsect/broad_phase.hpp) on a
+// scene's bodies and time window.
 #pragma once
 
 #include "scene.hpp"
@@ -10,9 +8,9 @@
 
 namespace ellipsect::cli {
 
-// Candidate pairs (i < j), sorted lexicographically. Boxes are the bodies' boxes at time
-// t0 of the window, or, with `swept`, the union of their boxes over the whole window
-// (unbounded in the direction of motion when the window has no end).
+// Candidate pairs (i < j), sorted lexicographically: ellipsect::candidate_pairs on the
+// bodies' boxes at time t0 of the window, or, with `swept`, on the union of their boxes over
+// the whole window (unbounded in the direction of motion when the window has no end).
 template <int N>
 std::vector<IndexPair> broad_phase(const std::vector<Body<N>>& bodies, const Window& window, bool swept);
 

@@ -7,6 +7,7 @@
 
 #include "csv.hpp"
 
+#include <ellipsect/broad_phase.hpp>
 #include <ellipsect/shapes.hpp>
 
 #include <nlohmann/json.hpp>
@@ -40,7 +41,7 @@ struct Window {
 
 enum class InputKind { json, bodies_csv, pairs_csv };
 
-using IndexPair = std::pair<std::uint32_t, std::uint32_t>;
+using ellipsect::IndexPair;  // (i, j) indices into a scene's bodies
 
 // A scene file opened and its header understood (JSON parsed; CSV header read).
 struct Input {

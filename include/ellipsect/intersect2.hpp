@@ -86,4 +86,11 @@ static_assert(detail::has_plain_layout<OverlapArea<float>, float, Relation> &&
 template <class T>
 OverlapArea<T> overlap_area(const Ellipse2<T>& a, const Ellipse2<T>& b, const Options& options = {}) noexcept;
 
+// Intersection over union, overlap_area / (area(a) + area(b) - overlap_area), in [0, 1]:
+// 0 when separated or touching, the ratio of the areas under containment, 1 when equal.
+// Scale-free: computed on the pair rescaled by a power of two where overlap_area rescales,
+// so it is finite at every scale the factories accept. Accuracy: that of the area.
+template <class T>
+T intersection_over_union(const Ellipse2<T>& a, const Ellipse2<T>& b, const Options& options = {}) noexcept;
+
 }  // namespace ellipsect

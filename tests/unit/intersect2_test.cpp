@@ -1,6 +1,6 @@
-// intersect_boundaries and overlap_area against closed forms: crossing circles, the
-// four-crossing cross of two ellipses, concentric pairs, tangency from outside and
-// inside, equal ellipses, separation and containment.
+// intersect_boundaries, overlap_area and intersection_over_union against closed forms:
+// crossing circles, the four-crossing cross of two ellipses, concentric pairs, tangency
+// from outside and inside, equal ellipses, separation and containment.
 #include <ellipsect/intersect2.hpp>
 
 #include <gtest/gtest.h>
@@ -177,3 +177,22 @@ TEST(Intersect2, Names) {
 }
 
 }  // namespace
+
+// intersection_over_union: 1 for equal ellipses, the ratio of the areas under containment,
+// 0 apart, 8 atan(1/2) / (4 pi - 8 atan(1/2)) for the cross, unchanged by a 2^600 scale.
+TEST(Intersect2, IntersectionOverUnion) {
+  const auto e = ellipse(1, 2, 0.4, 3, 0.5);
+  EXPECT_NEAR(intersection_over_union(e, e), 1.0, 1e-15);
+  EXPECT_EQ(intersection_over_union(e, ellipse(10, 2, 0.1, 1, 2)), 0.0);
+  const auto small = ellipse(1.5, 2.1, -0.3, 0.3, 0.2);
+  EXPECT_NEAR(intersection_over_union(small, e), 0.06 / 1.5, 1e-15);
+  const auto a = ellipse(0, 0, 0, 2, 1), b = ellipse(0, 0, M_PI / 2, 2, 1);
+  const double common = 8 * std::atan(0.5);
+  EXPECT_NEAR(intersection_over_union(a, b), common / (4 * M_PI - common), 1e-14);
+  EXPECT_EQ(intersection_over_union(b, a), intersection_over_union(a, b));
+  const double s = std::ldexp(1.0, 600);
+  const auto as = make_ellipse<double>({0, 0}, 0, {2 * s, s}), bs = make_ellipse<double>({0, 0}, M_PI / 2, {2 * s, s});
+  EXPECT_EQ(intersection_over_union(as, bs), intersection_over_union(a, b));
+  EXPECT_NEAR(intersection_over_union(make_ellipse<float>({0, 0}, 0, {2, 1}), make_ellipse<float>({0, 0}, 1.5707964f, {2, 1})),
+              common / (4 * M_PI - common), 1e-6);
+}

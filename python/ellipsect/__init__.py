@@ -1,0 +1,62 @@
+"""Exact collision queries between ellipses (2D) and ellipsoids (3D).
+
+Bindings of the C++ library ellipsect (docs/python.md). Scalar bodies (Ellipse,
+Ellipsoid) and batches from numpy arrays (Ellipses, Ellipsoids) go to the same functions:
+classify, overlap, first_contact, distance, signed_distance, closest_point, and in 2D
+intersect_boundaries, overlap_area, iou and Niemitalo's tests. Every number comes from the
+library; batch answers equal the scalar ones bit for bit. Pictures: ellipsect.plot;
+Dask: ellipsect.dask.
+"""
+
+from ._ellipsect import (  # noqa: F401
+    BoundaryIntersection,
+    BoundaryStatus,
+    Circle,
+    ClosestPoint2,
+    ClosestPoint3,
+    Contact2,
+    Contact3,
+    ContactArrays,
+    ContactStatus,
+    CrossingKind,
+    Distance2,
+    Distance3,
+    DistanceArrays,
+    DistanceStatus,
+    Ellipse,
+    Ellipses,
+    Ellipsoid,
+    Ellipsoids,
+    InputError,
+    Options,
+    OverlapArea,
+    Pairs2,
+    Pairs3,
+    PolygonalOverlap,
+    QuarticPoint,
+    QuarticStatus,
+    Relation,
+    SegmentCircle,
+    Side,
+    Verdict,
+    circle_cover_overlap,
+    classify,
+    closest_point,
+    closest_point_closed_form,
+    closest_point_quartic,
+    distance,
+    first_contact,
+    intersect_boundaries,
+    iou,
+    niemitalo_error_bound,
+    overlap,
+    overlap_area,
+    overlapping_pairs,
+    pairs,
+    polygonal_overlap,
+    segment_circle,
+    signed_distance,
+    simd_target,
+)
+
+__version__ = "0.1.0"

@@ -1,0 +1,494 @@
+// Batches of bodies from numpy arrays (Ellipses, Ellipsoids), batch.hpp's Pairs prepared
+// from two of them (ellipsect.pairs), and the queries over pairs: the library's batch
+// functions (overlap, classify, first_contact, overlapping_pairs)
+// or the scalar function on every pair in parallel_for (distance, signed_distance,
+// overlap_area, iou). Arrays are checked (type, dtype, shape, contiguity, rows) before
+// any work; the GIL is released while the library runs.
+#include "common.hpp"
+
+#include <ellipsect/ellipsect.hpp>
+
+#include <memory>
+#include <optional>
+#include <span>
+#include <string>
+
+namespace ellipsect::python {
+
+namespace {
+
+std::string shape_text(const std::vector<py::ssize_t>& shape) {
+  std::string s = "(";
+  for (std::size_t i = 0; i < shape.size(); ++i)
+    s += (i ? ", " : "") + (shape[i] < 0 ? std::string("n") : std::to_string(shape[i]));
+  return s + (shape.size() == 1 ? ",)" : ")");
+}
+
+// The data of argument `name`: a C-contiguous float64 numpy array of shape
+// (rows, trailing...); rows < 0 accepts any count and sets it. `rows_from` names the
+// argument that set the count, for the message.
+const double* checked(py::handle obj, const std::string& name, std::vector<py::ssize_t> trailing, py::ssize_t& rows,
+                      const std::string& rows_from) {
+  if (!py::isinstance<py::array>(obj))
+    throw py::type_error(name + ": expected a numpy array of float64, got " +
+                         std::string(py::str(py::type::handle_of(obj).attr("__name__"))));
+  const auto a = py::reinterpret_borrow<py::array>(obj);
+  if (!py::isinstance<py::array_t<double>>(a))  // float64 in native byte order
+    throw py::type_error(name + ": expected dtype float64, got " + std::string(py::str(a.dtype())));
+  trailing.insert(trailing.begin(), rows);
+  std::vector<py::ssize_t> shape(a.shape(), a.shape() + a.ndim());
+  bool fits = shape.size() == trailing.size();
+  for (std::size_t i = 1; fits && i < shape.size(); ++i) fits = shape[i] == trailing[i];
+  if (!fits) throw py::value_error(name + ": expected shape " + shape_text(trailing) + ", got " + shape_text(shape));
+  if (rows >= 0 && shape[0] != rows)
+    throw py::value_error(name + ": expected " + std::to_string(rows) + " rows, as " + rows_from + ", got " +
+                          std::to_string(shape[0]));
+  if (!(a.flags() & py::array::c_style))
+    throw py::value_error(name + ": must be C-contiguous (numpy.ascontiguousarray)");
+  rows = shape[0];
+  return static_cast<const double*>(a.data());
+}
+
+// The argument name and index for a factory's field at row `row`: "radii[1]" -> "radii[17, 1]",
+// "quaternion.x" -> "quaternions[17, 1]", "angle" -> "angles[17]".
+std::string row_field(const std::string& field, py::ssize_t row) {
+  const std::size_t cut = field.find_first_of("[.");
+  const std::string head = field.substr(0, cut);
+  const std::string arg = head == "center"       ? "centers"
+                          : head == "angle"      ? "angles"
+                          : head == "quaternion" ? "quaternions"
+                          : head == "axes"       ? "rotations"
+                                                 : head;
+  std::string index = std::to_string(row);
+  if (cut != std::string::npos && field[cut] == '[')
+    index += ", " + field.substr(cut + 1, field.size() - cut - 2);
+  else if (cut != std::string::npos)
+    index += ", " + std::to_string(std::string("wxyz").find(field[cut + 1]));
+  return arg + "[" + index + "]";
+}
+
+template <int N>
+struct Bodies {
+  std::vector<Ellipsoid<double, N>> items;
+};
+
+template <int N>
+using Make = Ellipsoid<double, N> (*)(const double* center, const double* orientation, const double* radii);
+
+// Fills a batch from rows: make(center row, orientation row, radii row) for each; the first
+// row a factory rejects raises InputError naming the argument, row and column.
+template <int N, class Make>
+Bodies<N> make_bodies(py::ssize_t n, const double* centers, const double* orientation, int orientation_size,
+                      const double* radii, const Make& make) {
+  Bodies<N> out;
+  std::optional<InputError> error;
+  py::ssize_t bad = 0;
+  {
+    py::gil_scoped_release release;
+    out.items.resize(std::size_t(n));
+    for (py::ssize_t i = 0; i < n && !error; ++i) {
+      try {
+        out.items[std::size_t(i)] = make(centers + i * N, orientation ? orientation + i * orientation_size : nullptr,
+                                         radii + i * N);
+      } catch (const InputError& e) {
+        error = e;
+        bad = i;
+      }
+    }
+  }
+  if (error) {  // what() is "ellipsect: <field>: <detail>"
+    const std::string what = error->what();
+    throw InputError(row_field(error->field(), bad), what.substr(std::string("ellipsect: ").size() +
+                                                                 error->field().size() + 2));
+  }
+  return out;
+}
+
+template <int N>
+Vec<double, N> row_vec(const double* p) {
+  return Eigen::Map<const Vec<double, N>>(p);
+}
+
+// Rotation matrices are given row-major (numpy's order); axes are their columns.
+template <int N>
+Mat<double, N> row_mat(const double* p) {
+  return Eigen::Map<const Eigen::Matrix<double, N, N, Eigen::RowMajor>>(p);
+}
+
+Bodies<2> make_ellipses(py::handle centers, py::handle radii, py::handle angles, py::handle rotations) {
+  py::ssize_t n = -1;
+  const double* c = checked(centers, "centers", {2}, n, "");
+  const double* r = checked(radii, "radii", {2}, n, "centers");
+  if (!angles.is_none() && !rotations.is_none()) throw py::value_error("Ellipses: give angles or rotations, not both");
+  if (!rotations.is_none()) {
+    const double* m = checked(rotations, "rotations", {2, 2}, n, "centers");
+    return make_bodies<2>(n, c, m, 4, r, [](const double* c, const double* m, const double* r) {
+      return Ellipse2<double>::from_axes(row_vec<2>(c), row_mat<2>(m), row_vec<2>(r));
+    });
+  }
+  const double* a = angles.is_none() ? nullptr : checked(angles, "angles", {}, n, "centers");
+  return make_bodies<2>(n, c, a, 1, r, [](const double* c, const double* a, const double* r) {
+    return make_ellipse<double>(row_vec<2>(c), a ? *a : 0.0, row_vec<2>(r));
+  });
+}
+
+Bodies<3> make_ellipsoids(py::handle centers, py::handle radii, py::handle quaternions, py::handle rotations) {
+  py::ssize_t n = -1;
+  const double* c = checked(centers, "centers", {3}, n, "");
+  const double* r = checked(radii, "radii", {3}, n, "centers");
+  if (!quaternions.is_none() && !rotations.is_none())
+    throw py::value_error("Ellipsoids: give quaternions or rotations, not both");
+  if (!rotations.is_none()) {
+    const double* m = checked(rotations, "rotations", {3, 3}, n, "centers");
+    return make_bodies<3>(n, c, m, 9, r, [](const double* c, const double* m, const double* r) {
+      return make_ellipsoid<double>(row_vec<3>(c), row_mat<3>(m), row_vec<3>(r));
+    });
+  }
+  const double* q = quaternions.is_none() ? nullptr : checked(quaternions, "quaternions", {4}, n, "centers");
+  return make_bodies<3>(n, c, q, 4, r, [](const double* c, const double* q, const double* r) {
+    const Quat<double> rotation = q ? Quat<double>(q[0], q[1], q[2], q[3]) : Quat<double>(1, 0, 0, 0);
+    return make_ellipsoid<double>(row_vec<3>(c), rotation, row_vec<3>(r));
+  });
+}
+
+// A (n, dims...) float64 array filled by fill(i, row pointer).
+template <class Fill>
+py::array_t<double> rows_of(std::size_t n, std::vector<py::ssize_t> dims, const Fill& fill) {
+  dims.insert(dims.begin(), py::ssize_t(n));
+  py::array_t<double> out(dims);
+  py::ssize_t row = 1;
+  for (std::size_t k = 1; k < dims.size(); ++k) row *= dims[k];
+  double* p = out.mutable_data();
+  for (std::size_t i = 0; i < n; ++i) fill(i, p + py::ssize_t(i) * row);
+  return out;
+}
+
+template <int N>
+py::array_t<double> centers_of(const Bodies<N>& b) {
+  return rows_of(b.items.size(), {N},
+                 [&](std::size_t i, double* p) { Eigen::Map<Vec<double, N>>{p} = b.items[i].center(); });
+}
+
+template <int N>
+py::array_t<double> radii_of(const Bodies<N>& b) {
+  return rows_of(b.items.size(), {N},
+                 [&](std::size_t i, double* p) { Eigen::Map<Vec<double, N>>{p} = b.items[i].radii(); });
+}
+
+template <int N>
+py::array_t<double> rotations_of(const Bodies<N>& b) {
+  return rows_of(b.items.size(), {N, N}, [&](std::size_t i, double* p) {
+    Eigen::Map<Eigen::Matrix<double, N, N, Eigen::RowMajor>>{p} = b.items[i].axes();
+  });
+}
+
+// Pickled as (centers, radii, rotations), which rebuild every body bit for bit (from_axes
+// keeps axes that are orthonormal to working precision as given).
+template <int N>
+py::tuple state_of(const Bodies<N>& b) {
+  return py::make_tuple(centers_of(b), radii_of(b), rotations_of(b));
+}
+
+template <int N>
+py::class_<Bodies<N>> def_bodies(py::module_& m, const char* name, const char* scalar) {
+  using B = Bodies<N>;
+  py::class_<B> c(m, name);
+  c.def("__len__", [](const B& b) { return b.items.size(); })
+      .def("__getitem__",
+           [scalar](const B& b, py::ssize_t i) {
+             const auto n = py::ssize_t(b.items.size());
+             if (i < -n || i >= n) throw py::index_error(std::string(scalar) + " index out of range");
+             return b.items[std::size_t(i < 0 ? i + n : i)];
+           })
+      .def("take",
+           [](const B& b, const py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>& indices) {
+             if (indices.ndim() != 1) throw py::value_error("indices: expected a 1-D array");
+             B out;
+             out.items.reserve(std::size_t(indices.size()));
+             for (const std::int64_t i : std::span(indices.data(), std::size_t(indices.size()))) {
+               if (i < 0 || std::size_t(i) >= b.items.size())
+                 throw py::index_error("indices: " + std::to_string(i) + " out of range");
+               out.items.push_back(b.items[std::size_t(i)]);
+             }
+             return out;
+           },
+           py::arg("indices"), "The bodies at `indices` (a 1-D integer array), in that order.")
+      .def_property_readonly("centers", &centers_of<N>)
+      .def_property_readonly("radii", &radii_of<N>)
+      .def_property_readonly("rotations", &rotations_of<N>,
+                             "(n, N, N): the axes of body i are the columns of rotations[i].");
+  return c;
+}
+
+template <int N>
+std::size_t paired(const Bodies<N>& a, const Bodies<N>& b) {
+  if (a.items.size() != b.items.size())
+    throw py::value_error("b: expected " + std::to_string(a.items.size()) + " bodies, as a, got " +
+                          std::to_string(b.items.size()));
+  return a.items.size();
+}
+
+template <int N>
+std::span<const Ellipsoid<double, N>> span_of(const Bodies<N>& b) {
+  return b.items;
+}
+
+py::object contact_arrays, distance_arrays;  // namedtuple classes, set in def_batch
+
+// Velocities and time windows of n moving pairs, checked.
+template <int N>
+struct Motion {
+  std::vector<Vec<double, N>> velocity_a, velocity_b;
+  std::vector<double> t_max;
+};
+
+template <int N>
+Motion<N> motion_of(std::size_t n, py::handle velocity_a, py::handle velocity_b, py::handle t_max) {
+  py::ssize_t rows = static_cast<py::ssize_t>(n);
+  const double* va = checked(velocity_a, "velocity_a", {N}, rows, "a");
+  const double* vb = checked(velocity_b, "velocity_b", {N}, rows, "a");
+  Motion<N> m;
+  if (py::isinstance<py::float_>(t_max) || py::isinstance<py::int_>(t_max)) {
+    m.t_max.assign(n, t_max.cast<double>());
+  } else {
+    const double* t = checked(t_max, "t_max", {}, rows, "a");
+    m.t_max.assign(t, t + n);
+  }
+  m.velocity_a.resize(n);
+  m.velocity_b.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    m.velocity_a[i] = row_vec<N>(va + i * N);
+    m.velocity_b[i] = row_vec<N>(vb + i * N);
+  }
+  return m;
+}
+
+// The answers of the three batch functions as arrays; run(span out) calls the library with
+// the GIL released.
+template <class Run>
+py::array_t<bool> overlap_array(std::size_t n, const Run& run) {
+  py::array_t<bool> out(static_cast<py::ssize_t>(n));
+  bool* p = out.mutable_data();
+  py::gil_scoped_release release;
+  run(std::span<bool>(p, n));
+  return out;
+}
+
+template <class Run>
+py::array_t<std::int8_t> classify_array(std::size_t n, const Run& run) {
+  py::array_t<std::int8_t> out(static_cast<py::ssize_t>(n));
+  std::int8_t* p = out.mutable_data();
+  py::gil_scoped_release release;
+  const auto relations = std::make_unique<Relation[]>(n);
+  run(std::span<Relation>(relations.get(), n));
+  for (std::size_t i = 0; i < n; ++i) p[i] = static_cast<std::int8_t>(relations[i]);
+  return out;
+}
+
+template <int N, class Run>
+py::object contact_array(std::size_t n, const Run& run) {
+  py::array_t<std::int8_t> status(static_cast<py::ssize_t>(n));
+  py::array_t<double> time(static_cast<py::ssize_t>(n));
+  py::array_t<double> point({py::ssize_t(n), py::ssize_t(N)}), normal({py::ssize_t(n), py::ssize_t(N)});
+  std::int8_t* s = status.mutable_data();
+  double *t = time.mutable_data(), *p = point.mutable_data(), *q = normal.mutable_data();
+  {
+    py::gil_scoped_release release;
+    std::vector<Contact<double, N>> out(n);
+    run(std::span<Contact<double, N>>(out));
+    for (std::size_t i = 0; i < n; ++i) {
+      s[i] = static_cast<std::int8_t>(out[i].status);
+      t[i] = out[i].time;
+      Eigen::Map<Vec<double, N>>{p + i * N} = out[i].point;
+      Eigen::Map<Vec<double, N>>{q + i * N} = out[i].normal;
+    }
+  }
+  return contact_arrays(status, time, point, normal);
+}
+
+template <int N>
+void def_batch_queries(py::module_& m) {
+  using B = Bodies<N>;
+  using P = Pairs<double, N>;
+  const std::string suffix = std::to_string(N);
+  py::class_<P>(m, ("Pairs" + suffix).c_str(),
+                "Pairs prepared once for repeated overlap / classify / first_contact (batch.hpp's Pairs).")
+      .def("__len__", &P::size);
+  m.def("pairs",
+        [](const B& a, const B& b, py::handle velocity_a, py::handle velocity_b, py::handle t_max) {
+          const std::size_t n = paired(a, b);
+          const bool moving = !velocity_a.is_none() || !velocity_b.is_none();
+          const Motion<N> motion = moving ? motion_of<N>(n, velocity_a, velocity_b, t_max) : Motion<N>{};
+          py::gil_scoped_release release;
+          P out;
+          out.reserve(n);
+          for (std::size_t i = 0; i < n; ++i) {
+            if (moving)
+              out.push_back(a.items[i], motion.velocity_a[i], b.items[i], motion.velocity_b[i], motion.t_max[i]);
+            else
+              out.push_back(a.items[i], b.items[i]);
+          }
+          return out;
+        },
+        py::arg("a"), py::arg("b"), py::arg("velocity_a") = py::none(), py::arg("velocity_b") = py::none(),
+        py::arg("t_max") = 0.0,
+        "Pairs (a[i], b[i]), with velocities and time windows for first_contact (static pairs without).");
+  m.def("overlap",
+        [](const B& a, const B& b, const Options& o, int threads) {
+          return overlap_array(paired(a, b), [&](std::span<bool> out) {
+            overlap<double, N>(span_of(a), span_of(b), out, {o, threads});
+          });
+        },
+        py::arg("a"), py::arg("b"), py::arg("options") = Options{}, py::arg("threads") = 0);
+  m.def("overlap",
+        [](const P& pairs, const Options& o, int threads) {
+          return overlap_array(pairs.size(), [&](std::span<bool> out) { overlap(pairs, out, {o, threads}); });
+        },
+        py::arg("pairs"), py::arg("options") = Options{}, py::arg("threads") = 0);
+  m.def("classify",
+        [](const B& a, const B& b, const Options& o, int threads) {
+          return classify_array(paired(a, b), [&](std::span<Relation> out) {
+            classify<double, N>(span_of(a), span_of(b), out, {o, threads});
+          });
+        },
+        py::arg("a"), py::arg("b"), py::arg("options") = Options{}, py::arg("threads") = 0);
+  m.def("classify",
+        [](const P& pairs, const Options& o, int threads) {
+          return classify_array(pairs.size(), [&](std::span<Relation> out) { classify(pairs, out, {o, threads}); });
+        },
+        py::arg("pairs"), py::arg("options") = Options{}, py::arg("threads") = 0);
+  m.def("first_contact",
+        [](const B& a, py::handle velocity_a, const B& b, py::handle velocity_b, py::handle t_max, const Options& o,
+           int threads) {
+          const std::size_t n = paired(a, b);
+          const Motion<N> motion = motion_of<N>(n, velocity_a, velocity_b, t_max);
+          return contact_array<N>(n, [&](std::span<Contact<double, N>> out) {
+            first_contact<double, N>(span_of(a), motion.velocity_a, span_of(b), motion.velocity_b, motion.t_max, out,
+                                     {o, threads});
+          });
+        },
+        py::arg("a"), py::arg("velocity_a"), py::arg("b"), py::arg("velocity_b"), py::arg("t_max"),
+        py::arg("options") = Options{}, py::arg("threads") = 0);
+  m.def("first_contact",
+        [](const P& pairs, const Options& o, int threads) {
+          return contact_array<N>(pairs.size(), [&](std::span<Contact<double, N>> out) {
+            first_contact(pairs, out, {o, threads});
+          });
+        },
+        py::arg("pairs"), py::arg("options") = Options{}, py::arg("threads") = 0);
+  using Query = Distance<double, N> (*)(const Ellipsoid<double, N>&, const Ellipsoid<double, N>&,
+                                        const Options&) noexcept;
+  for (const auto& [name, query] : {std::pair<const char*, Query>{"distance", &distance<double, N>},
+                                    std::pair<const char*, Query>{"signed_distance", &signed_distance<double, N>}}) {
+    m.def(name,
+          [query](const B& a, const B& b, const Options& o, int threads) {
+            const std::size_t n = paired(a, b);
+            py::array_t<std::int8_t> status(static_cast<py::ssize_t>(n));
+            py::array_t<double> dist(static_cast<py::ssize_t>(n));
+            py::array_t<double> pa({py::ssize_t(n), py::ssize_t(N)}), pb({py::ssize_t(n), py::ssize_t(N)}),
+                normal({py::ssize_t(n), py::ssize_t(N)});
+            std::int8_t* s = status.mutable_data();
+            double *d = dist.mutable_data(), *x = pa.mutable_data(), *y = pb.mutable_data(),
+                   *z = normal.mutable_data();
+            {
+              py::gil_scoped_release release;
+              parallel_for(n, threads, [&](std::size_t i) {
+                const Distance<double, N> r = query(a.items[i], b.items[i], o);
+                s[i] = static_cast<std::int8_t>(r.status);
+                d[i] = r.distance;
+                Eigen::Map<Vec<double, N>>{x + i * N} = r.point_a;
+                Eigen::Map<Vec<double, N>>{y + i * N} = r.point_b;
+                Eigen::Map<Vec<double, N>>{z + i * N} = r.normal;
+              });
+            }
+            return distance_arrays(status, dist, pa, pb, normal);
+          },
+          py::arg("a"), py::arg("b"), py::arg("options") = Options{}, py::arg("threads") = 0);
+  }
+  m.def("overlapping_pairs",
+        [](const B& bodies, const Options& o, int threads) {
+          std::vector<IndexPair> pairs;
+          {
+            py::gil_scoped_release release;
+            pairs = overlapping_pairs<double, N>(span_of(bodies), {o, threads});
+          }
+          py::array_t<std::int64_t> out({py::ssize_t(pairs.size()), py::ssize_t(2)});
+          std::int64_t* p = out.mutable_data();
+          for (std::size_t k = 0; k < pairs.size(); ++k) {
+            p[2 * k] = pairs[k].first;
+            p[2 * k + 1] = pairs[k].second;
+          }
+          return out;
+        },
+        py::arg("bodies"), py::arg("options") = Options{}, py::arg("threads") = 0,
+        "Every pair (i, j), i < j, of bodies that overlap, sorted: an (m, 2) int64 array.");
+}
+
+// overlap_area and iou over pairs of ellipses.
+void def_areas(py::module_& m) {
+  using B = Bodies<2>;
+  using Query = double (*)(const Ellipse2<double>&, const Ellipse2<double>&, const Options&);
+  for (const auto& [name, query] : {std::pair<const char*, Query>{"overlap_area",
+                                                                  [](const Ellipse2<double>& a, const Ellipse2<double>& b,
+                                                                     const Options& o) {
+                                                                    return overlap_area(a, b, o).area;
+                                                                  }},
+                                    std::pair<const char*, Query>{"iou", [](const Ellipse2<double>& a,
+                                                                            const Ellipse2<double>& b,
+                                                                            const Options& o) {
+                                                                    return intersection_over_union(a, b, o);
+                                                                  }}}) {
+    m.def(name,
+          [query](const B& a, const B& b, const Options& o, int threads) {
+            const std::size_t n = paired(a, b);
+            py::array_t<double> out(static_cast<py::ssize_t>(n));
+            double* p = out.mutable_data();
+            py::gil_scoped_release release;
+            parallel_for(n, threads, [&](std::size_t i) { p[i] = query(a.items[i], b.items[i], o); });
+            return out;
+          },
+          py::arg("a"), py::arg("b"), py::arg("options") = Options{}, py::arg("threads") = 0);
+  }
+}
+
+}  // namespace
+
+void def_batch(py::module_& m) {
+  py::object namedtuple = py::module_::import("collections").attr("namedtuple");
+  contact_arrays = namedtuple("ContactArrays", py::make_tuple("status", "time", "point", "normal"),
+                              py::arg("module") = "ellipsect");
+  distance_arrays = namedtuple("DistanceArrays", py::make_tuple("status", "distance", "point_a", "point_b", "normal"),
+                               py::arg("module") = "ellipsect");
+  m.attr("ContactArrays") = contact_arrays;
+  m.attr("DistanceArrays") = distance_arrays;
+
+  def_bodies<2>(m, "Ellipses", "Ellipse")
+      .def(py::init(&make_ellipses), py::kw_only(), py::arg("centers"), py::arg("radii"),
+           py::arg("angles") = py::none(), py::arg("rotations") = py::none(),
+           "n ellipses from float64 arrays: centers (n, 2), radii (n, 2), and angles (n,) or rotations (n, 2, 2).")
+      .def(py::pickle(&state_of<2>, [](const py::tuple& t) { return make_ellipses(t[0], t[1], py::none(), t[2]); }));
+  def_bodies<3>(m, "Ellipsoids", "Ellipsoid")
+      .def(py::init(&make_ellipsoids), py::kw_only(), py::arg("centers"), py::arg("radii"),
+           py::arg("quaternions") = py::none(), py::arg("rotations") = py::none(),
+           "n ellipsoids from float64 arrays: centers (n, 3), radii (n, 3), and quaternions (n, 4) as (w, x, y, z) "
+           "or rotations (n, 3, 3).")
+      .def(py::pickle(&state_of<3>, [](const py::tuple& t) { return make_ellipsoids(t[0], t[1], py::none(), t[2]); }));
+  def_batch_queries<2>(m);
+  def_batch_queries<3>(m);
+  def_areas(m);
+}
+
+void def_errors(py::module_& m) {
+  static py::handle type = py::exception<InputError>(m, "InputError", PyExc_ValueError).release();
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const InputError& e) {
+      py::object error = type(e.what());
+      error.attr("field") = e.field();
+      PyErr_SetObject(type.ptr(), error.ptr());
+    }
+  });
+}
+
+}  // namespace ellipsect::python

@@ -1,0 +1,290 @@
+// The Python module `ellipsect._ellipsect`: argument checks and conversions around the
+// library, nothing else (every number comes from the C++ functions). Scalar bodies and
+// results are double; the enums are Python IntEnums (common.hpp).
+#include "common.hpp"
+
+#include <ellipsect/ellipsect.hpp>
+
+#include <pybind11/stl.h>
+
+#include <array>
+#include <optional>
+#include <sstream>
+
+namespace ellipsect::python {
+
+namespace {
+
+template <int N>
+using Row = std::array<double, N>;
+template <int N>
+using Rows = std::array<std::array<double, N>, N>;  // a matrix as a sequence of rows
+
+template <int N>
+Vec<double, N> vec(const Row<N>& x) {
+  return Eigen::Map<const Vec<double, N>>(x.data());
+}
+
+template <int N>
+Mat<double, N> mat(const Rows<N>& m) {
+  Mat<double, N> out;
+  for (int i = 0; i < N; ++i)
+    for (int j = 0; j < N; ++j) out(i, j) = m[std::size_t(i)][std::size_t(j)];
+  return out;
+}
+
+template <int N>
+std::string body_repr(const Ellipsoid<double, N>& e) {
+  std::ostringstream s;
+  s.precision(17);
+  s << (N == 2 ? "Ellipse" : "Ellipsoid") << "(center=[";
+  for (int k = 0; k < N; ++k) s << (k ? ", " : "") << e.center()[k];
+  s << "], radii=[";
+  for (int k = 0; k < N; ++k) s << (k ? ", " : "") << e.radii()[k];
+  s << "])";
+  return s.str();
+}
+
+// Members common to Ellipse and Ellipsoid.
+template <int N>
+void def_body(py::class_<Ellipsoid<double, N>>& c) {
+  using E = Ellipsoid<double, N>;
+  c.def_static("from_axes",
+               [](const Row<N>& center, const Rows<N>& axes, const Row<N>& radii) {
+                 return E::from_axes(vec<N>(center), mat<N>(axes), vec<N>(radii));
+               },
+               py::arg("center"), py::arg("axes"), py::arg("radii"),
+               "Body whose principal directions are the columns of `axes` (orthonormal).")
+      .def_static("from_quadric",
+                  [](const Row<N>& center, const Rows<N>& M) { return E::from_quadric(vec<N>(center), mat<N>(M)); },
+                  py::arg("center"), py::arg("M"), "Body {x : (x - center)^T M (x - center) <= 1}.")
+      .def_static("ball", [](const Row<N>& center, double radius) { return make_ball<double, N>(vec<N>(center), radius); },
+                  py::arg("center"), py::arg("radius"))
+      .def_property_readonly("center", [](const E& e) { return to_array<N>(e.center()); })
+      .def_property_readonly("axes", [](const E& e) { return to_array<N>(e.axes()); },
+                             "Principal directions, as columns.")
+      .def_property_readonly("radii", [](const E& e) { return to_array<N>(e.radii()); })
+      .def("quadric", [](const E& e) { return to_array<N>(e.quadric()); })
+      .def("translated", [](const E& e, const Row<N>& offset) { return e.translated(vec<N>(offset)); },
+           py::arg("offset"))
+      .def("__repr__", &body_repr<N>)
+      .def(py::pickle([](const E& e) { return py::make_tuple(to_array<N>(e.center()), to_array<N>(e.axes()),
+                                                             to_array<N>(e.radii())); },
+                      [](const py::tuple& t) {
+                        return E::from_axes(vec<N>(t[0].cast<Row<N>>()), mat<N>(t[1].cast<Rows<N>>()),
+                                            vec<N>(t[2].cast<Row<N>>()));
+                      }));
+}
+
+template <int N>
+void def_results(py::module_& m, const char* suffix) {
+  const std::string s = suffix;
+  using C = Contact<double, N>;
+  py::class_<C>(m, ("Contact" + s).c_str(), "first_contact's answer (see contact.hpp).")
+      .def_property_readonly("status", [](const C& c) { return c.status; })
+      .def_property_readonly("time", [](const C& c) { return c.time; })
+      .def_property_readonly("point", [](const C& c) { return to_array<N>(c.point); })
+      .def_property_readonly("normal", [](const C& c) { return to_array<N>(c.normal); }, "Unit, from a towards b.")
+      .def_property_readonly("iterations", [](const C& c) { return c.iterations; })
+      .def("__repr__", [](const C& c) {
+        return "Contact(status=" + std::string(to_string(c.status)) + ", time=" + std::to_string(c.time) + ")";
+      });
+  using D = Distance<double, N>;
+  py::class_<D>(m, ("Distance" + s).c_str(), "distance / signed_distance's answer (see distance.hpp).")
+      .def_property_readonly("status", [](const D& d) { return d.status; })
+      .def_property_readonly("distance", [](const D& d) { return d.distance; })
+      .def_property_readonly("point_a", [](const D& d) { return to_array<N>(d.point_a); })
+      .def_property_readonly("point_b", [](const D& d) { return to_array<N>(d.point_b); })
+      .def_property_readonly("normal", [](const D& d) { return to_array<N>(d.normal); })
+      .def_property_readonly("iterations", [](const D& d) { return d.iterations; })
+      .def("__repr__", [](const D& d) {
+        return "Distance(status=" + std::string(to_string(d.status)) + ", distance=" + std::to_string(d.distance) +
+               ")";
+      });
+  using P = ClosestPoint<double, N>;
+  py::class_<P>(m, ("ClosestPoint" + s).c_str(), "closest_point's answer (see point.hpp).")
+      .def_property_readonly("point", [](const P& p) { return to_array<N>(p.point); })
+      .def_property_readonly("signed_distance", [](const P& p) { return p.signed_distance; });
+}
+
+// The scalar queries of both dimensions.
+template <int N>
+void def_queries(py::module_& m) {
+  using E = Ellipsoid<double, N>;
+  m.def("classify", py::overload_cast<const E&, const E&, const Options&>(&classify<double, N>), py::arg("a"),
+        py::arg("b"), py::arg("options") = Options{});
+  m.def("overlap", py::overload_cast<const E&, const E&, const Options&>(&overlap<double, N>), py::arg("a"),
+        py::arg("b"), py::arg("options") = Options{});
+  m.def("first_contact",
+        [](const E& a, const Row<N>& va, const E& b, const Row<N>& vb, double t_max, const Options& o) {
+          return first_contact(a, vec<N>(va), b, vec<N>(vb), t_max, o);
+        },
+        py::arg("a"), py::arg("velocity_a"), py::arg("b"), py::arg("velocity_b"), py::arg("t_max"),
+        py::arg("options") = Options{});
+  m.def("distance", py::overload_cast<const E&, const E&, const Options&>(&distance<double, N>), py::arg("a"),
+        py::arg("b"), py::arg("options") = Options{});
+  m.def("signed_distance", py::overload_cast<const E&, const E&, const Options&>(&signed_distance<double, N>),
+        py::arg("a"), py::arg("b"), py::arg("options") = Options{});
+  m.def("closest_point", [](const E& body, const Row<N>& x) { return closest_point(body, vec<N>(x)); },
+        py::arg("body"), py::arg("x"));
+}
+
+void def_two_d(py::module_& m) {
+  using E = Ellipse2<double>;
+  using B = BoundaryIntersection<double>;
+  py::class_<B>(m, "BoundaryIntersection", "intersect_boundaries' answer (see intersect2.hpp).")
+      .def_property_readonly("status", [](const B& b) { return b.status; })
+      .def_property_readonly("count", [](const B& b) { return b.count; })
+      .def_property_readonly("points",
+                             [](const B& b) {
+                               py::array_t<double> out({py::ssize_t(b.count), py::ssize_t(2)});
+                               for (int i = 0; i < b.count; ++i)
+                                 for (int k = 0; k < 2; ++k) out.mutable_at(i, k) = b.points[std::size_t(i)][k];
+                               return out;
+                             },
+                             "(count, 2) array, counter-clockwise along a.")
+      .def_property_readonly("kinds", [](const B& b) {
+        return std::vector<CrossingKind>(b.kinds.begin(), b.kinds.begin() + b.count);
+      });
+  using A = OverlapArea<double>;
+  py::class_<A>(m, "OverlapArea", "overlap_area's answer (see intersect2.hpp).")
+      .def_property_readonly("area", [](const A& a) { return a.area; })
+      .def_property_readonly("relation", [](const A& a) { return a.relation; });
+  using C = Circle<double>;
+  py::class_<C>(m, "Circle", "The closed disk of Niemitalo's tests; radius 0 is a point.")
+      .def(py::init([](const Row<2>& center, double radius) { return make_circle<double>(vec<2>(center), radius); }),
+           py::arg("center"), py::arg("radius"))
+      .def_property_readonly("center", [](const C& c) { return to_array<2>(c.center()); })
+      .def_property_readonly("radius", &C::radius)
+      .def("ellipse", &C::ellipse);
+  using S = SegmentCircle;
+  py::class_<S>(m, "SegmentCircle")
+      .def_property_readonly("verdict", [](const S& s) { return s.verdict; })
+      .def_property_readonly("side", [](const S& s) { return s.side; });
+  using P = PolygonalOverlap<double>;
+  py::class_<P>(m, "PolygonalOverlap", "Niemitalo's verdict with its level and certified band (polygonal2.hpp).")
+      .def_property_readonly("verdict", [](const P& p) { return p.verdict; })
+      .def_property_readonly("level", [](const P& p) { return p.level; })
+      .def_property_readonly("iterations", [](const P& p) { return p.iterations; })
+      .def_property_readonly("gap_lo", [](const P& p) { return p.gap_lo; })
+      .def_property_readonly("gap_hi", [](const P& p) { return p.gap_hi; });
+  using Q = QuarticPoint<double>;
+  py::class_<Q>(m, "QuarticPoint", "closest_point_quartic / closest_point_closed_form's answer (quartic2.hpp).")
+      .def_property_readonly("status", [](const Q& q) { return q.status; })
+      .def_property_readonly("point", [](const Q& q) { return to_array<2>(q.point); })
+      .def_property_readonly("distance", [](const Q& q) { return q.distance; });
+
+  m.def("intersect_boundaries", &intersect_boundaries<double>, py::arg("a"), py::arg("b"),
+        py::arg("options") = Options{});
+  m.def("overlap_area", py::overload_cast<const E&, const E&, const Options&>(&overlap_area<double>), py::arg("a"),
+        py::arg("b"), py::arg("options") = Options{});
+  m.def("iou", py::overload_cast<const E&, const E&, const Options&>(&intersection_over_union<double>),
+        py::arg("a"), py::arg("b"), py::arg("options") = Options{});
+  m.def("segment_circle",
+        [](const Row<2>& a, const Row<2>& b, const C& c) { return segment_circle<double>(vec<2>(a), vec<2>(b), c); },
+        py::arg("a"), py::arg("b"), py::arg("circle"));
+  m.def("polygonal_overlap", py::overload_cast<const E&, const C&, int>(&polygonal_overlap<double>),
+        py::arg("ellipse"), py::arg("circle"), py::arg("max_level") = 10);
+  m.def("polygonal_overlap", py::overload_cast<const E&, const E&, int>(&polygonal_overlap<double>), py::arg("a"),
+        py::arg("b"), py::arg("max_level") = 10);
+  m.def("circle_cover_overlap", &circle_cover_overlap<double>, py::arg("ellipse"), py::arg("circle"),
+        py::arg("max_level") = 10);
+  m.def("niemitalo_error_bound", py::overload_cast<const E&, int>(&niemitalo_error_bound<double>),
+        py::arg("ellipse"), py::arg("level"));
+  m.def("closest_point_quartic",
+        [](const E& e, const Row<2>& x) { return closest_point_quartic<double>(e, vec<2>(x)); }, py::arg("ellipse"),
+        py::arg("x"));
+  m.def("closest_point_closed_form",
+        [](const E& e, const Row<2>& x) { return closest_point_closed_form<double>(e, vec<2>(x)); },
+        py::arg("ellipse"), py::arg("x"));
+}
+
+void def_enums(py::module_& m) {
+  def_enum<Relation>(m, "Relation",
+                     {{"separated", Relation::separated},
+                      {"touching", Relation::touching},
+                      {"overlapping", Relation::overlapping},
+                      {"a_contains_b", Relation::a_contains_b},
+                      {"b_contains_a", Relation::b_contains_a},
+                      {"equal", Relation::equal}});
+  def_enum<ContactStatus>(m, "ContactStatus",
+                          {{"hit", ContactStatus::hit},
+                           {"touching_at_start", ContactStatus::touching_at_start},
+                           {"overlapping_at_start", ContactStatus::overlapping_at_start},
+                           {"no_contact_in_window", ContactStatus::no_contact_in_window},
+                           {"did_not_converge", ContactStatus::did_not_converge},
+                           {"invalid_input", ContactStatus::invalid_input}});
+  def_enum<DistanceStatus>(m, "DistanceStatus",
+                           {{"separated", DistanceStatus::separated},
+                            {"touching", DistanceStatus::touching},
+                            {"overlapping", DistanceStatus::overlapping},
+                            {"did_not_converge", DistanceStatus::did_not_converge}});
+  def_enum<CrossingKind>(m, "CrossingKind",
+                         {{"transverse", CrossingKind::transverse}, {"tangent", CrossingKind::tangent}});
+  def_enum<BoundaryStatus>(m, "BoundaryStatus",
+                           {{"points", BoundaryStatus::points}, {"equal", BoundaryStatus::equal}});
+  def_enum<Verdict>(m, "Verdict",
+                    {{"collision", Verdict::collision},
+                     {"no_collision", Verdict::no_collision},
+                     {"undecided", Verdict::undecided},
+                     {"invalid_input", Verdict::invalid_input}});
+  def_enum<Side>(m, "Side", {{"left", Side::left}, {"on_line", Side::on_line}, {"right", Side::right}});
+  def_enum<QuarticStatus>(m, "QuarticStatus",
+                          {{"outside", QuarticStatus::outside},
+                           {"inside", QuarticStatus::inside},
+                           {"failed", QuarticStatus::failed},
+                           {"invalid_input", QuarticStatus::invalid_input}});
+}
+
+}  // namespace
+
+void def_scalar(py::module_& m) {
+  def_enums(m);
+  py::class_<Options>(m, "Options", "Tolerance and iteration cap (options.hpp).")
+      .def(py::init([](double tolerance, int max_iterations) { return Options{tolerance, max_iterations}; }),
+           py::arg("tolerance") = Options{}.tolerance, py::arg("max_iterations") = Options{}.max_iterations)
+      .def_readwrite("tolerance", &Options::tolerance)
+      .def_readwrite("max_iterations", &Options::max_iterations)
+      .def(py::pickle([](const Options& o) { return py::make_tuple(o.tolerance, o.max_iterations); },
+                      [](const py::tuple& t) { return Options{t[0].cast<double>(), t[1].cast<int>()}; }));
+
+  py::class_<Ellipse2<double>> ellipse(m, "Ellipse", "A validated ellipse (shapes.hpp).");
+  ellipse.def(py::init([](const Row<2>& center, const Row<2>& radii, std::optional<double> angle,
+                          std::optional<Rows<2>> rotation) {
+                if (angle && rotation) throw py::value_error("Ellipse: give angle or rotation, not both");
+                if (rotation) return Ellipse2<double>::from_axes(vec<2>(center), mat<2>(*rotation), vec<2>(radii));
+                return make_ellipse<double>(vec<2>(center), angle.value_or(0.0), vec<2>(radii));
+              }),
+              py::arg("center"), py::arg("radii"), py::arg("angle") = py::none(), py::arg("rotation") = py::none(),
+              "Ellipse whose first axis makes `angle` radians with x (or whose axes are the columns of "
+              "`rotation`).");
+  def_body<2>(ellipse);
+  py::class_<Ellipsoid3<double>> ellipsoid(m, "Ellipsoid", "A validated ellipsoid (shapes.hpp).");
+  ellipsoid.def(py::init([](const Row<3>& center, const Row<3>& radii, std::optional<Row<4>> quaternion,
+                            std::optional<Rows<3>> rotation) {
+                  if (quaternion && rotation) throw py::value_error("Ellipsoid: give quaternion or rotation, not both");
+                  if (rotation) return make_ellipsoid<double>(vec<3>(center), mat<3>(*rotation), vec<3>(radii));
+                  const Row<4> q = quaternion.value_or(Row<4>{1, 0, 0, 0});
+                  return make_ellipsoid<double>(vec<3>(center), Quat<double>(q[0], q[1], q[2], q[3]), vec<3>(radii));
+                }),
+                py::arg("center"), py::arg("radii"), py::arg("quaternion") = py::none(),
+                py::arg("rotation") = py::none(),
+                "Ellipsoid rotated by a unit quaternion (w, x, y, z), or with axes the columns of `rotation`.");
+  def_body<3>(ellipsoid);
+
+  def_results<2>(m, "2");
+  def_results<3>(m, "3");
+  def_queries<2>(m);
+  def_queries<3>(m);
+  def_two_d(m);
+}
+
+}  // namespace ellipsect::python
+
+PYBIND11_MODULE(_ellipsect, m) {
+  m.doc() = "ellipsect: exact collision queries between ellipses and ellipsoids (C++ library bindings)";
+  ellipsect::python::def_errors(m);
+  ellipsect::python::def_scalar(m);
+  ellipsect::python::def_batch(m);
+  m.def("simd_target", &ellipsect::simd_target, "The instruction set the batch functions use (batch.hpp).");
+}

@@ -1,0 +1,107 @@
+"""Batch queries over numpy arrays equal the scalar functions bit for bit."""
+
+import numpy as np
+import pytest
+from conftest import random_ellipses, random_ellipsoids, same_bits
+
+import ellipsect
+
+MAKERS = {2: random_ellipses, 3: random_ellipsoids}
+
+
+@pytest.mark.parametrize("dim", [2, 3])
+def test_construction_round_trips(dim):
+    batch, bodies = MAKERS[dim](50, seed=1)
+    assert len(batch) == 50
+    assert same_bits(batch.centers, [b.center for b in bodies])
+    assert same_bits(batch.radii, [b.radii for b in bodies])
+    assert same_bits(batch.rotations, [b.axes for b in bodies])
+    assert same_bits(batch[7].center, bodies[7].center) and same_bits(batch[-1].radii, bodies[-1].radii)
+    again = type(batch)(centers=batch.centers, radii=batch.radii, rotations=batch.rotations)
+    assert same_bits(again.rotations, batch.rotations)
+
+
+@pytest.mark.parametrize("dim", [2, 3])
+@pytest.mark.parametrize("threads", [1, 0])
+def test_overlap_and_classify_equal_scalar(dim, threads):
+    a, sa = MAKERS[dim](400, seed=2)
+    b, sb = MAKERS[dim](400, seed=3)
+    flags = ellipsect.overlap(a, b, threads=threads)
+    relations = ellipsect.classify(a, b, threads=threads)
+    assert flags.dtype == np.bool_ and relations.dtype == np.int8
+    assert flags.tolist() == [ellipsect.overlap(x, y) for x, y in zip(sa, sb)]
+    assert relations.tolist() == [int(ellipsect.classify(x, y)) for x, y in zip(sa, sb)]
+    assert 0 < flags.sum() < len(flags)
+
+
+@pytest.mark.parametrize("dim", [2, 3])
+def test_first_contact_equals_scalar(dim):
+    a, sa = MAKERS[dim](300, seed=4)
+    b, sb = MAKERS[dim](300, seed=5)
+    rng = np.random.default_rng(6)
+    va, vb = rng.normal(size=(300, dim)), rng.normal(size=(300, dim))
+    t_max = rng.uniform(0, 5, 300)
+    got = ellipsect.first_contact(a, va, b, vb, t_max)
+    want = [ellipsect.first_contact(x, u, y, v, t) for x, u, y, v, t in zip(sa, va, sb, vb, t_max)]
+    assert got.status.tolist() == [int(c.status) for c in want]
+    assert same_bits(got.time, [c.time for c in want])
+    assert same_bits(got.point, [c.point for c in want])
+    assert same_bits(got.normal, [c.normal for c in want])
+    assert ellipsect.ContactStatus.hit in got.status
+    same_window = ellipsect.first_contact(a, va, b, vb, 2.5)
+    assert same_bits(same_window.time, ellipsect.first_contact(a, va, b, vb, np.full(300, 2.5)).time)
+
+
+@pytest.mark.parametrize("dim", [2, 3])
+@pytest.mark.parametrize("query", ["distance", "signed_distance"])
+def test_distances_equal_scalar(dim, query):
+    a, sa = MAKERS[dim](150, seed=7)
+    b, sb = MAKERS[dim](150, seed=8)
+    got = getattr(ellipsect, query)(a, b, threads=2)
+    want = [getattr(ellipsect, query)(x, y) for x, y in zip(sa, sb)]
+    assert got.status.tolist() == [int(d.status) for d in want]
+    for field in ("distance", "point_a", "point_b", "normal"):
+        assert same_bits(getattr(got, field), [getattr(d, field) for d in want]), field
+
+
+def test_areas_equal_scalar():
+    a, sa = random_ellipses(300, seed=9, spread=3)
+    b, sb = random_ellipses(300, seed=10, spread=3)
+    assert same_bits(ellipsect.overlap_area(a, b), [ellipsect.overlap_area(x, y).area for x, y in zip(sa, sb)])
+    iou = ellipsect.iou(a, b)
+    assert same_bits(iou, [ellipsect.iou(x, y) for x, y in zip(sa, sb)])
+    assert np.all((iou >= 0) & (iou <= 1)) and np.any(iou > 0)
+
+
+def test_take_selects_rows():
+    a, sa = random_ellipses(20, seed=11)
+    picked = a.take(np.array([3, 3, 0]))
+    assert same_bits(picked.centers, [sa[3].center, sa[3].center, sa[0].center])
+    with pytest.raises(IndexError):
+        a.take(np.array([20]))
+
+
+@pytest.mark.parametrize("dim", [2, 3])
+def test_prepared_pairs_equal_bodies(dim):
+    a, _ = MAKERS[dim](300, seed=12)
+    b, _ = MAKERS[dim](300, seed=13)
+    rng = np.random.default_rng(14)
+    va, vb, t_max = rng.normal(size=(300, dim)), rng.normal(size=(300, dim)), rng.uniform(0, 3, 300)
+    static = ellipsect.pairs(a, b)
+    assert len(static) == 300
+    assert np.array_equal(ellipsect.overlap(static), ellipsect.overlap(a, b))
+    assert np.array_equal(ellipsect.classify(static, threads=1), ellipsect.classify(a, b))
+    got = ellipsect.first_contact(ellipsect.pairs(a, b, va, vb, t_max))
+    want = ellipsect.first_contact(a, va, b, vb, t_max)
+    assert all(same_bits(x, y) for x, y in zip(got, want))
+
+
+@pytest.mark.parametrize("dim", [2, 3])
+def test_batches_pickle_bit_for_bit(dim):
+    import pickle
+
+    a, _ = MAKERS[dim](100, seed=15)
+    again = pickle.loads(pickle.dumps(a))
+    assert type(again) is type(a) and len(again) == 100
+    for field in ("centers", "radii", "rotations"):
+        assert same_bits(getattr(again, field), getattr(a, field))

@@ -1,0 +1,42 @@
+"""ellipsect.plot draws bodies, contacts, normals and witness points (Agg backend)."""
+
+import numpy as np
+from conftest import random_ellipses, random_ellipsoids
+from matplotlib import pyplot as plt
+
+import ellipsect
+import ellipsect.plot as ep
+
+
+def test_picture_of_a_2d_scene(tmp_path):
+    a = ellipsect.Ellipse([0, 0], [3, 1], angle=0.5)
+    b = ellipsect.Ellipse([8, 1.5], [1.5, 0.5], angle=-0.3)
+    ax = ep.bodies(None, [a, b], labels=["a", "b"])
+    ep.contact(ax, ellipsect.first_contact(a, [0, 0], b, [-2, -0.25], 10.0))
+    ep.witnesses(ax, ellipsect.signed_distance(a, b))
+    assert len(ax.patches) == 2 and np.isclose(ax.patches[0].angle % 180, np.degrees(0.5))
+    assert np.isclose(ax.patches[0].width, 6) and np.isclose(ax.patches[0].height, 2)
+    ax.figure.savefig(tmp_path / "scene.png")
+    assert (tmp_path / "scene.png").stat().st_size > 1000
+    plt.close(ax.figure)
+
+
+def test_picture_of_batches(tmp_path):
+    bodies, _ = random_ellipses(40, seed=3)
+    ax = ep.bodies(None, bodies)
+    ep.pairs(ax, bodies, ellipsect.overlapping_pairs(bodies))
+    a, b = bodies.take(np.arange(20)), bodies.take(np.arange(20, 40))
+    ep.witnesses(ax, ellipsect.signed_distance(a, b))
+    ep.contact(ax, ellipsect.first_contact(a, np.zeros((20, 2)), b, np.ones((20, 2)), 5.0))
+    solids, _ = random_ellipsoids(10, seed=4)
+    ep.bodies(ax, solids, plane="xz", edgecolor="gray")
+    assert len(ax.patches) == 50
+    ax.figure.savefig(tmp_path / "batch.png")
+    plt.close(ax.figure)
+
+
+def test_ellipsoid_outline_of_an_axis_aligned_body():
+    ax = ep.bodies(None, ellipsect.Ellipsoid([1, 2, 3], [3, 2, 1]), plane="yz")
+    p = ax.patches[0]
+    assert np.allclose(p.center, [2, 3]) and np.isclose(max(p.width, p.height), 4)
+    plt.close(ax.figure)
