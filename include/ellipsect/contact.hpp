@@ -11,7 +11,11 @@
 // For grazing paths the contact time is ill-conditioned (a double root): the status is
 // right outside the tolerance band and the time is accurate to about sqrt(tolerance).
 // Scaling bodies and velocities by 2^k leaves status, time and normal unchanged and
-// multiplies the point by exactly 2^k, at any scale (docs/method.md, section 7).
+// multiplies the point by exactly 2^k, at any scale (docs/method.md, section 7). Where one
+// body is smaller than the rounding of the other's coordinates (radius ratios beyond
+// about 1e16), the normal is the large body's at the small one's center and the point the
+// small body's support point along it: off by about the small body's size over the large
+// one's radius of curvature (tests/regression/scales_test.cpp).
 #pragma once
 
 #include <ellipsect/options.hpp>
