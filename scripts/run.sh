@@ -85,17 +85,17 @@ fuzz_check() {
 # from a copy of the committed corpus. -max_total_time only cuts a slow machine's run
 # short, to a prefix of the same sequence of inputs (docs/fuzzing.md).
 fuzz_mutate() {
-  local name=$1 runs=$2 corpus=build/fuzz/mutation/$1 artifacts=build/fuzz/artifacts/ log
+  local name=$1 runs=$2 corpus=build/fuzz/mutation/$1 artifacts=build/fuzz/artifacts/$1- log
   rm -rf "$corpus"
-  mkdir -p "$corpus" "$artifacts"
+  mkdir -p "$corpus" build/fuzz/artifacts
   cp fuzz/corpus/"$name"/* "$corpus"/
   echo "==> fuzz_$name: seeded mutation run, $runs inputs"
   log=$(ELLIPSECT_FUZZ_SIMD_TARGET=EMU128 build/fuzz/fuzz/fuzz_"$name" -seed=1 -runs="$runs" -max_total_time=180 \
     -max_len=4096 -timeout=10 -artifact_prefix="$artifacts" "$corpus" 2>&1) || { echo "$log" | tail -40; return 1; }
 }
 
-# Inputs per target for the CI mutation run: about a minute each on one core.
-declare -A fuzz_runs=([factories]=600000 [queries]=30000 [intersect2]=300000 [niemitalo]=150000 [scene]=20000)
+# Inputs per target for the CI mutation run: up to about a minute each on one core.
+declare -A fuzz_runs=([factories]=1400000 [queries]=30000 [intersect2]=600000 [niemitalo]=350000 [scene]=100000)
 
 # ---- web: the demo page (web/) --------------------------------------------------------
 # Debian's emscripten ships its system libraries prebuilt (a frozen cache), so nothing of
