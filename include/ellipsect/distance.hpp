@@ -39,7 +39,10 @@
 // The status equals classify's (separated, touching, overlapping for all other relations).
 // Swapping two distinct bodies gives the same distance, swapped points and the negated
 // normal, bit for bit. Scaling both bodies by 2^k (|k| <= 1000 tested) multiplies the distance
-// and the points by exactly 2^k, the status and normal unchanged (docs/method.md, section 7).
+// and the points by exactly 2^k, the status and normal unchanged (docs/method.md, section 7),
+// except where a nonzero axis entry, or a nonzero center coordinate relative to the bodies'
+// size, is below about 2^-300 (1e-90): products of those underflow differently at another
+// scale, and the last bits of the results can change.
 // float bodies are computed in double and the results rounded (tested to 1e-6 *
 // scale).
 #pragma once
