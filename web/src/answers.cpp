@@ -3,7 +3,6 @@
 #include <ellipsect/ellipsect.hpp>
 
 #include <algorithm>
-#include <numbers>
 #include <stdexcept>
 
 namespace ellipsect::web {
@@ -152,7 +151,6 @@ Answer relation(const Params& p) {
     points.insert(points.end(), {x.points[i].x(), x.points[i].y()});
     kinds += std::string(i ? "," : "") + std::string(to_string(x.kinds[i]));
   }
-  const double area_a = std::numbers::pi * a.radii().prod(), area_b = std::numbers::pi * b.radii().prod();
   return {{"relation", label(to_string(classify(a, b)))},
           {"distance.status", label(to_string(d.status))},
           {"distance", d.distance},
@@ -164,7 +162,7 @@ Answer relation(const Params& p) {
           {"crossings.points", points},
           {"crossings.kinds", kinds},
           {"area", area.area},
-          {"iou", area.area / (area_a + area_b - area.area)}};
+          {"iou", intersection_over_union(a, b)}};
 }
 
 }  // namespace

@@ -2,7 +2,7 @@
 // binding (web/src/binding.cpp) and the native program the browser test compares with
 // (web/tests/native_answers.cpp). Each calls the library and lists its results as named
 // values; nothing here is computed that the library does not answer, except the
-// coordinate changes of the swept demo's reduced frame and the ratio of areas (IoU).
+// coordinate changes of the swept demo's reduced frame.
 //
 // Inputs are named numbers (Params); an ellipse "x" is x.cx, x.cy, x.angle, x.r0, x.r1,
 // a circle x.cx, x.cy, x.r. Missing names throw std::out_of_range; invalid shapes come
