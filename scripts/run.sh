@@ -5,7 +5,8 @@
 #   bash scripts/run.sh test      install what is missing, build, run the whole test suite
 #                                 (Release build, the demo page's browser test, the Python
 #                                 package's tests, then an ASan+UBSan build, then every fuzz
-#                                 target on its kept inputs and corpus)
+#                                 target on its kept inputs and corpus and a short seeded
+#                                 mutation run)
 #   bash scripts/run.sh fuzz [NAME [SECONDS]]   the long run of one fuzz target or all
 #                                 (default 600 s each; docs/fuzzing.md)
 #   bash scripts/run.sh bench [NAME [ARGS]]   install what is missing, build, run
@@ -78,6 +79,27 @@ fuzz_check() {
   log=$("$program" -timeout=30 -artifact_prefix="$artifacts" "${inputs[@]}" 2>&1) || { echo "$log"; return 1; }
 }
 
+# fuzz_mutate NAME RUNS: a short mutation run that tries the same inputs on every machine and
+# in every clone: seed 1, RUNS executions in one process, from a copy of the committed
+# corpus, the batch functions pinned to the portable SIMD target (their coverage would
+# otherwise follow the CPU), and no mutations from the operands of traced comparisons and
+# memory searches (-use_cmp=0 -use_memmem=0: those operands include addresses, which differ
+# from run to run). -max_total_time only cuts a slow machine's run short, to a prefix of the
+# same sequence of inputs (docs/fuzzing.md).
+fuzz_mutate() {
+  local name=$1 runs=$2 corpus=build/fuzz/mutation/$1 artifacts=build/fuzz/artifacts/$1- log
+  rm -rf "$corpus"
+  mkdir -p "$corpus" build/fuzz/artifacts
+  cp fuzz/corpus/"$name"/* "$corpus"/
+  echo "==> fuzz_$name: seeded mutation run, $runs inputs"
+  log=$(ELLIPSECT_FUZZ_SIMD_TARGET=EMU128 build/fuzz/fuzz/fuzz_"$name" -seed=1 -runs="$runs" -use_cmp=0 \
+    -use_memmem=0 -max_total_time=180 -max_len=4096 -timeout=10 -artifact_prefix="$artifacts" "$corpus" 2>&1) ||
+    { echo "$log" | tail -40; return 1; }
+}
+
+# Inputs per target for the CI mutation run: up to about a minute each on one core.
+declare -A fuzz_runs=([factories]=1400000 [queries]=30000 [intersect2]=600000 [niemitalo]=350000 [scene]=100000)
+
 # ---- web: the demo page (web/) --------------------------------------------------------
 # Debian's emscripten ships its system libraries prebuilt (a frozen cache), so nothing of
 # Emscripten's own is compiled here. Its JS optimizer needs Debian's acorn module, which a
@@ -135,7 +157,7 @@ case "${1:-}" in
     build_fuzz
     failed=()
     for name in $(fuzz_targets); do
-      fuzz_check "$name" || failed+=("$name")
+      fuzz_check "$name" && fuzz_mutate "$name" "${fuzz_runs[$name]}" || failed+=("$name")
     done
     [ ${#failed[@]} -eq 0 ] || { echo "==> fuzz targets failed: ${failed[*]}" >&2; exit 1; }
     ;;

@@ -80,10 +80,8 @@ bool overlap(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b, const Options& 
   const auto [s, o, a_is_s] = detail::order_pair(a, b);
   const R tol = R(options.tolerance);
   const auto red = detail::reduce_settled<R>(s, o);
-  const R gap = detail::gap_reduced<R, N>(red.e, red.k);
-  // Outside the rounding of the band's outer edge the sign is certain; on it, classify's
-  // own decision (with its wide-type fallback) keeps overlap == (classify != separated).
-  if (std::abs(gap - tol) > detail::reduced_rounding<R>(s, o, red.e, red.k)) return gap <= tol;
+  if (const int sure = detail::overlap_reduced<R, N>(red.e, red.k, tol, detail::reduced_rounding<R>(s, o, red.e, red.k)))
+    return sure > 0;
   return decide<R>(s, o, tol) != detail::ReducedRelation::separated;
 }
 

@@ -28,6 +28,7 @@
 #include "detail/classify_impl.hpp"
 #include "detail/scale.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <functional>
@@ -358,8 +359,9 @@ OverlapArea<T> overlap_area(const Ellipse2<T>& a, const Ellipse2<T>& b, const Op
       });
       // The intersection lies inside both ellipses. When the smaller one lies within the
       // tangency band of the larger (radius ratios beyond about 1e12) the lens is formed
-      // from crossings the band blurs; bounding it keeps the area within [0, smaller].
-      out.area = std::min(out.area, T(std::min(area_of(a), area_of(b))));
+      // from crossings the band blurs (its polygon and segments cancel to rounding, of
+      // either sign); bounding it keeps the area within [0, smaller].
+      out.area = std::clamp(out.area, T(0), T(std::min(area_of(a), area_of(b))));
       break;
   }
   return out;

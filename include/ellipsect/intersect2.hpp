@@ -1,6 +1,6 @@
 // Boundary intersection points and overlap area of two ellipses.
 //
-// Math. In the reduced frame of classify (the rounder ellipse S is the unit circle, the
+// Math. In the reduced frame of classify (the sphere body S is the unit circle, the
 // other ellipse O is axis-aligned with center k and semi-axes e), O's boundary is
 // w(t) = k + (e_0 cos t, e_1 sin t), and the boundaries meet where h(t) = |w(t)| = 1. The
 // critical points of h (the feet of the normals from S's center to O: the closest and
@@ -25,7 +25,10 @@
 //   points  within 1e-12 * scale of both boundaries; a transverse crossing within
 //           1e-12 * scale / sin(crossing angle) of the exact one;
 //   kinds   the number of transverse crossings is exact outside the tangency band;
-//   area    absolute error <= 1e-12 * the smaller ellipse's area.
+//   area    absolute error <= 1e-12 * the smaller ellipse's area; always within [0, the
+//           smaller ellipse's area]. Where the smaller ellipse lies within the tangency
+//           band of the larger's boundary (radius ratios beyond about 1e12, untested
+//           otherwise) the crossings are blurred by the band and only that bound holds.
 // Swapping a and b gives the same points (listed in the new a's order) and the same area,
 // bit for bit. Scaling both ellipses by 2^k multiplies the points by exactly 2^k and the
 // area by 4^k (+inf beyond the largest double) (docs/method.md, section 7).

@@ -39,10 +39,18 @@ Reduced<R, N> reduce_settled(const Ellipsoid<T, N>& s, const Ellipsoid<T, N>& o)
   return r;
 }
 
+// Whether S and O share a point, decided by classify_reduced's own comparisons (S's center
+// inside O, then the gap against the band's outer edge) only where each lies beyond
+// `rounding` of its threshold: +1 they do, -1 they do not, 0 undecided (the caller then
+// takes classify's decision, so overlap == (classify != separated)).
 template <class R, int N>
-R gap_reduced(const Vec<R, N>& e, const Vec<R, N>& k) noexcept {
-  if (level_at_origin(e, k) <= R(0)) return -std::numeric_limits<R>::infinity();
-  return closest_from_outside(e, k).norm - R(1);
+int overlap_reduced(const Vec<R, N>& e, const Vec<R, N>& k, R tol, R rounding) noexcept {
+  const R q0 = level_at_origin(e, k);
+  if (!(std::abs(q0) > rounding)) return 0;
+  if (q0 < R(0)) return 1;
+  const R gap = closest_from_outside(e, k).norm - R(1);
+  if (!(std::abs(gap - tol) > rounding)) return 0;
+  return gap <= tol ? 1 : -1;
 }
 
 // `margin` receives the smallest distance of a compared quantity from its threshold: a

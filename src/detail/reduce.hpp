@@ -10,8 +10,9 @@
 // the small ones entirely. The one-sided structure of L lets one-sided Jacobi return every
 // semi-axis to high relative accuracy instead (tests/regression/seed_bugs_test.cpp).
 //
-// Which body becomes the ball does not depend on argument order (rounder body first, ties
-// broken by the raw data), so every query is exactly symmetric under swapping a and b.
+// Which body becomes the ball does not depend on argument order (the larger body when the
+// largest radii differ by more than 2^26, otherwise the rounder, ties broken by the raw
+// data), so every query is exactly symmetric under swapping a and b.
 #pragma once
 
 #include <ellipsect/shapes.hpp>
@@ -30,8 +31,19 @@ template <class T> using Work = std::conditional_t<(sizeof(T) < sizeof(double)),
 // The wider type used to re-decide answers that rounding in Work<T> could flip.
 template <class R> using Wide = long double;
 
+// Bodies whose largest radii differ by more than this factor: the larger becomes the ball.
+inline constexpr double sphere_body_size_ratio = 0x1p26;
+
 template <class T, int N>
 bool is_sphere_body(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b) noexcept {
+  // A small body near a large one's boundary is measured in the large one's frame: in the
+  // small one's, the large one's center lies (size ratio) units away and is rounded by eps
+  // times that, beyond the tangency band from a ratio of about 2^26 on (in long double too)
+  // and beyond the small body's own size at 2^52 (two balls of radius ratio 2^154: classify,
+  // overlap and first_contact each answered their own rounding).
+  const T size_a = a.radii().maxCoeff(), size_b = b.radii().maxCoeff();
+  if (size_a > size_b * T(sphere_body_size_ratio)) return true;
+  if (size_b > size_a * T(sphere_body_size_ratio)) return false;
   const T ra = a.radii().maxCoeff() / a.radii().minCoeff();
   const T rb = b.radii().maxCoeff() / b.radii().minCoeff();
   if (ra != rb) return ra < rb;
@@ -76,9 +88,10 @@ R mul_add(R a, R b, R c) noexcept {
 // rotations from the right orthogonalize L's columns, which converge to sigma_i u_i.
 // For L = B diag(b) the relative error of every sigma_i is about eps * cond(B) (Demmel and
 // Veselic 1992); here B = diag(1/a) R0^T R1, so cond(B) is the sphere body's aspect ratio,
-// the smaller of the two by the choice of the sphere body. Sweeps stop when every column
-// pair is orthogonal to working precision (quadratic convergence: 2-4 sweeps in practice);
-// the cap only bounds the loop, as the columns are then orthogonal to rounding anyway.
+// the smaller of the two by the choice of the sphere body (unless their sizes differ by
+// 2^26). Sweeps stop when every column pair is orthogonal to working precision (quadratic
+// convergence: 2-4 sweeps in practice); the cap only bounds the loop, as the columns are
+// then orthogonal to rounding anyway.
 template <class R, int N>
 void left_singular(Mat<R, N> w, Vec<R, N>& sigma, Mat<R, N>& u) noexcept {
   constexpr R eps = std::numeric_limits<R>::epsilon();

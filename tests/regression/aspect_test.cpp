@@ -43,7 +43,7 @@ TEST(Aspect, NeedleBeyondTheSupportedAspectRatioIsRejected) {
 // and distance came back as -0 with status separated. A separated distance is now never
 // negative (clamping moves it towards the true value, within the stated accuracy).
 TEST(Aspect, SeparatedDistanceIsNeverNegative) {
-  const double r = 0x1.6d6d6d6cp+30;
+  const double r = 0x1.6d6d6d6cp+28;
   const auto a = make_ball<double, 3>({0, 0x0.00101p-1022, r}, r);
   const auto b = make_ball<double, 3>({-8, 0, -8}, 8);
   ASSERT_EQ(classify(a, b), Relation::separated);
@@ -55,6 +55,12 @@ TEST(Aspect, SeparatedDistanceIsNeverNegative) {
     const double gap = 64 / (std::hypot(8.0, r + 8) + r + 8);
     EXPECT_NEAR(d.distance, gap, 1e-12 * (r + 8 + gap));
   }
+  // Four times larger (a radius ratio beyond 2^26) the large sphere is the unit ball
+  // (reduce.hpp), and a gap of 2e-8 relative to the small one is 5e-17 of the large one's
+  // radius: inside the band, touching, whatever the rounding of the small one's position.
+  const auto large = make_ball<double, 3>({0, 0x0.00101p-1022, 4 * r}, 4 * r);
+  EXPECT_EQ(classify(large, b), Relation::touching);
+  EXPECT_EQ(distance(large, b).status, DistanceStatus::touching);
 }
 
 }  // namespace

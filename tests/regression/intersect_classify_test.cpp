@@ -3,6 +3,8 @@
 // forms) or from the 50-digit reference in tests/reference.
 #include <ellipsect/batch.hpp>
 #include <ellipsect/classify.hpp>
+#include <ellipsect/contact.hpp>
+#include <ellipsect/distance.hpp>
 #include <ellipsect/intersect2.hpp>
 
 #include "tests/reference/bridge.hpp"
@@ -184,6 +186,56 @@ TEST(IntersectClassify, TouchingSmallEllipseOnHugeBallHasOnePoint) {
       EXPECT_LE(std::abs((x.points[0] - b.center()).stableNorm() - r), 1e-12 * (3 + r)) << r;
     }
   }
+}
+
+// A circle of radius r ~ 1.9e-295 at (r, r) against a circle of radius R ~ 1.7e-19 at
+// (~0, R): the small one sits on the x axis where the large one touches it, inside the large
+// one to within r^2 / R. At this radius ratio (2^916) the lens between the crossings is
+// rounding noise in any frame: overlap_area summed its polygon and segments to -1.8e-94.
+// The area is now bounded to [0, the smaller area] (intersect2.hpp), here pi r^2, which
+// underflows to 0; scaled by 2^k the bound scales exactly.
+TEST(IntersectClassify, OverlapAreaNegativeNear1e294) {
+  const double r = 0x1.dcdcdcdcdcdcdp-979, big = 0x1.8181818p-63;
+  Mat2<double> axes_a, axes_b;
+  axes_a << 1, -r, r, 1;
+  axes_b << 1, -big, big, 1;
+  for (const int k : {0, 600, 900}) {
+    const double s = std::ldexp(1.0, k);
+    const auto a = Ellipse2<double>::from_axes({s * r, s * r}, axes_a, {s * r, s * r});
+    const auto b = Ellipse2<double>::from_axes({s * 0x1.0030303030303p-1007, s * big}, axes_b, {s * big, s * big});
+    const double smaller = pi * (s * r) * (s * r);
+    for (const auto& area : {overlap_area(a, b), overlap_area(b, a)}) {
+      EXPECT_GE(area.area, 0) << k;
+      EXPECT_LE(area.area, smaller) << k;
+      EXPECT_NE(area.relation, Relation::separated) << k;
+    }
+  }
+}
+
+// A ball of radius R ~ 3e47 whose top is at the origin and a ball of radius 8 centered 7
+// below it: the small ball's center is 7 inside the large one and it pokes out by 1, a gap
+// of -15 / R relative to the large ball, within the tangency band. With the small ball as
+// the unit ball (ties of aspect ratio went to the smaller radii) the large one's center was
+// 2^154 units away, rounded by far more than the small one's size: classify (deciding in
+// long double) said separated while overlap (in double) said true and first_contact
+// overlapping_at_start. Ties now go to the larger radii, where the pair is resolved, and
+// every query reports the touching pair.
+TEST(IntersectClassify, OverlapClassifyContactAgreeSmallBallOnHugeBall) {
+  const double r = 0x1.9c9c9c9c9c9c9p+157;
+  Mat3<double> axes_a, axes_b;
+  axes_a << 0x1.f8p-47, 0x1.f4p-47, 0x1.fffffffffffffp-1, 0x1.fffffffffffffp-1, 0x1.f8p-47, -0x1.f4p-47, -0x1.f4p-47,
+      0x1.fffffffffffffp-1, -0x1.fp-47;
+  axes_b = Eigen::Quaterniond(0.9, 0.1, -0.3, 0.2).normalized().toRotationMatrix();
+  const auto a = Ellipsoid3<double>::from_axes({0, 0x1.9c9c9c9c9c9c9p-1011, -r}, axes_a, {r, r, r});
+  const auto b = Ellipsoid3<double>::from_axes({-8, -8, -7}, axes_b, {8, 8, 8});
+  EXPECT_EQ(classify(a, b), Relation::touching);
+  EXPECT_EQ(classify(b, a), Relation::touching);
+  EXPECT_TRUE(overlap(a, b));
+  EXPECT_TRUE(overlap(b, a));
+  EXPECT_EQ(distance(a, b).status, DistanceStatus::touching);
+  const Vec3<double> va(1, 0, 0), vb(0, 0, -0.0625);
+  EXPECT_EQ(first_contact(a, va, b, vb, 1.0).status, ContactStatus::touching_at_start);
+  EXPECT_EQ(first_contact(b, vb, a, va, 1.0).status, ContactStatus::touching_at_start);
 }
 
 }  // namespace
