@@ -96,13 +96,14 @@ Maximum<R> maximize(const Vec<R, N>& e, const Vec<R, N>& k, int max_iterations) 
       m.f_upper = t.f + (t.fp > 0 ? t.fp * (v_hi - m.v) : t.fp * (v_lo - m.v));
       return m;
     }
-    const R step = t.fp / t.fpp;  // negative of the Newton step in v
+    // The Newton step, judged on the smaller weight (the other may not change at all).
+    const R step = t.fp / t.fpp;
     R u = m.u + step, v = m.v - step;
-    if (!(v > v_lo && v < v_hi && u > u_hi && u < u_lo)) {
+    if (!(v <= u ? v > v_lo && v < v_hi : u > u_hi && u < u_lo)) {
       u = (u_lo + u_hi) / 2;
       v = (v_lo + v_hi) / 2;
     }
-    const bool small = std::abs(v - m.v) <= R(4) * eps * std::min(u, v);
+    const bool small = (v <= u ? std::abs(v - m.v) : std::abs(u - m.u)) <= R(4) * eps * std::min(u, v);
     m.u = u;
     m.v = v;
     if (small) {
