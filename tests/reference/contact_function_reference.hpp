@@ -7,8 +7,9 @@
 //   * F(A, B) = max over lambda in [0, 1] of lambda (1 - lambda) r^T C(lambda)^-1 r,
 //     C = (1 - lambda) Ma^-1 + lambda Mb^-1, by golden-section search on the defining formula
 //     in the WORLD frame (C factored by LDL^T at each point). F is strictly concave, so the
-//     search keeps the maximizer bracketed; it stops at a bracket of 1e-32, so lambda is good
-//     to about 1e-32 and F (flat at its maximum) to rounding.
+//     search keeps the maximizer bracketed; it stops at a bracket of 1e-32. It compares
+//     values of F, which is flat at its maximum, so lambda is good to about the square root
+//     of Real's precision (measured: 4e-26) and F to rounding.
 //   * the distance of closest approach sigma along a unit direction u: b's center at
 //     ca + t u, and h(t) = -1 while ca lies in b, else (min over b's boundary of sqrt(q_a)) - 1,
 //     the gauge of a at b's nearest point (reference.hpp's extrema of a quadratic on the sphere:
@@ -26,7 +27,7 @@ namespace ellipsect::reference {
 
 template <int N> struct ContactFunctionRef {
   Real f;       // F(A, B) (0 when the centers coincide)
-  Real lambda;  // its maximizer, to about 1e-32
+  Real lambda;  // its maximizer, to about 1e-25
 };
 
 template <int N> ContactFunctionRef<N> contact_function(const Body<N>& a, const Body<N>& b) {
