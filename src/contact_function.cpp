@@ -143,14 +143,13 @@ T directed(R x, bool up) noexcept {
   return y;
 }
 
-// The pair in query order (detail::order_pair): the sphere body s, the other body o.
+// The pair in query order (detail::order_pair): the sphere body s, the other body o, and
+// r = center(o) - center(s) as a unit direction and its length.
 template <class R, class T, int N>
 ContactFunction<T> contact_function(const Ellipsoid<T, N>& s, const Ellipsoid<T, N>& o, bool a_is_s,
-                                    const Options& options) noexcept {
+                                    const Vec<R, N>& direction, R norm, const Options& options) noexcept {
   ContactFunction<T> out;
-  const Vec<R, N> r = o.center().template cast<R>() - s.center().template cast<R>();
-  const R norm = detail::stable_norm<R, N>(r);
-  const Solved<R, N> sol = solve<R>(s, o, detail::unit_vector<R, N>(r), options);
+  const Solved<R, N> sol = solve<R>(s, o, direction, options);
   const Maximum<R>& m = sol.max;
   const R f = norm * (norm * m.f);
   out.iterations = m.iterations;
@@ -213,12 +212,34 @@ ContactFunction<T> perram_wertheim(const Ellipsoid<T, N>& a, const Ellipsoid<T, 
     out.lambda = std::numeric_limits<T>::quiet_NaN();
     return out;
   }
+  using W = detail::Wide<R>;
   const auto [s, o, a_is_s] = detail::order_pair(a, b);
+  auto difference = [](const auto& x, const auto& y, auto type) {
+    using S = decltype(type);
+    return Vec<S, N>(y.center().template cast<S>() - x.center().template cast<S>());
+  };
   const detail::Scale scale = detail::scale_of(a, b);
-  if (scale.range == detail::Range::wide) return contact_function<detail::Wide<R>>(s, o, a_is_s, options);
-  if (scale.range == detail::Range::native) return contact_function<R>(s, o, a_is_s, options);
+  if (scale.range == detail::Range::wide) {
+    const Vec<W, N> r = difference(s, o, W());
+    return contact_function<W>(s, o, a_is_s, detail::unit_vector<W, N>(r), detail::stable_norm<W, N>(r), options);
+  }
+  if (scale.range == detail::Range::native) {
+    const Vec<R, N> r = difference(s, o, R());
+    return contact_function<R>(s, o, a_is_s, detail::unit_vector<R, N>(r), detail::stable_norm<R, N>(r), options);
+  }
+  // Rescaled: the same arithmetic as at the native scale (answers equal bit for bit), unless
+  // the rescaled centers are too close to keep the direction's digits (r subnormal or zero);
+  // then r comes from the given centers in long double.
   const int e = scale.exponent;
-  return contact_function<R>(detail::scaled(s, -e), detail::scaled(o, -e), a_is_s, options);
+  const Ellipsoid<T, N> s2 = detail::scaled(s, -e), o2 = detail::scaled(o, -e);
+  Vec<R, N> r = difference(s2, o2, R());
+  R norm = detail::stable_norm<R, N>(r);
+  if (!(norm >= std::numeric_limits<R>::min())) {
+    const Vec<W, N> wide = difference(s, o, W());
+    r = detail::unit_vector<W, N>(wide).template cast<R>();
+    norm = R(std::ldexp(detail::stable_norm<W, N>(wide), -e));
+  }
+  return contact_function<R>(s2, o2, a_is_s, detail::unit_vector<R, N>(r), norm, options);
 }
 
 template <class T, int N>

@@ -115,6 +115,20 @@ TEST(PerramWertheim, ExtremeWeights) {
   }
 }
 
+// Centers far closer than the bodies' size: F underflows to 0 but the direction, and with it
+// lambda, is kept (a subnormal offset of unit balls; balls of radius 1e300 whose centers are
+// 1e-300 apart, which rescaling to unit size would merge).
+TEST(PerramWertheim, TinyOffsets) {
+  for (const double radius : {1.0, 1e300}) {
+    const double offset = radius == 1.0 ? 5e-324 : 1e-300;
+    const auto a = make_ball<double, 2>({0, 0}, radius), b = make_ball<double, 2>({0, offset}, 3 * radius);
+    const auto f = perram_wertheim(a, b);
+    ASSERT_EQ(f.status, ContactFunctionStatus::ok);
+    EXPECT_EQ(f.f, 0.0);
+    EXPECT_NEAR(f.lambda, 0.25, 1e-15);
+  }
+}
+
 // Options::max_iterations reached: the status says so and the bounds hold the 50-digit value.
 TEST(PerramWertheim, DidNotConvergeGivesBounds) {
   const auto a = make_ellipsoid<double>({0, 0, 0}, Quat<double>(0.8, 0.6, 0, 0), {3, 0.2, 1});
