@@ -42,13 +42,13 @@ struct Maximum {
   bool converged = false;
 };
 
-template <class R, int N>
+template <class R>
 struct Terms {
   R f, fp, fpp, rounding;  // F, F', F'' and the rounding of F'
 };
 
 template <class R, int N>
-Terms<R, N> terms(const Vec<R, N>& e2, const Vec<R, N>& k2, R u, R v) noexcept {
+Terms<R> terms(const Vec<R, N>& e2, const Vec<R, N>& k2, R u, R v) noexcept {
   R s = 0, qs = 0, qo = 0, c = 0;
   for (int i = 0; i < N; ++i) {
     const R inv = R(1) / (u + v * e2[i]);
@@ -77,7 +77,7 @@ Maximum<R> maximize(const Vec<R, N>& e, const Vec<R, N>& k, int max_iterations) 
   m.v = rho_s / (rho_s + rho_o);
   R u_lo = 1, v_lo = 0, u_hi = 0, v_hi = 1;  // F' > 0 at v_lo, < 0 at v_hi
   for (;;) {
-    const Terms<R, N> t = terms<R, N>(e2, k2, m.u, m.v);
+    const Terms<R> t = terms<R, N>(e2, k2, m.u, m.v);
     m.f = t.f;
     ++m.iterations;
     if (t.fp > 0) {
