@@ -1,4 +1,5 @@
-// ns per query of overlap, classify and first_contact, 2D and 3D, on the seeded scenario
+// ns per query of overlap, classify, first_contact, perram_wertheim and closest_approach
+// (along a fixed direction), 2D and 3D, on the seeded scenario
 // mix of the tests (scenarios/scenarios.hpp): every category in equal parts, or one
 // category alone (the /category argument is its index in all_categories; -1 = the mix).
 // Cases are cycled in a fixed order so every run times the same work; see
@@ -58,6 +59,19 @@ void BM_first_contact(benchmark::State& state) {
   label(state);
 }
 
+template <int N>
+void BM_perram_wertheim(benchmark::State& state) {
+  bench::time_cases(state, cases<N>(static_cast<int>(state.range(0))), [](const auto& c) { return perram_wertheim(c.a, c.b); });
+  label(state);
+}
+
+template <int N>
+void BM_closest_approach(benchmark::State& state) {
+  const Vec<double, N> u = Vec<double, N>::LinSpaced(1.0, 0.3);
+  bench::time_cases(state, cases<N>(static_cast<int>(state.range(0))), [&](const auto& c) { return closest_approach(c.a, c.b, u); });
+  label(state);
+}
+
 void categories(benchmark::internal::Benchmark* b) {
   b->Arg(-1);
   for (int i = 0; i < static_cast<int>(scenarios::all_categories.size()); ++i) b->Arg(i);
@@ -69,6 +83,10 @@ BENCHMARK(BM_classify<2>)->Apply(categories);
 BENCHMARK(BM_classify<3>)->Apply(categories);
 BENCHMARK(BM_first_contact<2>)->Apply(categories);
 BENCHMARK(BM_first_contact<3>)->Apply(categories);
+BENCHMARK(BM_perram_wertheim<2>)->Apply(categories);
+BENCHMARK(BM_perram_wertheim<3>)->Apply(categories);
+BENCHMARK(BM_closest_approach<2>)->Apply(categories);
+BENCHMARK(BM_closest_approach<3>)->Apply(categories);
 
 }  // namespace
 

@@ -13,12 +13,19 @@
 //               the same status, time and point (normal negated) with a and b swapped; hit:
 //               time finite in (0, t_max], finite point, unit normal; touching_at_start:
 //               time 0; the start state agrees with classify away from the tangency band;
+//   contact function  perram_wertheim: concentric exactly for equal centers (F = 0, lambda
+//               NaN), else F >= 0 (not NaN), lambda in [0, 1]; swapping a and b gives the same F
+//               bit for bit; F > 1 + 1e-6: classify says separated, F < 1 - 1e-6: an
+//               overlapping relation; closest_approach along va: InputError("direction") exactly
+//               for a zero or non-finite va, else a finite positive distance, a finite point
+//               and a unit normal, and the same distance for (b, a, -va) bit for bit;
 //   batch       overlap, classify and first_contact equal the scalar answers bit for bit.
 #include "fuzz_support.hpp"
 
 #include <ellipsect/batch.hpp>
 #include <ellipsect/classify.hpp>
 #include <ellipsect/contact.hpp>
+#include <ellipsect/contact_function.hpp>
 #include <ellipsect/distance.hpp>
 
 #include <cstdlib>
@@ -113,6 +120,35 @@ void check_contact(const Ellipsoid<T, N>& a, const Vec<T, N>& va, const Ellipsoi
 }
 
 template <class T, int N>
+void check_contact_function(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b, const Vec<T, N>& u, Relation rel) {
+  const ContactFunction<T> f = perram_wertheim(a, b), s = perram_wertheim(b, a);
+  if (a.center() == b.center()) {
+    FUZZ_CHECK(f.status == ContactFunctionStatus::concentric && f.f == 0 && std::isnan(f.lambda),
+               << "perram_wertheim on equal centers: " << to_string(f.status) << " " << hex(f.f));
+  } else if (f.status == ContactFunctionStatus::ok) {
+    FUZZ_CHECK(f.f >= 0 && f.lambda >= 0 && f.lambda <= 1, << "perram_wertheim " << hex(f.f) << " " << hex(f.lambda));
+    FUZZ_CHECK(s.status == f.status && same_bits(s.f, f.f),
+               << "perram_wertheim (a, b) " << hex(f.f) << ", (b, a) " << to_string(s.status) << " " << hex(s.f));
+    if (std::abs(f.f - 1) > T(1e-6))
+      FUZZ_CHECK((f.f > 1) == (rel == Relation::separated) && rel != Relation::touching,
+                 << "perram_wertheim F " << hex(f.f) << ", classify " << to_string(rel));
+  }
+  const bool valid = all_finite(u) && !u.isZero(0);
+  try {
+    const ClosestApproach<T, N> c = closest_approach(a, b, u);
+    FUZZ_CHECK(valid, << "closest_approach accepted the direction " << hex(u));
+    if (c.status != ContactFunctionStatus::ok) return;  // a reported status
+    FUZZ_CHECK(std::isfinite(c.distance) && c.distance > 0 && all_finite(c.point) && unit(c.normal),
+               << "closest_approach " << hex(c.distance) << " point " << hex(c.point) << " normal " << hex(c.normal));
+    const ClosestApproach<T, N> r = closest_approach(b, a, Vec<T, N>(-u));
+    FUZZ_CHECK(r.status != ContactFunctionStatus::ok || same_bits(r.distance, c.distance),
+               << "closest_approach (a, b, u) " << hex(c.distance) << ", (b, a, -u) " << hex(r.distance));
+  } catch (const InputError& e) {
+    FUZZ_CHECK(!valid && e.field() == "direction", << "closest_approach threw " << e.what());
+  }
+}
+
+template <class T, int N>
 void check_batch(const std::vector<Ellipsoid<T, N>>& as, const std::vector<Ellipsoid<T, N>>& bs,
                  const std::vector<Vec<T, N>>& vas, const std::vector<Vec<T, N>>& vbs, const std::vector<T>& t_maxes) {
   Pairs<T, N> pairs;
@@ -166,6 +202,7 @@ void run(Bytes& in) {
         !(same_bits(a->center(), b->center()) && same_bits(a->radii(), b->radii()) && same_bits(a->axes(), b->axes()));
     check_distance<T, N>(*a, *b, rel, distinct);
     check_contact<T, N>(*a, va, *b, vb, t_max, rel, rel_wide);
+    check_contact_function<T, N>(*a, *b, va, rel);
     as.push_back(*a);
     bs.push_back(*b);
     vas.push_back(va);

@@ -5,6 +5,7 @@
 #include <ellipsect/broad_phase.hpp>
 #include <ellipsect/classify.hpp>
 #include <ellipsect/contact.hpp>
+#include <ellipsect/contact_function.hpp>
 #include <ellipsect/distance.hpp>
 #include <ellipsect/intersect2.hpp>
 #include <ellipsect/options.hpp>

@@ -2,7 +2,8 @@
 
 Bindings of the C++ library ellipsect (docs/python.md). Scalar bodies (Ellipse,
 Ellipsoid) and batches from numpy arrays (Ellipses, Ellipsoids) go to the same functions:
-classify, overlap, first_contact, distance, signed_distance, closest_point, and in 2D
+classify, overlap, first_contact, distance, signed_distance, closest_point (and, scalar
+only, perram_wertheim and closest_approach), and in 2D
 intersect_boundaries, overlap_area, iou and Niemitalo's tests. Every number comes from the
 library; batch answers equal the scalar ones bit for bit. Pictures: ellipsect.plot;
 Dask: ellipsect.dask.
@@ -12,11 +13,15 @@ from ._ellipsect import (  # noqa: F401
     BoundaryIntersection,
     BoundaryStatus,
     Circle,
+    ClosestApproach2,
+    ClosestApproach3,
     ClosestPoint2,
     ClosestPoint3,
     Contact2,
     Contact3,
     ContactArrays,
+    ContactFunction,
+    ContactFunctionStatus,
     ContactStatus,
     CrossingKind,
     Distance2,
@@ -41,6 +46,7 @@ from ._ellipsect import (  # noqa: F401
     Verdict,
     circle_cover_overlap,
     classify,
+    closest_approach,
     closest_point,
     closest_point_closed_form,
     closest_point_quartic,
@@ -53,6 +59,7 @@ from ._ellipsect import (  # noqa: F401
     overlap_area,
     overlapping_pairs,
     pairs,
+    perram_wertheim,
     polygonal_overlap,
     segment_circle,
     signed_distance,

@@ -105,6 +105,19 @@ void def_results(py::module_& m, const char* suffix) {
   py::class_<P>(m, ("ClosestPoint" + s).c_str(), "closest_point's answer (see point.hpp).")
       .def_property_readonly("point", [](const P& p) { return to_array<N>(p.point); })
       .def_property_readonly("signed_distance", [](const P& p) { return p.signed_distance; });
+  using A = ClosestApproach<double, N>;
+  py::class_<A>(m, ("ClosestApproach" + s).c_str(), "closest_approach's answer (see contact_function.hpp).")
+      .def_property_readonly("status", [](const A& a) { return a.status; })
+      .def_property_readonly("distance", [](const A& a) { return a.distance; })
+      .def_property_readonly("distance_lower", [](const A& a) { return a.distance_lower; })
+      .def_property_readonly("point", [](const A& a) { return to_array<N>(a.point); })
+      .def_property_readonly("normal", [](const A& a) { return to_array<N>(a.normal); }, "Unit, from a towards b.")
+      .def_property_readonly("lambda_", [](const A& a) { return a.lambda; })
+      .def_property_readonly("iterations", [](const A& a) { return a.iterations; })
+      .def("__repr__", [](const A& a) {
+        return "ClosestApproach(status=" + std::string(to_string(a.status)) + ", distance=" + std::to_string(a.distance) +
+               ")";
+      });
 }
 
 // The scalar queries of both dimensions.
@@ -127,6 +140,13 @@ void def_queries(py::module_& m) {
         py::arg("a"), py::arg("b"), py::arg("options") = Options{});
   m.def("closest_point", [](const E& body, const Row<N>& x) { return closest_point(body, vec<N>(x)); },
         py::arg("body"), py::arg("x"));
+  m.def("perram_wertheim", py::overload_cast<const E&, const E&, const Options&>(&perram_wertheim<double, N>),
+        py::arg("a"), py::arg("b"), py::arg("options") = Options{});
+  m.def("closest_approach",
+        [](const E& a, const E& b, const Row<N>& direction, const Options& o) {
+          return closest_approach(a, b, vec<N>(direction), o);
+        },
+        py::arg("a"), py::arg("b"), py::arg("direction"), py::arg("options") = Options{});
 }
 
 void def_two_d(py::module_& m) {
@@ -229,6 +249,10 @@ void def_enums(py::module_& m) {
                      {"undecided", Verdict::undecided},
                      {"invalid_input", Verdict::invalid_input}});
   def_enum<Side>(m, "Side", {{"left", Side::left}, {"on_line", Side::on_line}, {"right", Side::right}});
+  def_enum<ContactFunctionStatus>(m, "ContactFunctionStatus",
+                                  {{"ok", ContactFunctionStatus::ok},
+                                   {"concentric", ContactFunctionStatus::concentric},
+                                   {"did_not_converge", ContactFunctionStatus::did_not_converge}});
   def_enum<QuarticStatus>(m, "QuarticStatus",
                           {{"outside", QuarticStatus::outside},
                            {"inside", QuarticStatus::inside},
@@ -272,6 +296,16 @@ void def_scalar(py::module_& m) {
                 "Ellipsoid rotated by a unit quaternion (w, x, y, z), or with axes the columns of `rotation`.");
   def_body<3>(ellipsoid);
 
+  using F = ContactFunction<double>;
+  py::class_<F>(m, "ContactFunction", "perram_wertheim's answer (see contact_function.hpp).")
+      .def_property_readonly("status", [](const F& f) { return f.status; })
+      .def_property_readonly("f", [](const F& f) { return f.f; })
+      .def_property_readonly("f_upper", [](const F& f) { return f.f_upper; })
+      .def_property_readonly("lambda_", [](const F& f) { return f.lambda; }, "The maximizing lambda (weight of b).")
+      .def_property_readonly("iterations", [](const F& f) { return f.iterations; })
+      .def("__repr__", [](const F& f) {
+        return "ContactFunction(status=" + std::string(to_string(f.status)) + ", f=" + std::to_string(f.f) + ")";
+      });
   def_results<2>(m, "2");
   def_results<3>(m, "3");
   def_queries<2>(m);

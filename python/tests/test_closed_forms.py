@@ -127,3 +127,39 @@ def test_niemitalo_on_circles():
     for radius, verdict in ((0.7, ellipsect.Verdict.no_collision), (0.8, ellipsect.Verdict.collision)):
         s = ellipsect.segment_circle([0.0, 0.0], [10.0, 0.0], ellipsect.Circle([5.0, h], radius))
         assert s.verdict == verdict and s.side == ellipsect.Side.left
+
+
+@pytest.mark.parametrize("dim", [2, 3])
+def test_balls_perram_wertheim(dim):
+    # Two balls: F = |r|^2 / (ra + rb)^2 at lambda = ra / (ra + rb); swapping gives 1 - lambda.
+    kind = ellipsect.Ellipse if dim == 2 else ellipsect.Ellipsoid
+    for _ in range(100):
+        ca, cb = rng.uniform(-5, 5, dim), rng.uniform(-5, 5, dim)
+        ra, rb = rng.uniform(0.1, 4, 2)
+        a, b = kind.ball(ca, ra), kind.ball(cb, rb)
+        exact = mpf_norm(cb - ca) ** 2 / (mp.mpf(float(ra)) + mp.mpf(float(rb))) ** 2
+        f = ellipsect.perram_wertheim(a, b)
+        assert f.status == ellipsect.ContactFunctionStatus.ok and f.f == f.f_upper
+        assert abs(f.f - exact) <= 1e-14 * exact
+        assert f.lambda_ == pytest.approx(ra / (ra + rb), rel=1e-14)
+        assert ellipsect.perram_wertheim(b, a).lambda_ == pytest.approx(1 - f.lambda_, abs=1e-15)
+    same = ellipsect.perram_wertheim(kind.ball(ca, 1), kind.ball(ca, 2))
+    assert same.status == ellipsect.ContactFunctionStatus.concentric and same.f == 0 and np.isnan(same.lambda_)
+
+
+@pytest.mark.parametrize("dim", [2, 3])
+def test_axis_aligned_closest_approach(dim):
+    # Axis-aligned bodies along x: they touch when the centers are a_x + b_x apart, at
+    # a's vertex, with normal x; any length of the direction; zero and NaN are rejected.
+    kind = ellipsect.Ellipse if dim == 2 else ellipsect.Ellipsoid
+    ra, rb = rng.uniform(0.1, 4, dim), rng.uniform(0.1, 4, dim)
+    a, b = kind(np.zeros(dim), ra), kind(rng.uniform(-5, 5, dim), rb)
+    u = np.zeros(dim)
+    u[0] = 7.5
+    s = ellipsect.closest_approach(a, b, u)
+    assert s.status == ellipsect.ContactFunctionStatus.ok and s.distance == s.distance_lower
+    assert abs(s.distance - (mp.mpf(float(ra[0])) + mp.mpf(float(rb[0])))) <= 1e-14 * (ra[0] + rb[0])
+    assert np.allclose(s.point, np.eye(dim)[0] * ra[0], atol=1e-14) and np.allclose(s.normal, np.eye(dim)[0])
+    for bad in (np.zeros(dim), np.full(dim, np.nan)):
+        with pytest.raises(ValueError, match="direction"):
+            ellipsect.closest_approach(a, b, bad)

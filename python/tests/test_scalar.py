@@ -32,7 +32,8 @@ def test_bodies_and_their_fields():
 
 def test_enums_are_int_enums():
     for kind in (ellipsect.Relation, ellipsect.ContactStatus, ellipsect.DistanceStatus, ellipsect.Verdict,
-                 ellipsect.Side, ellipsect.QuarticStatus, ellipsect.CrossingKind, ellipsect.BoundaryStatus):
+                 ellipsect.Side, ellipsect.QuarticStatus, ellipsect.CrossingKind, ellipsect.BoundaryStatus,
+                 ellipsect.ContactFunctionStatus):
         assert issubclass(kind, enum.IntEnum) and kind.__module__ == "ellipsect"
         assert pickle.loads(pickle.dumps(list(kind))) == list(kind)
     assert [r.name for r in ellipsect.Relation] == ["separated", "touching", "overlapping", "a_contains_b",

@@ -100,6 +100,20 @@ void distances() {
         "QuarticPoint<double>");
 }
 
+void contact_functions() {
+  // Balls of radii 1 and 2, centers 6 apart along z: F = (6 / 3)^2 at lambda = 1 / 3; along x
+  // they touch 3 apart, at (1, 0, 0) (float: (1, 0), normal (1, 0)).
+  const auto f = perram_wertheim(make_ball<double, 3>({0, 0, 0}, 1), make_ball<double, 3>({0, 0, 6}, 2));
+  check(f.status == ContactFunctionStatus::ok && std::abs(f.f - 4) <= 1e-14 && f.f_upper == f.f &&
+            std::abs(f.lambda - 1.0 / 3) <= 1e-15 && f.iterations > 0,
+        "ContactFunction<double>");
+  const auto s = closest_approach(make_ball<float, 2>({0, 0}, 1), make_ball<float, 2>({0, 5}, 2), Eigen::Vector2f(2, 0));
+  check(s.status == ContactFunctionStatus::ok && std::abs(s.distance - 3) <= 1e-6f && s.distance_lower == s.distance &&
+            near(s.point, Eigen::Vector2f(1, 0), 1e-6) && near(s.normal, Eigen::Vector2f(1, 0), 1e-6) &&
+            std::abs(s.lambda - 1.0f / 3) <= 1e-6f && s.iterations > 0,
+        "ClosestApproach<float, 2>");
+}
+
 void plane() {
   // Unit circles with centers 1 apart cross at (1/2, -+sqrt(3)/2); the lens between them
   // has area 2 pi / 3 - sqrt(3) / 2.
@@ -140,6 +154,7 @@ int main() {
   bodies();
   contacts();
   distances();
+  contact_functions();
   plane();
   arrays();
   std::printf("abi %s: %s (sizeof Ellipse2<double> %zu, Contact<double, 3> %zu)\n", ABI_VARIANT,

@@ -7,6 +7,7 @@
 #include <ellipsect/batch.hpp>
 #include <ellipsect/classify.hpp>
 #include <ellipsect/contact.hpp>
+#include <ellipsect/contact_function.hpp>
 #include <ellipsect/distance.hpp>
 #include <ellipsect/intersect2.hpp>
 #include <ellipsect/point.hpp>
@@ -106,6 +107,9 @@ void check_scales(int per_category) {
       const auto dist = distance(c.a, c.b);
       const auto signed_dist = signed_distance(c.a, c.b);
       const auto point = closest_point(c.a, c.b.center());
+      const auto pw = perram_wertheim(c.a, c.b);
+      const Vec<double, N> dir = Vec<double, N>::LinSpaced(1.0, 0.3) + 1e-3 * c.vb;  // not scaled: a direction
+      const auto approach = closest_approach(c.a, c.b, dir);
       for (const int k : exponents) {
         std::optional<Ellipsoid<double, N>> a, b;
         Vec<double, N> va, vb;
@@ -123,6 +127,15 @@ void check_scales(int per_category) {
         const auto p = closest_point(*a, b->center());
         expect_scaled<N>(p.point, point.point, k, what + " closest_point");
         expect_scaled(p.signed_distance, point.signed_distance, k, what + " closest_point");
+        const auto pw_k = perram_wertheim(*a, *b);
+        ASSERT_EQ(pw_k.status, pw.status) << what;
+        expect_scaled(pw_k.f, pw.f, 0, what + " perram_wertheim");
+        expect_scaled(pw_k.lambda, pw.lambda, 0, what + " perram_wertheim");
+        const auto approach_k = closest_approach(*a, *b, dir);
+        ASSERT_EQ(approach_k.status, approach.status) << what;
+        expect_scaled(approach_k.distance, approach.distance, k, what + " closest_approach");
+        expect_scaled<N>(approach_k.point, approach.point, k, what + " closest_approach");
+        expect_same<N>(approach_k.normal, approach.normal, what + " closest_approach");
         if constexpr (N == 2) {
           const auto x = intersect_boundaries(c.a, c.b), xs = intersect_boundaries(*a, *b);
           ASSERT_EQ(xs.status, x.status) << what;

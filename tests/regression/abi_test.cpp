@@ -57,6 +57,8 @@ TEST(Abi, LayoutFollowedTheConsumersFlags) {
     EXPECT_EQ(sizeof(Contact<double, 3>), 72u);
     EXPECT_EQ(sizeof(Distance<double, 3>), 96u);  // status, pad, distance, 3 vectors, iterations, pad
     EXPECT_EQ(sizeof(ClosestPoint<double, 3>), 32u);
+    EXPECT_EQ(sizeof(ContactFunction<double>), 40u);       // status, pad, f, f_upper, lambda, iterations, pad
+    EXPECT_EQ(sizeof(ClosestApproach<double, 3>), 88u);  // status, pad, 2 distances, 2 vectors, lambda, iterations, pad
     EXPECT_EQ(sizeof(BoundaryIntersection<double>), 88u);  // status, count, 8 doubles, 4 kinds
     EXPECT_EQ(sizeof(QuarticPoint<float>), 16u);
   }
