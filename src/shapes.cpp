@@ -18,8 +18,9 @@ namespace {
 
 using detail::show;
 
-// The checks run on every factory call and build no string while the input is good: a
-// failure calls one of these out-of-line functions, which name the field and quote the value.
+// The ordered checks (the factories' path for input their good path rejects; from_quadric's
+// and translated's only path) build no string while the input is good: a failure calls one
+// of these out-of-line functions, which name the field and quote the value.
 template <class T>
 [[noreturn, gnu::cold, gnu::noinline]] void throw_not_finite(const std::string& field, T value) {
   throw InputError(field, "must be finite (got " + show(value) + ")");
@@ -87,7 +88,7 @@ template <class T>
                    "columns must be orthonormal (max |axes^T axes - I| = " + show(dev) + " > " + show(tolerance) + ")");
 }
 
-// max |axes^T axes - I| (NaN or inf for non-finite axes).
+// max |axes^T axes - I|.
 template <class T, int N>
 T orthonormality_deviation(const Mat<T, N>& axes) {
   return (axes.transpose() * axes - Mat<T, N>::Identity()).cwiseAbs().maxCoeff();
@@ -145,7 +146,6 @@ template <class T, int N>
   if (dev <= T(4 * N) * std::numeric_limits<T>::epsilon()) return axes;
   return orthonormalized<T, N>(axes);
 }
-
 
 // The body (center, axes(), radii) from from_axes' checks.
 template <class T, int N, class Axes>
