@@ -7,10 +7,11 @@
 // Every factory validates its input once and throws InputError naming the offending
 // field; a constructed Ellipsoid is always valid, so queries on it are noexcept. Validation
 // costs a few comparisons and a Gram matrix (axes^T axes, to check orthonormality), with
-// no allocation or string work unless the input is rejected: about 5 ns for make_ball and
-// 10 ns for the rotation-matrix factory in 3D; a quaternion adds its norm, a division and
-// the matrix, an angle its sine and cosine (bench/RESULTS.md). The factories over arrays
-// (make_ellipsoids, ...) do the same per row, naming the first bad row.
+// no allocation or string work unless the input is rejected: about 5 ns for make_ball, 7 ns
+// for an ellipse from axes, 10-15 ns for an ellipsoid from a rotation matrix; a quaternion
+// adds its norm, the division by it and the matrix (about 25 ns in all), an angle its sine
+// and cosine (about 20 ns; bench/RESULTS.md). The factories over arrays (make_ellipsoids,
+// ...) do the same per row, naming the first bad row.
 //
 // ABI. The public types are laid out the same whatever the compiler flags (-march, -m...)
 // and Eigen settings (EIGEN_MAX_STATIC_ALIGN_BYTES, EIGEN_DONT_ALIGN) of the program that
