@@ -22,6 +22,14 @@
 //                             (bench/peers.hpp); ccd_t as CCD_INIT leaves it: max_iterations
 //                             (unsigned long)-1, epa_tolerance 1e-4, mpr_tolerance 1e-4,
 //                             dist_tolerance 1e-6, first_dir ccdFirstDirDefault
+// BM_overlap3_from_pose/*  the same pairs built inside the timed query from their poses
+//                          (bench_support.hpp: center, unit quaternion, radii), as a
+//                          simulation step rebuilding its bodies would:
+//   ellipsect                 overlap(make_ellipsoid(pose a), make_ellipsoid(pose b))
+//   fcl_collide, fcl_collide_indep  fcl::Ellipsoidd shapes and Transform3d poses (rotation
+//                             from the quaternion) built, then fcl::collide on geometries and
+//                             transforms, with the requests above
+//   ccd_gjk, ccd_mpr          the bodies' rotation matrices from the quaternions, then as above
 // BM_classify3/*, BM_classify2/*
 //   ellipsect scalar, batch 1 thread, batch all cores (no peer classifies)
 // BM_first_contact3/*
@@ -291,6 +299,20 @@ void overlap_scalar(benchmark::State& state, int k) {
               [](const scenarios::Case<3>& c) { return overlap(c.a, c.b); });
 }
 
+// Pose pairs of category k's 3D cases.
+const std::vector<std::pair<bench::Pose3, bench::Pose3>>& poses(int k) {
+  static std::map<int, std::vector<std::pair<bench::Pose3, bench::Pose3>>> cache;
+  auto& out = cache[k];
+  if (out.empty())
+    for (const auto& c : cases<3>(k).list) out.emplace_back(bench::pose_of(c.a), bench::pose_of(c.b));
+  return out;
+}
+
+void overlap_from_pose(benchmark::State& state, int k) {
+  run_queries(state, static_truth<3>(k).overlap, poses(k),
+              [](const auto& p) { return overlap(bench::body_of(p.first), bench::body_of(p.second)); });
+}
+
 void overlap_batch(benchmark::State& state, int k, int threads) {
   run_batch<bool>(state, static_truth<3>(k).overlap, cases<3>(k).pairs, threads, batch_overlap);
 }
@@ -371,6 +393,17 @@ void fcl_overlap(benchmark::State& state, int k, fcl::GJKSolverType solver) {
   });
 }
 
+void fcl_overlap_from_pose(benchmark::State& state, int k, fcl::GJKSolverType solver) {
+  fcl::CollisionRequestd request;
+  request.gjk_solver_type = solver;
+  run_queries(state, static_truth<3>(k).overlap, poses(k), [&request](const auto& p) {
+    const fcl::Ellipsoidd a = bench::fcl_shape(p.first), b = bench::fcl_shape(p.second);
+    fcl::CollisionResultd result;
+    fcl::collide(&a, bench::fcl_pose(p.first), &b, bench::fcl_pose(p.second), request, result);
+    return result.isCollision();
+  });
+}
+
 struct FclMotion {
   std::shared_ptr<fcl::Ellipsoidd> a, b;
   fcl::Transform3d a0, a1, b0, b1;  // poses at t = 0 and t = window
@@ -425,6 +458,17 @@ void ccd_overlap(benchmark::State& state, int k, CcdIntersect method) {
   run_queries(state, static_truth<3>(k).overlap, items,
               [&](const CcdPair& b) { return method(&b.first, &b.second, &ccd) == 1; });
 }
+
+void ccd_overlap_from_pose(benchmark::State& state, int k, CcdIntersect method) {
+  ccd_t ccd;
+  CCD_INIT(&ccd);
+  ccd.support1 = ccd.support2 = bench::ccd_support;
+  ccd.center1 = ccd.center2 = bench::ccd_center;
+  run_queries(state, static_truth<3>(k).overlap, poses(k), [&](const auto& p) {
+    const bench::CcdBody a = bench::ccd_body(p.first), b = bench::ccd_body(p.second);
+    return method(&a, &b, &ccd) == 1;
+  });
+}
 #endif
 
 // ---- registration -----------------------------------------------------------------------
@@ -459,6 +503,18 @@ void register_all() {
 #ifdef ELLIPSECT_HAVE_CCD
     add("BM_overlap3/ccd_gjk" + cat, ccd_overlap, k, &ccdGJKIntersect);
     add("BM_overlap3/ccd_mpr" + cat, ccd_overlap, k, &ccdMPRIntersect);
+#endif
+  }
+  for (int k = 0; k < n; ++k) {
+    const std::string cat = "/" + category_name(k);
+    add("BM_overlap3_from_pose/ellipsect" + cat, overlap_from_pose, k);
+#ifdef ELLIPSECT_HAVE_FCL
+    add("BM_overlap3_from_pose/fcl_collide" + cat, fcl_overlap_from_pose, k, fcl::GST_LIBCCD);
+    add("BM_overlap3_from_pose/fcl_collide_indep" + cat, fcl_overlap_from_pose, k, fcl::GST_INDEP);
+#endif
+#ifdef ELLIPSECT_HAVE_CCD
+    add("BM_overlap3_from_pose/ccd_gjk" + cat, ccd_overlap_from_pose, k, &ccdGJKIntersect);
+    add("BM_overlap3_from_pose/ccd_mpr" + cat, ccd_overlap_from_pose, k, &ccdMPRIntersect);
 #endif
   }
   add_classify<3>(n);

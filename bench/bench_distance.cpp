@@ -8,6 +8,10 @@
 //   penetration/*       overlapping pairs: ellipsect::signed_distance, fcl::distance with
 //                       enable_signed_distance, ccdGJKPenetration, ccdMPRPenetration
 //   intersect2/*, area2/*  ellipsect only (no peer computes them)
+//   */from_pose/*       the same, both bodies built inside the timed query from their poses
+//                       (bench_support.hpp: center, unit quaternion, radii): make_ellipsoid;
+//                       FCL's fcl::Ellipsoidd and Transform3d, then fcl::distance on
+//                       geometries and transforms; libccd's rotation matrices
 //
 // Counters: median_ns, the median over pairs of the time of one query (bench_support.hpp;
 // Google Benchmark's time is the mean while cycling through the pairs); max_err and
@@ -112,6 +116,22 @@ void ellipsect_distance(benchmark::State& state, int category, Set set) {
   });
 }
 
+template <class Query>
+void run_from_pose(benchmark::State& state, int category, Set set, Query query) {
+  const auto& ps = pairs<3>(category, set);
+  std::vector<std::pair<bench::Pose3, bench::Pose3>> poses;
+  for (const auto& p : ps) poses.emplace_back(bench::pose_of(p.c.a), bench::pose_of(p.c.b));
+  run<3>(state, ps, poses, query);
+}
+
+void ellipsect_distance_from_pose(benchmark::State& state, int category, Set set) {
+  run_from_pose(state, category, set, [set](const std::pair<bench::Pose3, bench::Pose3>& p) {
+    const auto a = bench::body_of(p.first), b = bench::body_of(p.second);
+    const auto d = set == Set::separated ? distance(a, b) : signed_distance(a, b);
+    return d.status == DistanceStatus::did_not_converge ? NAN : d.distance;
+  });
+}
+
 void ellipsect_intersect(benchmark::State& state, int category) {
   bench::time_cases(state, cases_of<2>(pairs<2>(category, Set::overlapping)),
                     [](const scenarios::Case<2>& c) { return intersect_boundaries(c.a, c.b); });
@@ -143,6 +163,19 @@ void fcl_distance(benchmark::State& state, int category, Set set, fcl::GJKSolver
     return result.min_distance;
   });
 }
+
+void fcl_distance_from_pose(benchmark::State& state, int category, Set set, fcl::GJKSolverType solver) {
+  fcl::DistanceRequestd request;
+  request.enable_nearest_points = true;
+  request.enable_signed_distance = set == Set::overlapping;
+  request.gjk_solver_type = solver;
+  run_from_pose(state, category, set, [&](const std::pair<bench::Pose3, bench::Pose3>& p) {
+    const fcl::Ellipsoidd a = bench::fcl_shape(p.first), b = bench::fcl_shape(p.second);
+    fcl::DistanceResultd result;
+    fcl::distance(&a, bench::fcl_pose(p.first), &b, bench::fcl_pose(p.second), request, result);
+    return result.min_distance;
+  });
+}
 #endif
 
 #ifdef ELLIPSECT_HAVE_CCD
@@ -152,11 +185,7 @@ using bench::ccd_support;
 
 using CcdPenetration = int (*)(const void*, const void*, const ccd_t*, ccd_real_t*, ccd_vec3_t*, ccd_vec3_t*);
 
-void ccd_penetration(benchmark::State& state, int category, CcdPenetration method) {
-  const auto& ps = pairs<3>(category, Set::overlapping);
-  std::vector<std::pair<CcdBody, CcdBody>> bodies;
-  for (const auto& p : ps)
-    bodies.push_back({{p.c.a.axes(), p.c.a.radii(), p.c.a.center()}, {p.c.b.axes(), p.c.b.radii(), p.c.b.center()}});
+ccd_t ccd_setup() {
   ccd_t ccd;
   CCD_INIT(&ccd);
   ccd.support1 = ccd_support;
@@ -164,10 +193,29 @@ void ccd_penetration(benchmark::State& state, int category, CcdPenetration metho
   ccd.center1 = ccd_center;
   ccd.center2 = ccd_center;
   ccd.max_iterations = 1000;
+  return ccd;
+}
+
+void ccd_penetration(benchmark::State& state, int category, CcdPenetration method) {
+  const auto& ps = pairs<3>(category, Set::overlapping);
+  std::vector<std::pair<CcdBody, CcdBody>> bodies;
+  for (const auto& p : ps)
+    bodies.push_back({{p.c.a.axes(), p.c.a.radii(), p.c.a.center()}, {p.c.b.axes(), p.c.b.radii(), p.c.b.center()}});
+  const ccd_t ccd = ccd_setup();
   run<3>(state, ps, bodies, [&](const std::pair<CcdBody, CcdBody>& b) {
     ccd_real_t depth;
     ccd_vec3_t dir, pos;
     return method(&b.first, &b.second, &ccd, &depth, &dir, &pos) == 0 ? -depth : NAN;
+  });
+}
+
+void ccd_penetration_from_pose(benchmark::State& state, int category, CcdPenetration method) {
+  const ccd_t ccd = ccd_setup();
+  run_from_pose(state, category, Set::overlapping, [&](const std::pair<bench::Pose3, bench::Pose3>& p) {
+    const CcdBody a = bench::ccd_body(p.first), b = bench::ccd_body(p.second);
+    ccd_real_t depth;
+    ccd_vec3_t dir, pos;
+    return method(&a, &b, &ccd, &depth, &dir, &pos) == 0 ? -depth : NAN;
   });
 }
 #endif
@@ -195,6 +243,12 @@ void register_all() {
       benchmark::RegisterBenchmark(("distance/3/fcl_indep" + cat).c_str(), fcl_distance, category, Set::separated,
                                    fcl::GST_INDEP);
 #endif
+      benchmark::RegisterBenchmark(("distance/3/from_pose/ellipsect" + cat).c_str(), ellipsect_distance_from_pose,
+                                   category, Set::separated);
+#ifdef ELLIPSECT_HAVE_FCL
+      benchmark::RegisterBenchmark(("distance/3/from_pose/fcl_libccd" + cat).c_str(), fcl_distance_from_pose, category,
+                                   Set::separated, fcl::GST_LIBCCD);
+#endif
     }
     if (has[1][1]) {
       benchmark::RegisterBenchmark(("penetration/3/ellipsect" + cat).c_str(), ellipsect_distance<3>, category,
@@ -207,6 +261,16 @@ void register_all() {
       benchmark::RegisterBenchmark(("penetration/3/ccd_gjk_epa" + cat).c_str(), ccd_penetration, category,
                                    &ccdGJKPenetration);
       benchmark::RegisterBenchmark(("penetration/3/ccd_mpr" + cat).c_str(), ccd_penetration, category, &ccdMPRPenetration);
+#endif
+      benchmark::RegisterBenchmark(("penetration/3/from_pose/ellipsect" + cat).c_str(), ellipsect_distance_from_pose,
+                                   category, Set::overlapping);
+#ifdef ELLIPSECT_HAVE_FCL
+      benchmark::RegisterBenchmark(("penetration/3/from_pose/fcl_libccd" + cat).c_str(), fcl_distance_from_pose,
+                                   category, Set::overlapping, fcl::GST_LIBCCD);
+#endif
+#ifdef ELLIPSECT_HAVE_CCD
+      benchmark::RegisterBenchmark(("penetration/3/from_pose/ccd_mpr" + cat).c_str(), ccd_penetration_from_pose,
+                                   category, &ccdMPRPenetration);
 #endif
     }
     if (has[0][0])

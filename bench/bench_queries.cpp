@@ -2,6 +2,9 @@
 // (along a fixed direction), 2D and 3D, on the seeded scenario
 // mix of the tests (scenarios/scenarios.hpp): every category in equal parts, or one
 // category alone (the /category argument is its index in all_categories; -1 = the mix).
+// BM_overlap_from_pose/3 builds both bodies from their poses (bench_support.hpp: center,
+// quaternion, radii) inside the timed query; BM_make_* and BM_from_axes time one factory
+// call on the bodies of the mix (both bodies of every case).
 // Cases are cycled in a fixed order so every run times the same work; see
 // bench/bench_support.hpp for the mean and the per-query median (`median_ns`).
 #include <ellipsect/ellipsect.hpp>
@@ -11,6 +14,8 @@
 
 #include <benchmark/benchmark.h>
 
+#include <cmath>
+#include <utility>
 #include <vector>
 
 namespace {
@@ -72,6 +77,61 @@ void BM_closest_approach(benchmark::State& state) {
   label(state);
 }
 
+template <int N>
+void BM_overlap_from_pose(benchmark::State& state) {
+  std::vector<std::pair<bench::Pose3, bench::Pose3>> poses;
+  for (const auto& c : cases<N>(static_cast<int>(state.range(0)))) poses.emplace_back(bench::pose_of(c.a), bench::pose_of(c.b));
+  bench::time_cases(state, poses, [](const auto& p) { return overlap(bench::body_of(p.first), bench::body_of(p.second)); });
+  label(state);
+}
+
+// Every body of the 3D or 2D mix, for the factory benchmarks.
+template <int N>
+std::vector<Ellipsoid<double, N>> bodies() {
+  std::vector<Ellipsoid<double, N>> out;
+  for (const auto& c : cases<N>(-1)) {
+    out.push_back(c.a);
+    out.push_back(c.b);
+  }
+  return out;
+}
+
+void BM_make_ellipsoid_quaternion(benchmark::State& state) {
+  std::vector<bench::Pose3> poses;
+  for (const auto& e : bodies<3>()) poses.push_back(bench::pose_of(e));
+  bench::time_cases(state, poses, [](const bench::Pose3& p) { return bench::body_of(p); });
+}
+
+void BM_make_ellipsoid_matrix(benchmark::State& state) {
+  std::vector<bench::Pose3> poses;
+  for (const auto& e : bodies<3>()) poses.push_back(bench::pose_of(e));
+  std::vector<std::pair<bench::Pose3, Mat3<double>>> items;
+  for (const auto& p : poses) items.emplace_back(p, p.rotation.toRotationMatrix());
+  bench::time_cases(state, items, [](const auto& x) { return make_ellipsoid(x.first.center, x.second, x.first.radii); });
+}
+
+void BM_make_ellipse(benchmark::State& state) {
+  struct Item {
+    Vec2<double> center;
+    double angle;
+    Vec2<double> radii;
+  };
+  std::vector<Item> items;
+  for (const auto& e : bodies<2>()) items.push_back({e.center(), std::atan2(e.axes()(1, 0), e.axes()(0, 0)), e.radii()});
+  bench::time_cases(state, items, [](const Item& x) { return make_ellipse(x.center, x.angle, x.radii); });
+}
+
+template <int N>
+void BM_from_axes(benchmark::State& state) {
+  bench::time_cases(state, bodies<N>(), [](const Ellipsoid<double, N>& e) {
+    return Ellipsoid<double, N>::from_axes(e.center(), e.axes(), e.radii());
+  });
+}
+
+void BM_make_ball(benchmark::State& state) {
+  bench::time_cases(state, bodies<3>(), [](const Ellipsoid3<double>& e) { return make_ball<double, 3>(e.center(), e.radii()[0]); });
+}
+
 void categories(benchmark::internal::Benchmark* b) {
   b->Arg(-1);
   for (int i = 0; i < static_cast<int>(scenarios::all_categories.size()); ++i) b->Arg(i);
@@ -87,6 +147,13 @@ BENCHMARK(BM_perram_wertheim<2>)->Apply(categories);
 BENCHMARK(BM_perram_wertheim<3>)->Apply(categories);
 BENCHMARK(BM_closest_approach<2>)->Apply(categories);
 BENCHMARK(BM_closest_approach<3>)->Apply(categories);
+BENCHMARK(BM_overlap_from_pose<3>)->Apply(categories);
+BENCHMARK(BM_make_ellipsoid_quaternion);
+BENCHMARK(BM_make_ellipsoid_matrix);
+BENCHMARK(BM_make_ellipse);
+BENCHMARK(BM_from_axes<2>);
+BENCHMARK(BM_from_axes<3>);
+BENCHMARK(BM_make_ball);
 
 }  // namespace
 

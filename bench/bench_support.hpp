@@ -1,6 +1,8 @@
 // Shared timing loop of the benchmark programs.
 #pragma once
 
+#include <ellipsect/shapes.hpp>
+
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -8,6 +10,24 @@
 #include <vector>
 
 namespace ellipsect::bench {
+
+// A 3D body as a simulation holds it between steps: center, unit quaternion, radii. The
+// "from pose" benchmarks build the bodies from these inside the timed query.
+struct Pose3 {
+  Vec3<double> center;
+  Quat<double> rotation;
+  Vec3<double> radii;
+};
+
+// e's pose: its axes as a rotation (a reflection's last column negated, which describes the
+// same set) turned into a unit quaternion.
+inline Pose3 pose_of(const Ellipsoid3<double>& e) {
+  Mat3<double> r = e.axes();
+  if (r.determinant() < 0) r.col(2) = -r.col(2);
+  return {e.center(), Quat<double>(r).normalized(), e.radii()};
+}
+
+inline Ellipsoid3<double> body_of(const Pose3& p) { return make_ellipsoid(p.center, p.rotation, p.radii); }
 
 // Times `query` while cycling through `cases` in a fixed order (Google Benchmark's time is
 // the mean over them), then adds the counter `median_ns`: the median over cases of the

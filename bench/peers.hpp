@@ -4,6 +4,8 @@
 
 #include <ellipsect/shapes.hpp>
 
+#include "bench/bench_support.hpp"
+
 #ifdef ELLIPSECT_HAVE_FCL
 #include <fcl/geometry/shape/ellipsoid.h>
 #include <fcl/narrowphase/collision_object.h>
@@ -33,6 +35,17 @@ inline fcl::Transform3d fcl_pose(const Ellipsoid3<double>& e, const Vec3<double>
 inline std::shared_ptr<fcl::CollisionObjectd> fcl_object(const Ellipsoid3<double>& e) {
   return std::make_shared<fcl::CollisionObjectd>(fcl_shape(e), fcl_pose(e));
 }
+
+// From a pose, as a simulation step would: the shape on the stack, the transform from the
+// quaternion (for fcl::collide and fcl::distance on geometries and transforms).
+inline fcl::Ellipsoidd fcl_shape(const Pose3& p) { return fcl::Ellipsoidd(p.radii[0], p.radii[1], p.radii[2]); }
+
+inline fcl::Transform3d fcl_pose(const Pose3& p) {
+  fcl::Transform3d tf = fcl::Transform3d::Identity();
+  tf.linear() = p.rotation.toRotationMatrix();
+  tf.translation() = p.center;
+  return tf;
+}
 #endif
 
 #ifdef ELLIPSECT_HAVE_CCD
@@ -42,6 +55,7 @@ struct CcdBody {
 };
 
 inline CcdBody ccd_body(const Ellipsoid3<double>& e) { return {e.axes(), e.radii(), e.center()}; }
+inline CcdBody ccd_body(const Pose3& p) { return {p.rotation.toRotationMatrix(), p.radii, p.center}; }
 
 // Support point in direction d: c + A diag(r^2) A^T d / |diag(r) A^T d|.
 inline void ccd_support(const void* obj, const ccd_vec3_t* dir, ccd_vec3_t* out) {

@@ -1,6 +1,7 @@
 #include <ellipsect/shapes.hpp>
 
 #include "detail/instantiate.hpp"
+#include "detail/shape_access.hpp"
 #include "detail/show.hpp"
 
 #include <Eigen/Eigenvalues>
@@ -17,38 +18,109 @@ namespace {
 
 using detail::show;
 
-template <class Derived>
-void require_finite(const Eigen::MatrixBase<Derived>& m, const std::string& field) {
-  for (Eigen::Index j = 0; j < m.cols(); ++j)
-    for (Eigen::Index i = 0; i < m.rows(); ++i)
-      if (!std::isfinite(m(i, j))) {
-        std::ostringstream name;
-        name << field;
-        if (m.cols() == 1)
-          name << '[' << i << ']';
-        else
-          name << '(' << i << ',' << j << ')';
-        throw InputError(name.str(), "must be finite (got " + show(m(i, j)) + ")");
-      }
+// The ordered checks (the factories' path for input their good path rejects; from_quadric's
+// and translated's only path) build no string while the input is good: a failure calls one
+// of these out-of-line functions, which name the field and quote the value.
+template <class T>
+[[noreturn, gnu::cold, gnu::noinline]] void throw_not_finite(const std::string& field, T value) {
+  throw InputError(field, "must be finite (got " + show(value) + ")");
+}
+
+// field, field[i] (index >= 0).
+[[gnu::cold, gnu::noinline]] std::string element_name(const char* field, Eigen::Index i) {
+  return i < 0 ? std::string(field) : std::string(field) + '[' + std::to_string(i) + ']';
+}
+
+// field(i,j).
+[[gnu::cold, gnu::noinline]] std::string element_name(const char* field, Eigen::Index i, Eigen::Index j) {
+  return std::string(field) + '(' + std::to_string(i) + ',' + std::to_string(j) + ')';
 }
 
 template <class T>
-void require_positive(T value, const std::string& field) {
-  if (!std::isfinite(value)) throw InputError(field, "must be finite (got " + show(value) + ")");
-  if (!(value > T(0))) throw InputError(field, "must be > 0 (got " + show(value) + ")");
+[[noreturn, gnu::cold, gnu::noinline]] void throw_not_positive(const std::string& field, T value) {
+  if (!std::isfinite(value)) throw_not_finite(field, value);
+  throw InputError(field, "must be > 0 (got " + show(value) + ")");
+}
+
+template <class Derived>
+void require_finite(const Eigen::MatrixBase<Derived>& m, const char* field) {
+  for (Eigen::Index j = 0; j < m.cols(); ++j)
+    for (Eigen::Index i = 0; i < m.rows(); ++i)
+      if (!std::isfinite(m(i, j)))
+        throw_not_finite(m.cols() == 1 ? element_name(field, i) : element_name(field, i, j), m(i, j));
+}
+
+// value finite and > 0; the field is named field[index], or field when index < 0.
+template <class T>
+void require_positive(T value, const char* field, int index = -1) {
+  if (!(value > T(0) && value <= std::numeric_limits<T>::max())) throw_not_positive(element_name(field, index), value);
+}
+
+template <class T>
+constexpr T quaternion_tolerance = sizeof(T) >= sizeof(double) ? T(1e-9) : T(1e-5);
+
+// A quaternion farther than quaternion_tolerance from unit norm: its first non-finite
+// component, named in the order of Eigen's constructor Quaternion(w, x, y, z) (not of its
+// storage), or its norm.
+template <class T>
+[[noreturn, gnu::cold, gnu::noinline]] void throw_bad_quaternion(const Quat<T>& q) {
+  for (const auto& [value, field] : {std::pair{q.w(), "quaternion.w"}, std::pair{q.x(), "quaternion.x"},
+                                     std::pair{q.y(), "quaternion.y"}, std::pair{q.z(), "quaternion.z"}})
+    if (!std::isfinite(value)) throw_not_finite(field, value);
+  throw InputError("quaternion", "must have unit norm (got |q| = " + show(q.norm()) + ")");
+}
+
+template <class T, int N>
+[[noreturn, gnu::cold, gnu::noinline]] void throw_aspect_ratio(const Vec<T, N>& radii) {
+  throw InputError("radii", "aspect ratio " + show(radii.maxCoeff() / radii.minCoeff()) +
+                                " exceeds the largest supported, " + show(Ellipsoid<T, N>::max_aspect_ratio));
 }
 
 template <class T, int N>
 void require_radii(const Vec<T, N>& radii) {
-  for (int i = 0; i < N; ++i) require_positive(radii[i], "radii[" + std::to_string(i) + "]");
-  if (radii.maxCoeff() > Ellipsoid<T, N>::max_aspect_ratio * radii.minCoeff())
-    throw InputError("radii", "aspect ratio " + show(radii.maxCoeff() / radii.minCoeff()) + " exceeds the largest supported, " +
-                                  show(Ellipsoid<T, N>::max_aspect_ratio));
+  for (int i = 0; i < N; ++i) require_positive(radii[i], "radii", i);
+  if (radii.maxCoeff() > Ellipsoid<T, N>::max_aspect_ratio * radii.minCoeff()) throw_aspect_ratio<T, N>(radii);
 }
 
-// Orthonormalize by Householder QR (the Q factor, column signs kept as given).
+template <class T>
+[[noreturn, gnu::cold, gnu::noinline]] void throw_not_orthonormal(T dev, T tolerance) {
+  throw InputError("axes",
+                   "columns must be orthonormal (max |axes^T axes - I| = " + show(dev) + " > " + show(tolerance) + ")");
+}
+
+// max |axes^T axes - I|.
 template <class T, int N>
-Mat<T, N> orthonormalized(const Mat<T, N>& m) {
+T orthonormality_deviation(const Mat<T, N>& axes) {
+  return (axes.transpose() * axes - Mat<T, N>::Identity()).cwiseAbs().maxCoeff();
+}
+
+// Whether from_axes accepts (center, axes, radii) and stores them as given: every value
+// finite, radii > 0 within max_aspect_ratio, and |axes^T axes - I| <= 4 N eps entrywise.
+// The factories' good path: comparisons combined without a branch per value, NaN and inf
+// failing each (c - c is 0 only for a finite c; a non-finite axis makes a Gram entry NaN or
+// inf), no string, no exception. The Gram matrix is summed row by row (its upper triangle:
+// it is symmetric to the bit), reading each entry of axes alone: loads of adjacent entries
+// in pairs straddled the stores that had just written the axes, and stalled.
+template <class T, int N>
+[[gnu::always_inline]] inline bool kept_as_given(const Vec<T, N>& center, const Mat<T, N>& axes,
+                                                 const Vec<T, N>& radii) {
+  bool ok = true;
+  for (int i = 0; i < N; ++i)
+    ok &= (center[i] - center[i] == T(0)) & (radii[i] > T(0)) & (radii[i] <= std::numeric_limits<T>::max());
+  ok &= radii.maxCoeff() <= Ellipsoid<T, N>::max_aspect_ratio * radii.minCoeff();
+  T gram[N][N] = {};
+  for (int k = 0; k < N; ++k)
+    for (int j = 0; j < N; ++j)
+      for (int i = 0; i <= j; ++i) gram[i][j] += axes(k, i) * axes(k, j);
+  const T close = T(4 * N) * std::numeric_limits<T>::epsilon();
+  for (int j = 0; j < N; ++j)
+    for (int i = 0; i <= j; ++i) ok &= std::abs(gram[i][j] - T(i == j)) <= close;
+  return ok;
+}
+
+// Orthonormalize by Householder QR (the Q factor, column signs kept as given); rarely needed.
+template <class T, int N>
+[[gnu::noinline]] Mat<T, N> orthonormalized(const Mat<T, N>& m) {
   using W = double;
   const Mat<W, N> mw = m.template cast<W>();
   const Eigen::HouseholderQR<Mat<W, N>> qr(mw);
@@ -57,6 +129,43 @@ Mat<T, N> orthonormalized(const Mat<T, N>& m) {
   for (int j = 0; j < N; ++j)
     if (r(j, j) < W(0)) q.col(j) = -q.col(j);
   return q.template cast<T>();
+}
+
+// The checks of from_axes in order, each throwing InputError naming its field, and the
+// axes to store: as given when orthonormal to working precision (so rebuilding a body from
+// its own fields reproduces it exactly), else orthonormalized. Only for input that
+// kept_as_given rejects.
+template <class T, int N>
+[[gnu::cold, gnu::noinline]] Mat<T, N> checked_axes(const Vec<T, N>& center, const Mat<T, N>& axes,
+                                                    const Vec<T, N>& radii) {
+  require_finite(center, "center");
+  require_finite(axes, "axes");
+  require_radii(radii);
+  const T dev = orthonormality_deviation<T, N>(axes);
+  if (!(dev <= Ellipsoid<T, N>::axes_tolerance)) throw_not_orthonormal<T>(dev, Ellipsoid<T, N>::axes_tolerance);
+  if (dev <= T(4 * N) * std::numeric_limits<T>::epsilon()) return axes;
+  return orthonormalized<T, N>(axes);
+}
+
+// The body (center, axes(), radii) from from_axes' checks.
+template <class T, int N, class Axes>
+[[gnu::cold, gnu::noinline]] Ellipsoid<T, N> checked_body(const Vec<T, N>& center, const Axes& axes,
+                                                         const Vec<T, N>& radii) {
+  const Mat<T, N> a = axes();
+  return detail::ShapeAccess::unchecked<T, N>(center, checked_axes<T, N>(center, a, radii), radii);
+}
+
+// Every factory ends here: the body (center, axes, radii) as given when kept_as_given accepts
+// it, else checked_body(center, recompute, radii), recompute() returning axes again. Inlined
+// into each factory, and the rare path recomputes the axes rather than taking their address,
+// so that axes a factory computes (from a quaternion, an angle) stay in registers: stored to
+// the stack and read back by columns they stalled on store forwarding, about 10 ns per body.
+template <class T, int N, class Axes>
+[[gnu::always_inline]] inline Ellipsoid<T, N> body(const Vec<T, N>& center, const Mat<T, N>& axes,
+                                                   const Vec<T, N>& radii, const Axes& recompute) {
+  if (kept_as_given<T, N>(center, axes, radii)) [[likely]]
+    return detail::ShapeAccess::unchecked<T, N>(center, axes, radii);
+  return checked_body<T, N>(center, recompute, radii);
 }
 
 }  // namespace
@@ -70,18 +179,7 @@ Ellipsoid<T, N>::Ellipsoid(const Vec<T, N>& center, const Mat<T, N>& axes, const
 
 template <class T, int N>
 Ellipsoid<T, N> Ellipsoid<T, N>::from_axes(const Vec<T, N>& center, const Mat<T, N>& axes, const Vec<T, N>& radii) {
-  require_finite(center, "center");
-  require_finite(axes, "axes");
-  require_radii(radii);
-  const Mat<T, N> gram = axes.transpose() * axes - Mat<T, N>::Identity();
-  const T dev = gram.cwiseAbs().maxCoeff();
-  if (!(dev <= axes_tolerance))
-    throw InputError("axes", "columns must be orthonormal (max |axes^T axes - I| = " + show(dev) + " > " +
-                                 show(axes_tolerance) + ")");
-  // Axes orthonormal to working precision are kept bit for bit (so rebuilding a body from
-  // its own fields reproduces it exactly); others are orthonormalized.
-  if (dev <= T(4 * N) * std::numeric_limits<T>::epsilon()) return Ellipsoid(center, axes, radii);
-  return Ellipsoid(center, orthonormalized<T, N>(axes), radii);
+  return body<T, N>(center, axes, radii, [&] { return axes; });
 }
 
 template <class T, int N>
@@ -122,42 +220,106 @@ Ellipsoid<T, N> Ellipsoid<T, N>::translated(const Vec<T, N>& offset) const {
 
 template <class T>
 Ellipse2<T> make_ellipse(const Vec2<T>& center, T angle, const Vec2<T>& radii) {
-  if (!std::isfinite(angle)) throw InputError("angle", "must be finite (got " + show(angle) + ")");
-  const T c = std::cos(angle), s = std::sin(angle);
-  Mat2<T> axes;
-  axes << c, -s, s, c;
-  return Ellipse2<T>::from_axes(center, axes, radii);
+  if (!std::isfinite(angle)) throw_not_finite("angle", angle);
+  const auto axes = [angle] {
+    const T c = std::cos(angle), s = std::sin(angle);
+    Mat2<T> m;
+    m << c, -s, s, c;
+    return m;
+  };
+  return body<T, 2>(center, axes(), radii, axes);
 }
 
 template <class T>
 Ellipsoid3<T> make_ellipsoid(const Vec3<T>& center, const Quat<T>& rotation, const Vec3<T>& radii) {
-  // Named in the order of Eigen's constructor Quaternion(w, x, y, z), not of its storage.
-  const std::array<std::pair<T, const char*>, 4> parts = {
-      {{rotation.w(), "quaternion.w"}, {rotation.x(), "quaternion.x"}, {rotation.y(), "quaternion.y"},
-       {rotation.z(), "quaternion.z"}}};
-  for (const auto& [value, field] : parts)
-    if (!std::isfinite(value)) throw InputError(field, "must be finite (got " + show(value) + ")");
-  const T tol = sizeof(T) >= sizeof(double) ? T(1e-9) : T(1e-5);
-  const T n = rotation.norm();
-  if (!(std::abs(n - T(1)) <= tol))
-    throw InputError("quaternion", "must have unit norm (got |q| = " + show(n) + ")");
-  return Ellipsoid3<T>::from_axes(center, rotation.normalized().toRotationMatrix(), radii);
+  const T n = rotation.norm();  // NaN or inf unless every component is finite
+  if (!(std::abs(n - T(1)) <= quaternion_tolerance<T>)) [[unlikely]]
+    throw_bad_quaternion(rotation);
+  // q / |q|: what rotation.normalized() computes, without a second norm.
+  const auto axes = [&] { return Mat3<T>(Quat<T>(rotation.coeffs() / n).toRotationMatrix()); };
+  return body<T, 3>(center, axes(), radii, axes);
 }
 
 template <class T>
 Ellipsoid3<T> make_ellipsoid(const Vec3<T>& center, const Mat3<T>& rotation, const Vec3<T>& radii) {
-  return Ellipsoid3<T>::from_axes(center, rotation, radii);
+  return body<T, 3>(center, rotation, radii, [&] { return rotation; });
 }
 
 template <class T, int N>
 Ellipsoid<T, N> make_ball(const Vec<T, N>& center, T radius) {
   require_positive(radius, "radius");
-  return Ellipsoid<T, N>::from_axes(center, Mat<T, N>::Identity(), Vec<T, N>::Constant(radius));
+  const auto identity = [] { return Mat<T, N>(Mat<T, N>::Identity()); };
+  return body<T, N>(center, identity(), Vec<T, N>::Constant(radius), identity);
+}
+
+namespace {
+
+// An array of n rows of `per_row` values, or InputError naming it.
+void require_rows(std::size_t size, std::size_t n, std::size_t per_row, const char* name) {
+  if (size != n * per_row)
+    throw InputError(name, "expected " + std::to_string(n * per_row) + " values (" + std::to_string(n) + " rows of " +
+                               std::to_string(per_row) + "), got " + std::to_string(size));
+}
+
+// make(i) for every row i < n; the first InputError rethrown as RowInputError naming row i.
+template <class Make>
+void for_each_row(std::size_t n, const Make& make) {
+  std::size_t i = 0;
+  try {
+    for (; i < n; ++i) make(i);
+  } catch (const InputError& e) {
+    const std::string what = e.what();  // "ellipsect: <field>: <detail>", as InputError builds it
+    throw RowInputError(i, e.field(), what.substr(std::string("ellipsect: ").size() + e.field().size() + 2));
+  }
+}
+
+template <class T, int N>
+Vec<T, N> row(std::span<const T> values, std::size_t i) {
+  return Eigen::Map<const Vec<T, N>>(values.data() + N * i);
+}
+
+}  // namespace
+
+template <class T>
+void make_ellipses(std::span<const T> centers, std::span<const T> angles, std::span<const T> radii,
+                   std::span<Ellipse2<T>> out) {
+  require_rows(centers.size(), out.size(), 2, "centers");
+  if (!angles.empty()) require_rows(angles.size(), out.size(), 1, "angles");
+  require_rows(radii.size(), out.size(), 2, "radii");
+  for_each_row(out.size(), [&](std::size_t i) {
+    out[i] = make_ellipse<T>(row<T, 2>(centers, i), angles.empty() ? T(0) : angles[i], row<T, 2>(radii, i));
+  });
+}
+
+template <class T>
+void make_ellipsoids(std::span<const T> centers, std::span<const T> quaternions, std::span<const T> radii,
+                     std::span<Ellipsoid3<T>> out) {
+  require_rows(centers.size(), out.size(), 3, "centers");
+  if (!quaternions.empty()) require_rows(quaternions.size(), out.size(), 4, "quaternions");
+  require_rows(radii.size(), out.size(), 3, "radii");
+  for_each_row(out.size(), [&](std::size_t i) {
+    const T* q = quaternions.empty() ? nullptr : quaternions.data() + 4 * i;
+    const Quat<T> rotation = q ? Quat<T>(q[0], q[1], q[2], q[3]) : Quat<T>(1, 0, 0, 0);
+    out[i] = make_ellipsoid<T>(row<T, 3>(centers, i), rotation, row<T, 3>(radii, i));
+  });
+}
+
+template <class T, int N>
+void make_bodies(std::span<const T> centers, std::span<const T> rotations, std::span<const T> radii,
+                 std::span<Ellipsoid<T, N>> out) {
+  require_rows(centers.size(), out.size(), N, "centers");
+  require_rows(rotations.size(), out.size(), N * N, "rotations");
+  require_rows(radii.size(), out.size(), N, "radii");
+  for_each_row(out.size(), [&](std::size_t i) {
+    const Mat<T, N> axes = Eigen::Map<const Eigen::Matrix<T, N, N, Eigen::RowMajor>>(rotations.data() + N * N * i);
+    out[i] = Ellipsoid<T, N>::from_axes(row<T, N>(centers, i), axes, row<T, N>(radii, i));
+  });
 }
 
 #define ELLIPSECT_INSTANTIATE(T, N) \
   template class Ellipsoid<T, N>;   \
-  template Ellipsoid<T, N> make_ball<T, N>(const Vec<T, N>&, T);
+  template Ellipsoid<T, N> make_ball<T, N>(const Vec<T, N>&, T); \
+  template void make_bodies<T, N>(std::span<const T>, std::span<const T>, std::span<const T>, std::span<Ellipsoid<T, N>>);
 ELLIPSECT_FOR_EACH_TYPE_AND_DIM(ELLIPSECT_INSTANTIATE)
 #undef ELLIPSECT_INSTANTIATE
 template Ellipse2<float> make_ellipse<float>(const Vec2<float>&, float, const Vec2<float>&);
@@ -166,5 +328,13 @@ template Ellipsoid3<float> make_ellipsoid<float>(const Vec3<float>&, const Quat<
 template Ellipsoid3<double> make_ellipsoid<double>(const Vec3<double>&, const Quat<double>&, const Vec3<double>&);
 template Ellipsoid3<float> make_ellipsoid<float>(const Vec3<float>&, const Mat3<float>&, const Vec3<float>&);
 template Ellipsoid3<double> make_ellipsoid<double>(const Vec3<double>&, const Mat3<double>&, const Vec3<double>&);
+template void make_ellipses<float>(std::span<const float>, std::span<const float>, std::span<const float>,
+                                   std::span<Ellipse2<float>>);
+template void make_ellipses<double>(std::span<const double>, std::span<const double>, std::span<const double>,
+                                    std::span<Ellipse2<double>>);
+template void make_ellipsoids<float>(std::span<const float>, std::span<const float>, std::span<const float>,
+                                     std::span<Ellipsoid3<float>>);
+template void make_ellipsoids<double>(std::span<const double>, std::span<const double>, std::span<const double>,
+                                      std::span<Ellipsoid3<double>>);
 
 }  // namespace ellipsect

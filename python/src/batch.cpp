@@ -9,7 +9,6 @@
 #include <ellipsect/ellipsect.hpp>
 
 #include <memory>
-#include <optional>
 #include <span>
 #include <string>
 
@@ -72,34 +71,17 @@ struct Bodies {
   std::vector<Ellipsoid<double, N>> items;
 };
 
-template <int N>
-using Make = Ellipsoid<double, N> (*)(const double* center, const double* orientation, const double* radii);
-
-// Fills a batch from rows: make(center row, orientation row, radii row) for each; the first
-// row a factory rejects raises InputError naming the argument, row and column.
+// n bodies from rows by the library's factory over arrays, make(out) (shapes.hpp), with the
+// GIL released; its RowInputError raised as InputError naming the argument, row and column.
 template <int N, class Make>
-Bodies<N> make_bodies(py::ssize_t n, const double* centers, const double* orientation, int orientation_size,
-                      const double* radii, const Make& make) {
+Bodies<N> bodies_from(py::ssize_t n, const Make& make) {
   Bodies<N> out;
-  std::optional<InputError> error;
-  py::ssize_t bad = 0;
-  {
+  out.items.resize(std::size_t(n));
+  try {
     py::gil_scoped_release release;
-    out.items.resize(std::size_t(n));
-    for (py::ssize_t i = 0; i < n && !error; ++i) {
-      try {
-        out.items[std::size_t(i)] = make(centers + i * N, orientation ? orientation + i * orientation_size : nullptr,
-                                         radii + i * N);
-      } catch (const InputError& e) {
-        error = e;
-        bad = i;
-      }
-    }
-  }
-  if (error) {  // what() is "ellipsect: <field>: <detail>"
-    const std::string what = error->what();
-    throw InputError(row_field(error->field(), bad), what.substr(std::string("ellipsect: ").size() +
-                                                                 error->field().size() + 2));
+    make(std::span<Ellipsoid<double, N>>(out.items));
+  } catch (const RowInputError& e) {
+    throw InputError(row_field(e.field(), py::ssize_t(e.row())), e.detail());
   }
   return out;
 }
@@ -109,45 +91,43 @@ Vec<double, N> row_vec(const double* p) {
   return Eigen::Map<const Vec<double, N>>(p);
 }
 
-// Rotation matrices are given row-major (numpy's order); axes are their columns.
-template <int N>
-Mat<double, N> row_mat(const double* p) {
-  return Eigen::Map<const Eigen::Matrix<double, N, N, Eigen::RowMajor>>(p);
+// A checked array's n rows of `per_row` values as a span (empty for a missing argument).
+std::span<const double> values(const double* data, py::ssize_t n, int per_row) {
+  return data ? std::span<const double>(data, std::size_t(n) * std::size_t(per_row)) : std::span<const double>();
 }
 
 Bodies<2> make_ellipses(py::handle centers, py::handle radii, py::handle angles, py::handle rotations) {
   py::ssize_t n = -1;
-  const double* c = checked(centers, "centers", {2}, n, "");
-  const double* r = checked(radii, "radii", {2}, n, "centers");
+  const auto c = checked(centers, "centers", {2}, n, "");
+  const auto r = checked(radii, "radii", {2}, n, "centers");
   if (!angles.is_none() && !rotations.is_none()) throw py::value_error("Ellipses: give angles or rotations, not both");
   if (!rotations.is_none()) {
-    const double* m = checked(rotations, "rotations", {2, 2}, n, "centers");
-    return make_bodies<2>(n, c, m, 4, r, [](const double* c, const double* m, const double* r) {
-      return Ellipse2<double>::from_axes(row_vec<2>(c), row_mat<2>(m), row_vec<2>(r));
+    const auto m = checked(rotations, "rotations", {2, 2}, n, "centers");
+    return bodies_from<2>(n, [&](std::span<Ellipse2<double>> out) {
+      ellipsect::make_bodies<double, 2>(values(c, n, 2), values(m, n, 4), values(r, n, 2), out);
     });
   }
   const double* a = angles.is_none() ? nullptr : checked(angles, "angles", {}, n, "centers");
-  return make_bodies<2>(n, c, a, 1, r, [](const double* c, const double* a, const double* r) {
-    return make_ellipse<double>(row_vec<2>(c), a ? *a : 0.0, row_vec<2>(r));
+  return bodies_from<2>(n, [&](std::span<Ellipse2<double>> out) {
+    ellipsect::make_ellipses<double>(values(c, n, 2), values(a, n, 1), values(r, n, 2), out);
   });
 }
 
 Bodies<3> make_ellipsoids(py::handle centers, py::handle radii, py::handle quaternions, py::handle rotations) {
   py::ssize_t n = -1;
-  const double* c = checked(centers, "centers", {3}, n, "");
-  const double* r = checked(radii, "radii", {3}, n, "centers");
+  const auto c = checked(centers, "centers", {3}, n, "");
+  const auto r = checked(radii, "radii", {3}, n, "centers");
   if (!quaternions.is_none() && !rotations.is_none())
     throw py::value_error("Ellipsoids: give quaternions or rotations, not both");
   if (!rotations.is_none()) {
-    const double* m = checked(rotations, "rotations", {3, 3}, n, "centers");
-    return make_bodies<3>(n, c, m, 9, r, [](const double* c, const double* m, const double* r) {
-      return make_ellipsoid<double>(row_vec<3>(c), row_mat<3>(m), row_vec<3>(r));
+    const auto m = checked(rotations, "rotations", {3, 3}, n, "centers");
+    return bodies_from<3>(n, [&](std::span<Ellipsoid3<double>> out) {
+      ellipsect::make_bodies<double, 3>(values(c, n, 3), values(m, n, 9), values(r, n, 3), out);
     });
   }
   const double* q = quaternions.is_none() ? nullptr : checked(quaternions, "quaternions", {4}, n, "centers");
-  return make_bodies<3>(n, c, q, 4, r, [](const double* c, const double* q, const double* r) {
-    const Quat<double> rotation = q ? Quat<double>(q[0], q[1], q[2], q[3]) : Quat<double>(1, 0, 0, 0);
-    return make_ellipsoid<double>(row_vec<3>(c), rotation, row_vec<3>(r));
+  return bodies_from<3>(n, [&](std::span<Ellipsoid3<double>> out) {
+    ellipsect::make_ellipsoids<double>(values(c, n, 3), values(q, n, 4), values(r, n, 3), out);
   });
 }
 

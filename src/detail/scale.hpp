@@ -22,6 +22,8 @@
 
 #include <ellipsect/shapes.hpp>
 
+#include "shape_access.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <type_traits>
@@ -98,16 +100,9 @@ Vec<typename D::Scalar, D::RowsAtCompileTime> times_pow2(const Eigen::MatrixBase
 }
 
 // The body scaled about the origin by 2^k: center and radii times 2^k, the same axes.
-struct ShapeAccess {
-  template <class T, int N>
-  static Ellipsoid<T, N> scaled(const Ellipsoid<T, N>& e, int k) noexcept {
-    return Ellipsoid<T, N>(times_pow2(e.center(), k), e.axes(), times_pow2(e.radii(), k));
-  }
-};
-
 template <class T, int N>
 Ellipsoid<T, N> scaled(const Ellipsoid<T, N>& e, int k) noexcept {
-  return ShapeAccess::scaled(e, k);
+  return ShapeAccess::unchecked<T, N>(times_pow2(e.center(), k), e.axes(), times_pow2(e.radii(), k));
 }
 
 }  // namespace ellipsect::detail

@@ -5,7 +5,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <limits>
+#include <random>
+#include <string>
+#include <vector>
 
 namespace {
 
@@ -93,6 +97,113 @@ TEST(Shapes, QuadricMustBeSymmetricPositiveDefinite) {
   expect_field([&] { Ellipse2<double>::from_quadric({0, 0}, m); }, "M");
   m << 1, nan, nan, 1;
   expect_field([&] { Ellipse2<double>::from_quadric({0, 0}, m); }, "M(1,0)");
+}
+
+// The messages the factories' good-path rewrite (no string built until a check fails) must keep.
+TEST(Shapes, MessagesNameFieldAndValue) {
+  const auto what = [](auto make) {
+    try {
+      make();
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_EQ(what([] { make_ellipse<double>({0, 0}, 0, {1, 0}); }), "ellipsect: radii[1]: must be > 0 (got 0)");
+  EXPECT_EQ(what([] { make_ellipse<double>({0, 0}, 0, {inf, 1}); }), "ellipsect: radii[0]: must be finite (got inf)");
+  EXPECT_EQ(what([] { make_ellipse<double>({0, 0}, 0, {1, 1e9}); }),
+            "ellipsect: radii: aspect ratio 1000000000 exceeds the largest supported, 100000000");
+  EXPECT_EQ(what([] { make_ellipse<double>({0, nan}, 0, {1, 1}); }), "ellipsect: center[1]: must be finite (got nan)");
+  EXPECT_EQ(what([] { make_ellipse<double>({0, 0}, inf, {1, 1}); }), "ellipsect: angle: must be finite (got inf)");
+  EXPECT_EQ(what([] { make_ball<double, 3>({0, 0, 0}, -2); }), "ellipsect: radius: must be > 0 (got -2)");
+  EXPECT_EQ(what([] { make_ellipsoid<double>({0, 0, 0}, Eigen::Quaterniond(1, 0, nan, inf), {1, 1, 1}); }),
+            "ellipsect: quaternion.y: must be finite (got nan)");
+  EXPECT_EQ(what([] { make_ellipsoid<double>({0, 0, 0}, Eigen::Quaterniond(2, 0, 0, 0), {1, 1, 1}); }),
+            "ellipsect: quaternion: must have unit norm (got |q| = 2)");
+  EXPECT_EQ(what([] { make_ellipsoid<double>({0, 0, 0}, Mat3<double>(2 * Mat3<double>::Identity()), {1, 1, 1}); }),
+            "ellipsect: axes: columns must be orthonormal (max |axes^T axes - I| = 3 > 1.0000000000000001e-09)");
+  Mat3<double> m = Mat3<double>::Identity();
+  m(1, 2) = -inf;
+  EXPECT_EQ(what([&] { make_ellipsoid<double>({0, 0, 0}, m, {1, 1, 1}); }),
+            "ellipsect: axes(1,2): must be finite (got -inf)");
+}
+
+// A quaternion's body is that of its normalized rotation matrix, bit for bit (the factory
+// divides by the norm it checks instead of normalizing again).
+TEST(Shapes, QuaternionBodyEqualsItsRotationMatrixBody) {
+  std::mt19937_64 rng(7);
+  std::normal_distribution<double> g;
+  for (int k = 0; k < 10000; ++k) {
+    const Eigen::Quaterniond q = Eigen::Quaterniond(g(rng), g(rng), g(rng), g(rng)).normalized();
+    const Vec3<double> c(g(rng), g(rng), g(rng)), r(1 + std::abs(g(rng)), 1 + std::abs(g(rng)), 2);
+    const auto a = make_ellipsoid<double>(c, q, r);
+    const auto b = Ellipsoid3<double>::from_axes(c, q.normalized().toRotationMatrix(), r);
+    ASSERT_EQ(std::memcmp(&a, &b, sizeof a), 0) << k;
+  }
+}
+
+// The factories over arrays build what the single-body factories build, row by row.
+TEST(Shapes, ArrayFactoriesEqualSingleBodyFactories) {
+  const std::vector<double> c2 = {0, 1, -2, 3, 4, 5}, a2 = {0.1, -2, 7}, r2 = {1, 2, 3, 0.5, 1e-3, 1e3};
+  std::vector<Ellipse2<double>> e2(3);
+  make_ellipses<double>(c2, a2, r2, e2);
+  for (std::size_t i = 0; i < 3; ++i) {
+    const auto want = make_ellipse<double>({c2[2 * i], c2[2 * i + 1]}, a2[i], {r2[2 * i], r2[2 * i + 1]});
+    EXPECT_EQ(std::memcmp(&e2[i], &want, sizeof want), 0) << i;
+  }
+  make_ellipses<double>(c2, {}, r2, e2);
+  EXPECT_EQ(e2[1].axes(), Mat2<double>::Identity());
+
+  const std::vector<double> c3 = {0, 1, 2, -3, 4, 5}, r3 = {1, 2, 3, 4, 5, 6};
+  const std::vector<double> q3 = {0.5, 0.5, 0.5, 0.5, 0.8, 0, 0.6, 0};  // (w, x, y, z) rows
+  std::vector<Ellipsoid3<double>> e3(2);
+  make_ellipsoids<double>(c3, q3, r3, e3);
+  for (std::size_t i = 0; i < 2; ++i) {
+    const Eigen::Quaterniond q(q3[4 * i], q3[4 * i + 1], q3[4 * i + 2], q3[4 * i + 3]);
+    const auto want = make_ellipsoid<double>({c3[3 * i], c3[3 * i + 1], c3[3 * i + 2]}, q,
+                                             {r3[3 * i], r3[3 * i + 1], r3[3 * i + 2]});
+    EXPECT_EQ(std::memcmp(&e3[i], &want, sizeof want), 0) << i;
+  }
+  // Rotations row by row; the axes are their columns.
+  std::vector<double> rot3;
+  for (const auto& e : e3)
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) rot3.push_back(e.axes()(i, j));
+  std::vector<Ellipsoid3<double>> f3(2);
+  make_bodies<double, 3>(c3, rot3, r3, f3);
+  for (std::size_t i = 0; i < 2; ++i) EXPECT_EQ(std::memcmp(&e3[i], &f3[i], sizeof f3[i]), 0) << i;
+  make_ellipsoids<double>(c3, {}, r3, e3);
+  EXPECT_EQ(e3[0].axes(), Mat3<double>::Identity());
+}
+
+TEST(Shapes, ArrayFactoriesNameRowAndField) {
+  const auto error = [](auto make) -> std::pair<std::size_t, std::string> {
+    try {
+      make();
+    } catch (const RowInputError& e) {
+      EXPECT_EQ(std::string(e.what()), "ellipsect: row " + std::to_string(e.row()) + ": " + e.field() + ": " + e.detail());
+      return {e.row(), e.field()};
+    }
+    return {0, "no error"};
+  };
+  const std::vector<double> c = {0, 0, 0, 1, 1, 1, 2, 2, 2}, r = {1, 1, 1, 1, -1, 1, 1, 1, 1};
+  std::vector<Ellipsoid3<double>> out(3);
+  EXPECT_EQ(error([&] { make_ellipsoids<double>(c, {}, r, out); }), std::make_pair(std::size_t{1}, std::string("radii[1]")));
+  const std::vector<double> q = {1, 0, 0, 0, 1, 0, 0, 0, 1, 0, nan, 0};
+  const std::vector<double> good_r(9, 1.0);
+  EXPECT_EQ(error([&] { make_ellipsoids<double>(c, q, good_r, out); }),
+            std::make_pair(std::size_t{2}, std::string("quaternion.y")));
+  std::vector<double> rot(27, 0.0);
+  for (int i = 0; i < 3; ++i)
+    for (int k = 0; k < 3; ++k) rot[9 * i + 4 * k] = 1;
+  rot[9 * 2 + 1] = 0.5;  // row 2: axes(0,1) off
+  EXPECT_EQ(error([&] { make_bodies<double, 3>(c, rot, good_r, out); }), std::make_pair(std::size_t{2}, std::string("axes")));
+  const std::vector<double> c2 = {0, 0, inf, 0}, r2 = {1, 1, 1, 1};
+  std::vector<Ellipse2<double>> out2(2);
+  EXPECT_EQ(error([&] { make_ellipses<double>(c2, {}, r2, out2); }), std::make_pair(std::size_t{1}, std::string("center[0]")));
+  // An array of the wrong length names the array.
+  expect_field([&] { make_ellipses<double>(c2, std::vector<double>{0.0}, r2, out2); }, "angles");
+  expect_field([&] { make_bodies<double, 3>(c, rot, r2, out); }, "radii");
 }
 
 }  // namespace
