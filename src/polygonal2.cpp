@@ -17,6 +17,8 @@
 #include <ellipsect/polygonal2.hpp>
 
 #include "detail/niemitalo_polygon.hpp"
+#include "detail/scale.hpp"
+#include "detail/shape_access.hpp"
 #include "detail/show.hpp"
 
 #include <algorithm>
@@ -285,11 +287,46 @@ T unit_scale(T size) noexcept {
 // far below rounding underflow). Taken on halves: the offset of two finite points may
 // overflow.
 template <class T>
-T scene_scale(const Vec2<T>& from, const Vec2<T>& to, T major, T other) noexcept {
+T scene_half_size(const Vec2<T>& from, const Vec2<T>& to, T major, T other) noexcept {
   const T half = T(0.5);
-  const T m = std::max({std::abs(half * to.x() - half * from.x()), std::abs(half * to.y() - half * from.y()),
-                        half * major, half * other});
-  return half * unit_scale(m);
+  return std::max({std::abs(half * to.x() - half * from.x()), std::abs(half * to.y() - half * from.y()),
+                   half * major, half * other});
+}
+
+template <class T>
+T scene_scale(const Vec2<T>& from, const Vec2<T>& to, T major, T other) noexcept {
+  return T(0.5) * unit_scale(scene_half_size(from, to, major, other));
+}
+
+// A scene whose half size is below the smallest normal T cannot be brought into [1, 2) by
+// one finite power of two (two subnormal circles of radius 3e-316 at the same center read as
+// no_collision). Such a scene runs moved to `origin` (its offsets are exact differences at
+// that size) and scaled by 2^tiny_shift, exactly; the band is scaled back.
+template <class T>
+constexpr int tiny_shift = std::numeric_limits<T>::max_exponent - 1;
+
+template <class T>
+bool tiny_scene(const Vec2<T>& from, const Vec2<T>& to, T major, T other) noexcept {
+  return scene_half_size(from, to, major, other) < std::numeric_limits<T>::min();
+}
+
+template <class T>
+Ellipse2<T> blown_up(const Ellipse2<T>& e, const VecArg<T, 2>& origin) noexcept {
+  return detail::ShapeAccess::unchecked<T, 2>(detail::times_pow2(Vec2<T>(e.center() - origin), tiny_shift<T>),
+                                              e.axes(), detail::times_pow2(e.radii(), tiny_shift<T>));
+}
+
+template <class T>
+Circle<T> blown_up(const Circle<T>& c, const VecArg<T, 2>& origin) noexcept {
+  return make_circle<T>(detail::times_pow2(Vec2<T>(c.center() - origin), tiny_shift<T>),
+                        std::ldexp(c.radius(), tiny_shift<T>));
+}
+
+template <class T>
+PolygonalOverlap<T> shrunk_back(PolygonalOverlap<T> r) noexcept {
+  r.gap_lo = std::ldexp(r.gap_lo, -tiny_shift<T>);
+  r.gap_hi = std::ldexp(r.gap_hi, -tiny_shift<T>);
+  return r;
 }
 
 // The disk's center in the ellipse's axes, folded into the first quadrant; all scaled by s
@@ -382,6 +419,8 @@ template <class T>
 PolygonalOverlap<T> polygonal_overlap(const Ellipse2<T>& ellipse, const Circle<T>& circle, int max_level) noexcept {
   if (!valid_level(max_level)) return {};
   const T major = ellipse.radii().maxCoeff();
+  if (tiny_scene<T>(ellipse.center(), circle.center(), major, circle.radius()))
+    return shrunk_back(polygonal_overlap(blown_up(ellipse, ellipse.center()), blown_up(circle, ellipse.center()), max_level));
   const T s = scene_scale<T>(ellipse.center(), circle.center(), major, circle.radius());
   const Outcome o = quadrant_test(folded_disk(ellipse, circle, s), s * ellipse.radii()[0], s * ellipse.radii()[1],
                                   max_level);
@@ -391,6 +430,8 @@ PolygonalOverlap<T> polygonal_overlap(const Ellipse2<T>& ellipse, const Circle<T
 template <class T>
 PolygonalOverlap<T> polygonal_overlap(const Ellipse2<T>& a, const Ellipse2<T>& b, int max_level) noexcept {
   if (!valid_level(max_level)) return {};
+  if (tiny_scene<T>(a.center(), b.center(), std::max(a.radii().maxCoeff(), b.radii().maxCoeff()), T(0)))
+    return shrunk_back(polygonal_overlap(blown_up(a, a.center()), blown_up(b, a.center()), max_level));
   // Two exact powers of two: sb brings b's major radius into [1, 2) (the stretch factors),
   // s the largest of the offset and the radii (positions). Stretched positions are then
   // products of two numbers below 2 (the stretched frame is linear: scaled by sb s).
@@ -432,6 +473,8 @@ template <class T>
 PolygonalOverlap<T> circle_cover_overlap(const Ellipse2<T>& ellipse, const Circle<T>& circle, int max_level) noexcept {
   if (!valid_level(max_level)) return {};
   const T major = ellipse.radii().maxCoeff();
+  if (tiny_scene<T>(ellipse.center(), circle.center(), major, circle.radius()))
+    return shrunk_back(circle_cover_overlap(blown_up(ellipse, ellipse.center()), blown_up(circle, ellipse.center()), max_level));
   const T s = scene_scale<T>(ellipse.center(), circle.center(), major, circle.radius());
   const Outcome o = cover_test(folded_disk(ellipse, circle, s), s * ellipse.radii()[0], s * ellipse.radii()[1],
                                max_level);

@@ -254,6 +254,39 @@ TEST(NiemitaloRegression, TinyEllipseFarFromCircleIsApart) {
   EXPECT_EQ(polygonal_overlap(e, touching, 5).verdict, Verdict::collision);
 }
 
+// Fuzzing (the CI mutation run): two equal circles of subnormal radius 3.3e-316 at the same
+// center (1 + eps, -5) answered no_collision with the band [0, inf]. The scene's size is
+// below the smallest normal double, which no finite power of two brings into [1, 2) (the
+// scale stopped at 2^1022 and the stretched quantities lost the circles). Such scenes now
+// run moved to the first body's center and scaled by 2^1023, exactly, with the band scaled
+// back. Expected from geometry: same center, so they collide, with a gap band holding
+// -2 r (the signed distance of two coincident circles of radius r).
+TEST(NiemitaloRegression, SubnormalCirclesAtTheSameCenterCollide) {
+  const double r = 0x0.0000000fdfdfdp-1022;
+  const Vec2<double> center(0x1.0000000000001p+0, -5);
+  const auto e = make_ellipse<double>(center, 0.0, {r, r});
+  const auto c = make_circle<double>(center, r);
+  for (int n : {0, 1, 5, 15}) {
+    for (const auto& x : {polygonal_overlap(e, e, n), polygonal_overlap(e, c, n), circle_cover_overlap(e, c, n),
+                          polygonal_overlap(e, c.ellipse(), n)}) {
+      EXPECT_EQ(x.verdict, Verdict::collision) << n;
+      EXPECT_LE(x.gap_lo, -2 * r) << n;
+      EXPECT_GE(x.gap_hi, -2 * r) << n;
+    }
+  }
+  // At the origin, where such offsets are exact: a circle one radius off still collides
+  // (gap -r), three radii off it does not (gap r).
+  const auto at_origin = make_ellipse<double>({0, 0}, 0.0, {r, r});
+  for (int n : {0, 5, 15}) {
+    const auto near = polygonal_overlap(at_origin, make_circle<double>({0, r}, r), n);
+    const auto far = polygonal_overlap(at_origin, make_circle<double>({0, 3 * r}, r), n);
+    EXPECT_EQ(near.verdict, Verdict::collision) << n;
+    EXPECT_NE(far.verdict, Verdict::collision) << n;
+    EXPECT_LE(far.gap_lo, r) << n;
+    EXPECT_GE(far.gap_hi, r) << n;
+  }
+}
+
 // Fuzzing: closest_point_quartic answered `outside` with a NaN point for an ellipse of
 // radii 8 and about 1.4e306 (a needle's flat side; the factories now reject that aspect
 // ratio): the polish started at t = a^2 tau with a^2 overflowing. The same overflow, within
