@@ -82,10 +82,11 @@ fuzz_check() {
 # fuzz_mutate NAME RUNS: a short mutation run that tries the same inputs on every machine and
 # in every clone: seed 1, RUNS executions in one process, from a copy of the committed
 # corpus, the batch functions pinned to the portable SIMD target (their coverage would
-# otherwise follow the CPU), and no mutations from the operands of traced comparisons and
+# otherwise follow the CPU), no mutations from the operands of traced comparisons and
 # memory searches (-use_cmp=0 -use_memmem=0: those operands include addresses, which differ
-# from run to run). -max_total_time only cuts a slow machine's run short, to a prefix of the
-# same sequence of inputs (docs/fuzzing.md).
+# from run to run), and no timed re-reading of the corpus directory (-reload=0: it runs
+# extra inputs at moments set by the clock). -max_total_time only cuts a slow machine's run
+# short, to a prefix of the same sequence of inputs (docs/fuzzing.md).
 fuzz_mutate() {
   local name=$1 runs=$2 corpus=build/fuzz/mutation/$1 artifacts=build/fuzz/artifacts/$1- log
   rm -rf "$corpus"
@@ -93,7 +94,7 @@ fuzz_mutate() {
   cp fuzz/corpus/"$name"/* "$corpus"/
   echo "==> fuzz_$name: seeded mutation run, $runs inputs"
   log=$(ELLIPSECT_FUZZ_SIMD_TARGET=EMU128 build/fuzz/fuzz/fuzz_"$name" -seed=1 -runs="$runs" -use_cmp=0 \
-    -use_memmem=0 -max_total_time=180 -max_len=4096 -timeout=10 -artifact_prefix="$artifacts" "$corpus" 2>&1) ||
+    -use_memmem=0 -reload=0 -max_total_time=180 -max_len=4096 -timeout=10 -artifact_prefix="$artifacts" "$corpus" 2>&1) ||
     { echo "$log" | tail -40; return 1; }
 }
 
