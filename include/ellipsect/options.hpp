@@ -24,6 +24,10 @@ struct Options {
   // Cap on the outer (contact-time) iteration. Reaching it is reported as a status
   // (ContactStatus::did_not_converge), never returned as an answer.
   int max_iterations = 64;
+  // Cap on the advancement steps of first_contact under rigid motion (contact.hpp), where
+  // each step costs one signed distance. Reaching it is reported as did_not_converge, with
+  // a certified lower bound on the contact time.
+  int max_motion_steps = 10000;
 };
 
 }  // namespace ellipsect

@@ -181,6 +181,8 @@ template <int N> struct RBody {
   Real rmin, rmax;
 };
 
+template <int N> void complete_rbody(RBody<N>& r);
+
 template <int N> RBody<N> make_rbody(const Body<N>& b, const char* name = "body") {
   static_assert(N >= 1, "dimension");
   for (int i = 0; i < N; ++i) {
@@ -214,6 +216,12 @@ template <int N> RBody<N> make_rbody(const Body<N>& b, const char* name = "body"
       for (int i = 0; i < N; ++i) r.axes(i, j) = v(i) / n;
     }
   }
+  complete_rbody<N>(r);
+  return r;
+}
+
+// Fills rmin, rmax, L, M and P of a body whose centre, orthonormal axes and radii are set.
+template <int N> void complete_rbody(RBody<N>& r) {
   r.rmin = r.radii(0);
   r.rmax = r.radii(0);
   for (int k = 1; k < N; ++k) {
@@ -238,7 +246,6 @@ template <int N> RBody<N> make_rbody(const Body<N>& b, const char* name = "body"
       r.P(i, j) = r.P(j, i) = p;
     }
   }
-  return r;
 }
 
 // LDL^T of a symmetric positive definite matrix (no pivoting needed).

@@ -1,0 +1,246 @@
+// First contact under rigid motion (contact.hpp): conservative advancement on the slab gap
+// along the direction of closest approach, with a first-order and a second-order lower
+// bound on the gap (docs/method.md, section 9).
+//
+// Bounds. With e(s) = exp(-s [omega]x) n, body X's support radius along the fixed world
+// direction n is rho(s) = |w(s)|, w = diag(radii) axes_0^T e(s) (the body's axes turn by
+// exp(s [omega]x), which is the same as n turning back in the body's frame). Then
+//   |rho'| <= |w'| <= R |omega x n|,                      (|D x| <= R |x|, |e'| = |omega x n|)
+//   rho'' <= |w'|^2 / |w| + |w''| <= R^2 |omega x n|^2 / r + R |omega| |omega x n|,
+// with R, r the largest and smallest radius (|w| >= r). The centers move linearly, so
+// g_n = n . (c_b - c_a) - rho_a - rho_b has g_n' >= -V and g_n'' >= -K as in contact.hpp,
+// and rho'(s) = (omega x s_X) . n at s, where s_X is the support point's offset from the
+// center (envelope theorem), which gives g_n' exactly.
+#include <ellipsect/contact.hpp>
+#include <ellipsect/distance.hpp>
+
+#include "detail/instantiate.hpp"
+#include "detail/scale.hpp"
+#include "detail/shape_access.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace ellipsect {
+namespace {
+
+using R = double;  // every step's arithmetic; float bodies keep float rounding margins
+
+template <class T, int N>
+using Omega = decltype(RigidMotion<T, N>::angular_velocity);
+
+// omega x v; in 2D omega is the rate about the normal of the plane.
+template <int N, class W>
+Vec<R, N> cross(const W& omega, const Vec<R, N>& v) noexcept {
+  if constexpr (N == 2) {
+    return Vec<R, 2>(-R(omega) * v[1], R(omega) * v[0]);
+  } else {
+    return Vec<R, 3>(omega.template cast<R>().cross(v));
+  }
+}
+
+template <int N, class W>
+R magnitude(const W& omega) noexcept {
+  if constexpr (N == 2) {
+    return std::abs(R(omega));
+  } else {
+    return omega.template cast<R>().norm();
+  }
+}
+
+template <int N, class W>
+bool all_finite(const W& omega) noexcept {
+  if constexpr (N == 2) {
+    return std::isfinite(omega);
+  } else {
+    return omega.allFinite();
+  }
+}
+
+// exp(t [omega]x) (Rodrigues' formula in 3D).
+template <class T, int N>
+Mat<T, N> rotation(const Omega<T, N>& omega, T t) noexcept {
+  if constexpr (N == 2) {
+    const T angle = omega * t, c = std::cos(angle), s = std::sin(angle);
+    Mat<T, 2> rot;
+    rot << c, -s, s, c;
+    return rot;
+  } else {
+    const T rate = omega.norm();
+    if (!(rate > T(0)) || t == T(0)) return Mat<T, 3>::Identity();
+    const Vec<T, 3> k = omega / rate;
+    const T angle = rate * t, c = std::cos(angle), s = std::sin(angle);
+    Mat<T, 3> kx;
+    kx << T(0), -k[2], k[1], k[2], T(0), -k[0], -k[1], k[0], T(0);
+    return Mat<T, 3>(Mat<T, 3>::Identity() + s * kx + (T(1) - c) * (kx * kx));
+  }
+}
+
+// The body at t, unchecked: the moved center may be infinite (callers test it).
+template <class T, int N>
+Ellipsoid<T, N> moved(const Ellipsoid<T, N>& body, const RigidMotion<T, N>& motion, T t) noexcept {
+  const Vec<T, N> center = body.center() + t * motion.velocity;
+  return detail::ShapeAccess::unchecked<T, N>(center, rotation<T, N>(motion.angular_velocity, t) * body.axes(),
+                                              body.radii());
+}
+
+// Support radius of `body` along the unit n, and the support point's offset from the center.
+template <class T, int N>
+R support(const Ellipsoid<T, N>& body, const Vec<R, N>& n, Vec<R, N>& offset) noexcept {
+  const Mat<R, N> axes = body.axes().template cast<R>();
+  const Vec<R, N> radii = body.radii().template cast<R>();
+  const Vec<R, N> w = radii.cwiseProduct(axes.transpose() * n);
+  const R rho = w.norm();
+  offset = axes * radii.cwiseProduct(w) / rho;
+  return rho;
+}
+
+}  // namespace
+
+template <class T, int N>
+Ellipsoid<T, N> body_at(const Ellipsoid<T, N>& body, const RigidMotion<T, N>& motion, T t) {
+  if (!motion.velocity.allFinite()) throw InputError("velocity", "must be finite");
+  if (!all_finite<N>(motion.angular_velocity)) throw InputError("angular_velocity", "must be finite");
+  if (!std::isfinite(t)) throw InputError("time", "must be finite");
+  const Ellipsoid<T, N> out = moved(body, motion, t);
+  if (!out.center().allFinite()) throw InputError("time", "moves the center beyond the range of the type");
+  return out;
+}
+
+template <class T, int N>
+Contact<T, N> first_contact(const Ellipsoid<T, N>& a, const RigidMotion<T, N>& motion_a, const Ellipsoid<T, N>& b,
+                            const RigidMotion<T, N>& motion_b, T t_max, const Options& options) noexcept {
+  constexpr T nan = std::numeric_limits<T>::quiet_NaN();
+  Contact<T, N> out;
+  out.time = nan;
+  out.point.setConstant(nan);
+  out.normal.setConstant(nan);
+  if (!motion_a.velocity.allFinite() || !motion_b.velocity.allFinite() || !all_finite<N>(motion_a.angular_velocity) ||
+      !all_finite<N>(motion_b.angular_velocity) || std::isnan(t_max) || t_max < T(0))
+    return out;
+  const R spin_a = magnitude<N>(motion_a.angular_velocity), spin_b = magnitude<N>(motion_b.angular_velocity);
+  if (spin_a == R(0) && spin_b == R(0))
+    return first_contact(a, motion_a.velocity, b, motion_b.velocity, t_max, options);
+
+  // Lengths rescaled by a power of two (exact) where the radii leave 2^+-64, so that squares
+  // of radii stay normal; times and angular velocities are unchanged.
+  if constexpr (std::is_same_v<T, double>) {
+    const int e = std::ilogb(std::max(a.radii().maxCoeff(), b.radii().maxCoeff()));
+    if (e > detail::native_exponent || e < -detail::native_exponent) {
+      RigidMotion<T, N> ma = motion_a, mb = motion_b;
+      ma.velocity = detail::times_pow2(motion_a.velocity, -e);
+      mb.velocity = detail::times_pow2(motion_b.velocity, -e);
+      Contact<T, N> c = first_contact(detail::scaled(a, -e), ma, detail::scaled(b, -e), mb, t_max, options);
+      c.point = detail::times_pow2(c.point, e);
+      return c;
+    }
+  }
+
+  // Per-body constants of the bounds.
+  const R big_a = R(a.radii().maxCoeff()), small_a = R(a.radii().minCoeff());
+  const R big_b = R(b.radii().maxCoeff()), small_b = R(b.radii().minCoeff());
+  const Vec<R, N> va = motion_a.velocity.template cast<R>(), vb = motion_b.velocity.template cast<R>();
+  const Vec<R, N> rel_v = vb - va;
+  // Rounding margins: the bodies at each step are formed afresh (center + t v, rotated
+  // axes), so the gap carries the rounding of their coordinates and orientations.
+  constexpr R ulp = R(std::numeric_limits<T>::epsilon());
+  const R speed = va.norm() + vb.norm(), turn = spin_a * big_a + spin_b * big_b;
+  const R rate_margin = 32 * ulp * (speed + turn);
+
+  auto fill = [&](ContactStatus status, R t, const Distance<T, N>& d) {
+    out.status = status;
+    out.time = T(t);
+    out.point = ((d.point_a + d.point_b) / T(2)).eval();
+    out.normal = d.normal;
+    return out;
+  };
+
+  R t = 0;
+  bool touched = false;  // an earlier step was within the tangency band
+  R touch_time = 0;
+  Distance<T, N> touch;
+  touch.point_a.setConstant(nan);
+  touch.point_b.setConstant(nan);
+  touch.normal.setConstant(nan);
+  for (int step = 0; step < options.max_motion_steps; ++step) {
+    out.iterations = step;
+    const Ellipsoid<T, N> body_a = moved(a, motion_a, T(t)), body_b = moved(b, motion_b, T(t));
+    if (!body_a.center().allFinite() || !body_b.center().allFinite()) break;  // beyond the type's range
+    const Distance<T, N> d = signed_distance(body_a, body_b, options);
+    if (step == 0 && d.status == DistanceStatus::overlapping) {
+      out.status = ContactStatus::overlapping_at_start;
+      out.time = T(0);
+      return out;
+    }
+    if (step == 0 && d.status == DistanceStatus::touching)
+      return fill(ContactStatus::touching_at_start, 0, d);
+    if (d.status == DistanceStatus::overlapping)  // within rounding of the contact
+      return touched ? fill(ContactStatus::hit, touch_time, touch) : fill(ContactStatus::hit, t, d);
+    if (d.status == DistanceStatus::separated && touched)  // grazed within the band
+      return fill(ContactStatus::hit, touch_time, touch);
+
+    const Vec<R, N> n = d.normal.template cast<R>();
+    Vec<R, N> s_a, s_b;
+    const R rho_a = support(body_a, n, s_a), rho_b = support(body_b, n, s_b);
+    const Vec<R, N> ca = body_a.center().template cast<R>(), cb = body_b.center().template cast<R>();
+    const R coordinates = ca.norm() + cb.norm() + big_a + big_b + std::abs(t) * (speed + turn);
+    const R gap = n.dot(cb - ca) - rho_a - rho_b - 32 * ulp * coordinates;
+    const R slope = n.dot(rel_v) - n.dot(cross<N>(motion_a.angular_velocity, s_a)) -
+                    n.dot(cross<N>(motion_b.angular_velocity, s_b)) - rate_margin;
+    const R across_a = cross<N>(motion_a.angular_velocity, n).norm();
+    const R across_b = cross<N>(motion_b.angular_velocity, n).norm();
+    const R fastest = -n.dot(rel_v) + big_a * across_a + big_b * across_b + rate_margin;
+    const R curvature = (big_a * big_a * across_a * across_a / small_a + big_a * spin_a * across_a +
+                         big_b * big_b * across_b * across_b / small_b + big_b * spin_b * across_b) *
+                        (1 + 32 * ulp);
+    // The first zero of each lower bound of g_n beyond t (infinite where it has none).
+    constexpr R inf = std::numeric_limits<R>::infinity();
+    R advance = 0;
+    if (gap > R(0)) {
+      const R first_order = fastest > R(0) ? gap / fastest : inf;
+      R second_order;
+      if (curvature > R(0)) {
+        const R root = std::sqrt(slope * slope + 2 * curvature * gap);
+        second_order = slope <= R(0) ? 2 * gap / (root - slope) : (slope + root) / curvature;
+      } else {
+        second_order = slope < R(0) ? gap / -slope : inf;
+      }
+      advance = std::max(first_order, second_order) * (1 - 8 * ulp);
+    }
+    if (d.status == DistanceStatus::touching) {
+      if (!touched) {
+        touched = true;
+        touch_time = t;
+        touch = d;
+      }
+      // Converged: no certified progress left at the resolution of the claim.
+      if (!(advance > 1e-14 * t)) return fill(ContactStatus::hit, t, d);
+      touch_time = t;
+      touch = d;
+    }
+    if (advance == inf || t + advance > R(t_max)) {
+      if (touched) return fill(ContactStatus::hit, touch_time, touch);
+      out.status = ContactStatus::no_contact_in_window;
+      return out;
+    }
+    // The gap is within the rounding margin of the configuration (thin bodies have a
+    // tangency band narrower than it), or its step below the resolution of t: contact, as
+    // closely as the type resolves it.
+    if (!(t + advance > t)) return fill(ContactStatus::hit, t, d);
+    t += advance;
+  }
+  if (touched) return fill(ContactStatus::hit, touch_time, touch);
+  out.status = ContactStatus::did_not_converge;
+  out.time = T(t);
+  return out;
+}
+
+#define ELLIPSECT_INSTANTIATE(T, N)                                                                                 \
+  template Ellipsoid<T, N> body_at<T, N>(const Ellipsoid<T, N>&, const RigidMotion<T, N>&, T);                    \
+  template Contact<T, N> first_contact<T, N>(const Ellipsoid<T, N>&, const RigidMotion<T, N>&, const Ellipsoid<T, N>&, \
+                                             const RigidMotion<T, N>&, T, const Options&) noexcept;
+ELLIPSECT_FOR_EACH_TYPE_AND_DIM(ELLIPSECT_INSTANTIATE)
+#undef ELLIPSECT_INSTANTIATE
+
+}  // namespace ellipsect
