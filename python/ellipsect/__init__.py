@@ -3,7 +3,8 @@
 Bindings of the C++ library ellipsect (docs/python.md). Scalar bodies (Ellipse,
 Ellipsoid) and batches from numpy arrays (Ellipses, Ellipsoids) go to the same functions:
 classify, overlap, first_contact, distance, signed_distance, closest_point (and, scalar
-only, perram_wertheim and closest_approach), and in 2D
+only, first_contact under rigid motion with body_at, perram_wertheim and
+closest_approach), and in 2D
 intersect_boundaries, overlap_area, iou and Niemitalo's tests. Every number comes from the
 library; batch answers equal the scalar ones bit for bit. Pictures: ellipsect.plot;
 Dask: ellipsect.dask.
@@ -44,6 +45,7 @@ from ._ellipsect import (  # noqa: F401
     SegmentCircle,
     Side,
     Verdict,
+    body_at,
     circle_cover_overlap,
     classify,
     closest_approach,

@@ -128,12 +128,34 @@ void def_queries(py::module_& m) {
         py::arg("b"), py::arg("options") = Options{});
   m.def("overlap", py::overload_cast<const E&, const E&, const Options&>(&overlap<double, N>), py::arg("a"),
         py::arg("b"), py::arg("options") = Options{});
+  // Rigid motion (contact.hpp's RigidMotion): the angular velocity is a rate in 2D, a
+  // 3-vector in 3D; None for a body that does not turn.
+  using W = std::conditional_t<N == 2, double, Row<3>>;
+  using M = RigidMotion<double, N>;
+  auto motion = [](const Row<N>& v, const std::optional<W>& w) {
+    M out{vec<N>(v), {}};
+    if (w) {
+      if constexpr (N == 2) out.angular_velocity = *w;
+      else out.angular_velocity = vec<3>(*w);
+    }
+    return out;
+  };
   m.def("first_contact",
-        [](const E& a, const Row<N>& va, const E& b, const Row<N>& vb, double t_max, const Options& o) {
-          return first_contact(a, vec<N>(va), b, vec<N>(vb), t_max, o);
+        [motion](const E& a, const Row<N>& va, const E& b, const Row<N>& vb, double t_max, const Options& o,
+                 const std::optional<W>& wa, const std::optional<W>& wb) {
+          if (!wa && !wb) return first_contact(a, vec<N>(va), b, vec<N>(vb), t_max, o);
+          return first_contact(a, motion(va, wa), b, motion(vb, wb), t_max, o);
         },
         py::arg("a"), py::arg("velocity_a"), py::arg("b"), py::arg("velocity_b"), py::arg("t_max"),
-        py::arg("options") = Options{});
+        py::arg("options") = Options{}, py::kw_only(), py::arg("angular_velocity_a") = py::none(),
+        py::arg("angular_velocity_b") = py::none(),
+        "First contact in [0, t_max]; with an angular velocity, under rigid motion (contact.hpp).");
+  m.def("body_at",
+        [motion](const E& body, const Row<N>& velocity, const std::optional<W>& angular_velocity, double t) {
+          return body_at(body, motion(velocity, angular_velocity), t);
+        },
+        py::arg("body"), py::arg("velocity"), py::arg("angular_velocity"), py::arg("t"),
+        "The body at time t of its rigid motion (contact.hpp).");
   m.def("distance", py::overload_cast<const E&, const E&, const Options&>(&distance<double, N>), py::arg("a"),
         py::arg("b"), py::arg("options") = Options{});
   m.def("signed_distance", py::overload_cast<const E&, const E&, const Options&>(&signed_distance<double, N>),
@@ -265,12 +287,17 @@ void def_enums(py::module_& m) {
 void def_scalar(py::module_& m) {
   def_enums(m);
   py::class_<Options>(m, "Options", "Tolerance and iteration cap (options.hpp).")
-      .def(py::init([](double tolerance, int max_iterations) { return Options{tolerance, max_iterations}; }),
-           py::arg("tolerance") = Options{}.tolerance, py::arg("max_iterations") = Options{}.max_iterations)
+      .def(py::init([](double tolerance, int max_iterations, int max_motion_steps) {
+             return Options{tolerance, max_iterations, max_motion_steps};
+           }),
+           py::arg("tolerance") = Options{}.tolerance, py::arg("max_iterations") = Options{}.max_iterations,
+           py::arg("max_motion_steps") = Options{}.max_motion_steps)
       .def_readwrite("tolerance", &Options::tolerance)
       .def_readwrite("max_iterations", &Options::max_iterations)
-      .def(py::pickle([](const Options& o) { return py::make_tuple(o.tolerance, o.max_iterations); },
-                      [](const py::tuple& t) { return Options{t[0].cast<double>(), t[1].cast<int>()}; }));
+      .def_readwrite("max_motion_steps", &Options::max_motion_steps)
+      .def(py::pickle(
+          [](const Options& o) { return py::make_tuple(o.tolerance, o.max_iterations, o.max_motion_steps); },
+          [](const py::tuple& t) { return Options{t[0].cast<double>(), t[1].cast<int>(), t[2].cast<int>()}; }));
 
   py::class_<Ellipse2<double>> ellipse(m, "Ellipse", "A validated ellipse (shapes.hpp).");
   ellipse.def(py::init([](const Row<2>& center, const Row<2>& radii, std::optional<double> angle,

@@ -163,3 +163,36 @@ def test_axis_aligned_closest_approach(dim):
     for bad in (np.zeros(dim), np.full(dim, np.nan)):
         with pytest.raises(ValueError, match="direction"):
             ellipsect.closest_approach(a, b, bad)
+
+
+def test_spinning_balls_first_contact():
+    # Balls look alike at every angle: with spin the rigid-motion path runs, and the time
+    # is the translating balls' (a head-on approach: |d| - |v| t = ra + rb).
+    for dim, spin_a, spin_b in ((2, 3.0, -1.0), (3, [0.0, 2.0, 1.0], [1.0, 0.0, 0.0])):
+        body = ellipsect.Ellipse if dim == 2 else ellipsect.Ellipsoid
+        far = np.zeros(dim)
+        far[0] = 10.0
+        v = np.zeros(dim)
+        v[0] = 2.0
+        got = ellipsect.first_contact(body.ball(np.zeros(dim), 1.5), v, body.ball(far, 0.5), -v, 100.0,
+                                      angular_velocity_a=spin_a, angular_velocity_b=spin_b)
+        assert got.status == ellipsect.ContactStatus.hit
+        assert abs(got.time - 2.0) <= 1e-12 * 2.0 and got.time <= 2.0
+        assert got.iterations > 0
+
+
+def test_turning_needle_tip_first_contact():
+    # A thin needle of half-length L turning at rate w reaches the ball of radius r at (0, D)
+    # with its tip: sin(phi) = (L^2 + D^2 - r^2) / (2 L D), t = phi / w.
+    L, r, D, w = 2.0, 0.5, 2.2, 1.0
+    needle = ellipsect.Ellipse([0, 0], [L, L * 1e-6])
+    got = ellipsect.first_contact(needle, [0, 0], ellipsect.Ellipse.ball([0, D], r), [0, 0], 10.0,
+                                  angular_velocity_a=w)
+    phi = mp.asin((mp.mpf(L) ** 2 + mp.mpf(D) ** 2 - mp.mpf(r) ** 2) / (2 * mp.mpf(L) * mp.mpf(D)))
+    assert got.status == ellipsect.ContactStatus.hit
+    assert abs(got.time - float(phi / w)) <= 1e-5 and got.time <= float(phi / w)
+    moved = ellipsect.body_at(needle, [1.0, 0.0], w, float(phi))
+    assert np.allclose(moved.axes[:, 0], [np.cos(float(phi)), np.sin(float(phi))], atol=1e-15)
+    assert np.allclose(moved.center, [float(phi), 0.0], atol=1e-15)
+    with pytest.raises(ValueError, match="time"):
+        ellipsect.body_at(needle, [1.0, 0.0], w, float("inf"))
