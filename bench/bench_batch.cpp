@@ -149,12 +149,9 @@ std::string category_name(int k) { return std::string(scenarios::name(categories
 using ref::from_ref;
 using ref::to_ref;
 
-enum class Outcome { at_start, hit, none, failed };
-
-struct Answer {
-  Outcome outcome;
-  double time;
-};
+using bench::Answer;
+using bench::Outcome;
+using bench::answer;
 
 struct ContactTruth {
   Answer expected;
@@ -225,15 +222,6 @@ const Truth<ContactTruth>& contact_truth(int k) {
          });
 }
 
-Answer answer(const Contact<double, 3>& c) {
-  switch (c.status) {
-    case ContactStatus::hit: return {Outcome::hit, c.time};
-    case ContactStatus::touching_at_start:
-    case ContactStatus::overlapping_at_start: return {Outcome::at_start, 0};
-    case ContactStatus::no_contact_in_window: return {Outcome::none, inf};
-    default: return {Outcome::failed, NAN};
-  }
-}
 
 bool disagrees(bool want, bool got) { return want != got; }
 bool disagrees(Relation want, Relation got) { return want != got; }
@@ -404,13 +392,7 @@ void fcl_overlap_from_pose(benchmark::State& state, int k, fcl::GJKSolverType so
   });
 }
 
-struct FclMotion {
-  std::shared_ptr<fcl::Ellipsoidd> a, b;
-  fcl::Transform3d a0, a1, b0, b1;  // poses at t = 0 and t = window
-  double window;
-};
-
-FclMotion fcl_motion(const scenarios::Case<3>& c) {
+bench::FclMotion fcl_motion(const scenarios::Case<3>& c) {
   double window = c.t_max;
   if (std::isinf(window)) {
     const Vec3<double> r = c.b.center() - c.a.center(), v = c.vb - c.va;
@@ -427,16 +409,12 @@ FclMotion fcl_motion(const scenarios::Case<3>& c) {
 }
 
 void fcl_contact(benchmark::State& state, int k, fcl::CCDMotionType motion) {
-  std::vector<FclMotion> items;
+  std::vector<bench::FclMotion> items;
   for (const auto& c : cases<3>(k).list) items.push_back(fcl_motion(c));
   fcl::ContinuousCollisionRequestd request;
   request.ccd_motion_type = motion;
-  run_queries(state, contact_truth(k), items, [&request](const FclMotion& m) {
-    fcl::ContinuousCollisionResultd result;
-    fcl::continuousCollide(m.a.get(), m.a0, m.a1, m.b.get(), m.b0, m.b1, request, result);
-    if (!result.is_collide) return Answer{Outcome::none, inf};
-    if (result.time_of_contact == 0) return Answer{Outcome::at_start, 0};
-    return Answer{Outcome::hit, result.time_of_contact * m.window};
+  run_queries(state, contact_truth(k), items, [&request](const bench::FclMotion& m) {
+    return bench::answer_from_time(bench::fcl_contact_time(m, request));
   });
 }
 #endif

@@ -40,10 +40,6 @@
 
 #include <benchmark/benchmark.h>
 
-#ifdef ELLIPSECT_HAVE_FCL
-#include <fcl/narrowphase/continuous_collision.h>
-#endif
-
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -63,11 +59,9 @@ constexpr int cases_per_kind = 128;
 constexpr double inf = std::numeric_limits<double>::infinity();
 constexpr std::array kinds = {Spin::random, Spin::slow, Spin::fast, Spin::needles, Spin::brief};
 
-enum class Outcome { at_start, hit, none, failed };
-struct Answer {
-  Outcome outcome;
-  double time;
-};
+using bench::Answer;
+using bench::Outcome;
+using bench::answer;
 struct Truth {
   Answer expected;
   double tolerance;  // on a hit's time (inf: grazing, not judged)
@@ -134,15 +128,6 @@ void run(benchmark::State& state, Spin kind, Query query) {
   bench::time_cases(state, items, query);
 }
 
-Answer answer(const Contact<double, 3>& c) {
-  switch (c.status) {
-    case ContactStatus::hit: return {Outcome::hit, c.time};
-    case ContactStatus::touching_at_start:
-    case ContactStatus::overlapping_at_start: return {Outcome::at_start, 0};
-    case ContactStatus::no_contact_in_window: return {Outcome::none, inf};
-    default: return {Outcome::failed, NAN};
-  }
-}
 
 void ellipsect_contact(benchmark::State& state, Spin kind) {
   run(state, kind, [](const Moving<3>& m) { return answer(first_contact(m.a, m.ma, m.b, m.mb, m.t_max)); });
@@ -150,12 +135,7 @@ void ellipsect_contact(benchmark::State& state, Spin kind) {
 
 #ifdef ELLIPSECT_HAVE_FCL
 void fcl_contact(benchmark::State& state, Spin kind, fcl::CCDMotionType motion) {
-  struct Item {
-    std::shared_ptr<fcl::Ellipsoidd> a, b;
-    fcl::Transform3d a0, a1, b0, b1;
-    double window;
-  };
-  std::map<const Moving<3>*, Item> items;
+  std::map<const Moving<3>*, bench::FclMotion> items;
   for (const Moving<3>& m : cases(kind))
     items[&m] = {bench::fcl_shape(m.a), bench::fcl_shape(m.b),
                  bench::fcl_pose(m.a),  bench::fcl_pose(body_at(m.a, m.ma, m.t_max)),
@@ -164,12 +144,7 @@ void fcl_contact(benchmark::State& state, Spin kind, fcl::CCDMotionType motion) 
   fcl::ContinuousCollisionRequestd request;
   request.ccd_motion_type = motion;
   run(state, kind, [&](const Moving<3>& m) {
-    const Item& it = items.at(&m);
-    fcl::ContinuousCollisionResultd result;
-    fcl::continuousCollide(it.a.get(), it.a0, it.a1, it.b.get(), it.b0, it.b1, request, result);
-    if (!result.is_collide) return Answer{Outcome::none, inf};
-    if (result.time_of_contact == 0) return Answer{Outcome::at_start, 0};
-    return Answer{Outcome::hit, result.time_of_contact * it.window};
+    return bench::answer_from_time(bench::fcl_contact_time(items.at(&m), request));
   });
 }
 #endif

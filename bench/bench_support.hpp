@@ -1,12 +1,15 @@
 // Shared timing loop of the benchmark programs.
 #pragma once
 
+#include <ellipsect/contact.hpp>
 #include <ellipsect/shapes.hpp>
 
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <limits>
 #include <vector>
 
 namespace ellipsect::bench {
@@ -28,6 +31,31 @@ inline Pose3 pose_of(const Ellipsoid3<double>& e) {
 }
 
 inline Ellipsoid3<double> body_of(const Pose3& p) { return make_ellipsoid(p.center, p.rotation, p.radii); }
+
+// A first contact as the benchmarks compare it with the reference.
+enum class Outcome { at_start, hit, none, failed };
+
+struct Answer {
+  Outcome outcome;
+  double time;
+};
+
+template <class T, int N>
+Answer answer(const Contact<T, N>& c) {
+  switch (c.status) {
+    case ContactStatus::hit: return {Outcome::hit, double(c.time)};
+    case ContactStatus::touching_at_start:
+    case ContactStatus::overlapping_at_start: return {Outcome::at_start, 0};
+    case ContactStatus::no_contact_in_window: return {Outcome::none, std::numeric_limits<double>::infinity()};
+    default: return {Outcome::failed, NAN};
+  }
+}
+
+// A peer's time of contact: negative for none, 0 for contact at the start.
+inline Answer answer_from_time(double t) {
+  if (t < 0) return {Outcome::none, std::numeric_limits<double>::infinity()};
+  return t == 0 ? Answer{Outcome::at_start, 0} : Answer{Outcome::hit, t};
+}
 
 // Times `query` while cycling through `cases` in a fixed order (Google Benchmark's time is
 // the mean over them), then adds the counter `median_ns`: the median over cases of the

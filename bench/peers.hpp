@@ -9,6 +9,7 @@
 #ifdef ELLIPSECT_HAVE_FCL
 #include <fcl/geometry/shape/ellipsoid.h>
 #include <fcl/narrowphase/collision_object.h>
+#include <fcl/narrowphase/continuous_collision.h>
 #endif
 #ifdef ELLIPSECT_HAVE_CCD
 #include <ccd/ccd.h>
@@ -39,6 +40,21 @@ inline std::shared_ptr<fcl::CollisionObjectd> fcl_object(const Ellipsoid3<double
 // From a pose, as a simulation step would: the shape on the stack, the transform from the
 // quaternion (for fcl::collide and fcl::distance on geometries and transforms).
 inline fcl::Ellipsoidd fcl_shape(const Pose3& p) { return fcl::Ellipsoidd(p.radii[0], p.radii[1], p.radii[2]); }
+
+// Two shapes moving from their poses at t = 0 (a0, b0) to those at t = window (a1, b1).
+struct FclMotion {
+  std::shared_ptr<fcl::Ellipsoidd> a, b;
+  fcl::Transform3d a0, a1, b0, b1;
+  double window;
+};
+
+// fcl::continuousCollide on the motion: the time of contact in the motion's units (0 when
+// in contact at the start), or -1 for no contact.
+inline double fcl_contact_time(const FclMotion& m, const fcl::ContinuousCollisionRequestd& request) {
+  fcl::ContinuousCollisionResultd result;
+  fcl::continuousCollide(m.a.get(), m.a0, m.a1, m.b.get(), m.b0, m.b1, request, result);
+  return result.is_collide ? result.time_of_contact * m.window : -1.0;
+}
 
 inline fcl::Transform3d fcl_pose(const Pose3& p) {
   fcl::Transform3d tf = fcl::Transform3d::Identity();
