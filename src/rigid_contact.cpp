@@ -6,6 +6,8 @@
 // direction n is rho(s) = |w(s)|, w = diag(radii) axes_0^T e(s) (the body's axes turn by
 // exp(s [omega]x), which is the same as n turning back in the body's frame). Then
 //   |rho'| <= |w'| <= R |omega x n|,                      (|D x| <= R |x|, |e'| = |omega x n|)
+//   |rho'| = |u^T (D^2 - c I) u'| / |D u| <= (R^2 - r^2) / (2 r) |omega x n|
+//                                       (u = axes_0^T e, u' orthogonal to u, c = (R^2 + r^2) / 2),
 //   rho'' <= |w'|^2 / |w| + |w''| <= R^2 |omega x n|^2 / r + R |omega| |omega x n|,
 // with R, r the largest and smallest radius (|w| >= r). The centers move linearly, so
 // g_n = n . (c_b - c_a) - rho_a - rho_b has g_n' >= -V and g_n'' >= -K as in contact.hpp,
@@ -45,7 +47,7 @@ R magnitude(const W& omega) noexcept {
   if constexpr (N == 2) {
     return std::abs(R(omega));
   } else {
-    return omega.template cast<R>().norm();
+    return omega.template cast<R>().stableNorm();
   }
 }
 
@@ -67,7 +69,7 @@ Mat<T, N> rotation(const Omega<T, N>& omega, T t) noexcept {
     rot << c, -s, s, c;
     return rot;
   } else {
-    const T rate = omega.norm();
+    const T rate = omega.stableNorm();
     if (!(rate > T(0)) || t == T(0)) return Mat<T, 3>::Identity();
     const Vec<T, 3> k = omega / rate;
     const T angle = rate * t, c = std::cos(angle), s = std::sin(angle);
@@ -105,6 +107,7 @@ Ellipsoid<T, N> body_at(const Ellipsoid<T, N>& body, const RigidMotion<T, N>& mo
   if (!std::isfinite(t)) throw InputError("time", "must be finite");
   const Ellipsoid<T, N> out = moved(body, motion, t);
   if (!out.center().allFinite()) throw InputError("time", "moves the center beyond the range of the type");
+  if (!out.axes().allFinite()) throw InputError("time", "turns the body by an angle beyond the range of the type");
   return out;
 }
 
@@ -122,17 +125,42 @@ Contact<T, N> first_contact(const Ellipsoid<T, N>& a, const RigidMotion<T, N>& m
   const R spin_a = magnitude<N>(motion_a.angular_velocity), spin_b = magnitude<N>(motion_b.angular_velocity);
   if (spin_a == R(0) && spin_b == R(0))
     return first_contact(a, motion_a.velocity, b, motion_b.velocity, t_max, options);
+  // Beyond the bounds' range: |omega| overflows, or the pair needs more than double (radius
+  // ratios beyond 2^160, coordinates beyond 2^340 radii; detail/scale.hpp). Only the start
+  // state is decided there; otherwise did_not_converge at 0.
+  const bool out_of_range =
+      !std::isfinite(spin_a) || !std::isfinite(spin_b) || detail::scale_of(a, b).range == detail::Range::wide;
 
-  // Lengths rescaled by a power of two (exact) where the radii leave 2^+-64, so that squares
-  // of radii stay normal; times and angular velocities are unchanged.
+  // Lengths rescaled by 2^-e (exact) where the radii leave 2^+-64, so that squares of radii
+  // stay normal; where the speeds in those lengths would leave the range of the type, time
+  // is rescaled too, by 2^f (velocities times 2^-(e + f), angular velocities 2^-f).
   if constexpr (std::is_same_v<T, double>) {
     const int e = std::ilogb(std::max(a.radii().maxCoeff(), b.radii().maxCoeff()));
-    if (e > detail::native_exponent || e < -detail::native_exponent) {
+    if ((e > detail::native_exponent || e < -detail::native_exponent) && !out_of_range) {
+      const T speed = std::max(detail::max_abs(motion_a.velocity), detail::max_abs(motion_b.velocity));
+      const int g = speed > T(0) ? std::ilogb(speed) - e : 0;
+      const int f = g > 960 || g < -960 ? g : 0;
       RigidMotion<T, N> ma = motion_a, mb = motion_b;
-      ma.velocity = detail::times_pow2(motion_a.velocity, -e);
-      mb.velocity = detail::times_pow2(motion_b.velocity, -e);
-      Contact<T, N> c = first_contact(detail::scaled(a, -e), ma, detail::scaled(b, -e), mb, t_max, options);
+      ma.velocity = detail::times_pow2(motion_a.velocity, -e - f);
+      mb.velocity = detail::times_pow2(motion_b.velocity, -e - f);
+      if constexpr (N == 2) {
+        ma.angular_velocity = std::ldexp(motion_a.angular_velocity, -f);
+        mb.angular_velocity = std::ldexp(motion_b.angular_velocity, -f);
+      } else {
+        ma.angular_velocity = detail::times_pow2(motion_a.angular_velocity, -f);
+        mb.angular_velocity = detail::times_pow2(motion_b.angular_velocity, -f);
+      }
+      // Centers that the scaling would overflow (bodies far smaller than their coordinates):
+      // the pair is moved to a's center first (an exact difference for nearby centers).
+      const bool move = std::max(detail::max_abs(a.center()), detail::max_abs(b.center())) >= std::ldexp(T(1), 1000 + e);
+      const Vec<T, N> origin = move ? Vec<T, N>(a.center()) : Vec<T, N>::Zero();
+      auto prepared = [&](const Ellipsoid<T, N>& x) {
+        return detail::scaled(detail::ShapeAccess::unchecked<T, N>(x.center() - origin, x.axes(), x.radii()), -e);
+      };
+      Contact<T, N> c = first_contact(prepared(a), ma, prepared(b), mb, std::ldexp(t_max, f), options);
+      c.time = std::ldexp(c.time, -f);
       c.point = detail::times_pow2(c.point, e);
+      if (move) c.point += origin;
       return c;
     }
   }
@@ -140,10 +168,14 @@ Contact<T, N> first_contact(const Ellipsoid<T, N>& a, const RigidMotion<T, N>& m
   // Per-body constants of the bounds.
   const R big_a = R(a.radii().maxCoeff()), small_a = R(a.radii().minCoeff());
   const R big_b = R(b.radii().maxCoeff()), small_b = R(b.radii().minCoeff());
+  // How fast a turn moves the support plane, per unit of |omega x n|: at most R, and at most
+  // (R^2 - r^2) / (2 r) (zero for a ball; see the top of this file).
+  const R sweep_a = std::min(big_a, (big_a - small_a) * (big_a + small_a) / (2 * small_a));
+  const R sweep_b = std::min(big_b, (big_b - small_b) * (big_b + small_b) / (2 * small_b));
   const Vec<R, N> va = motion_a.velocity.template cast<R>(), vb = motion_b.velocity.template cast<R>();
   const Vec<R, N> rel_v = vb - va;
   // Rounding margins: the bodies at each step are formed afresh (center + t v, rotated
-  // axes), so the gap carries the rounding of their coordinates and orientations.
+  // axes, in T), so the gap carries the rounding of their coordinates and orientations.
   constexpr R ulp = R(std::numeric_limits<T>::epsilon());
   const R speed = va.norm() + vb.norm(), turn = spin_a * big_a + spin_b * big_b;
   const R rate_margin = 32 * ulp * (speed + turn);
@@ -166,8 +198,10 @@ Contact<T, N> first_contact(const Ellipsoid<T, N>& a, const RigidMotion<T, N>& m
   for (int step = 0; step < options.max_motion_steps; ++step) {
     out.iterations = step;
     const Ellipsoid<T, N> body_a = moved(a, motion_a, T(t)), body_b = moved(b, motion_b, T(t));
-    if (!body_a.center().allFinite() || !body_b.center().allFinite()) break;  // beyond the type's range
-    const Distance<T, N> d = signed_distance(body_a, body_b, options);
+    if (!body_a.center().allFinite() || !body_b.center().allFinite() || !body_a.axes().allFinite() ||
+        !body_b.axes().allFinite())
+      break;  // moved or turned beyond the type's range
+    const Distance<T, N> d = distance(body_a, body_b, options);
     if (step == 0 && d.status == DistanceStatus::overlapping) {
       out.status = ContactStatus::overlapping_at_start;
       out.time = T(0);
@@ -175,8 +209,10 @@ Contact<T, N> first_contact(const Ellipsoid<T, N>& a, const RigidMotion<T, N>& m
     }
     if (step == 0 && d.status == DistanceStatus::touching)
       return fill(ContactStatus::touching_at_start, 0, d);
+    if (out_of_range) break;
     if (d.status == DistanceStatus::overlapping)  // within rounding of the contact
-      return touched ? fill(ContactStatus::hit, touch_time, touch) : fill(ContactStatus::hit, t, d);
+      return touched ? fill(ContactStatus::hit, touch_time, touch)
+                     : fill(ContactStatus::hit, t, signed_distance(body_a, body_b, options));
     if (d.status == DistanceStatus::separated && touched)  // grazed within the band
       return fill(ContactStatus::hit, touch_time, touch);
 
@@ -184,13 +220,22 @@ Contact<T, N> first_contact(const Ellipsoid<T, N>& a, const RigidMotion<T, N>& m
     Vec<R, N> s_a, s_b;
     const R rho_a = support(body_a, n, s_a), rho_b = support(body_b, n, s_b);
     const Vec<R, N> ca = body_a.center().template cast<R>(), cb = body_b.center().template cast<R>();
-    const R coordinates = ca.norm() + cb.norm() + big_a + big_b + std::abs(t) * (speed + turn);
-    const R gap = n.dot(cb - ca) - rho_a - rho_b - 32 * ulp * coordinates;
+    // The rounding of this step's bodies (none at t = 0, where they are the given ones):
+    // centers c_0 + t v, the angle |omega| t, Rodrigues' products and t itself in T; and the
+    // gap's own rounding in R.
+    const R configuration =
+        t == R(0) ? R(0)
+                  : 4 * ulp *
+                        (a.center().template cast<R>().norm() + b.center().template cast<R>().norm() + t * speed +
+                         big_a * (8 + spin_a * t) + big_b * (8 + spin_b * t));
+    const R along = n.dot(cb - ca);
+    const R margin = configuration + 8 * std::numeric_limits<R>::epsilon() * (std::abs(along) + rho_a + rho_b);
+    const R gap = along - rho_a - rho_b - margin;
     const R slope = n.dot(rel_v) - n.dot(cross<N>(motion_a.angular_velocity, s_a)) -
                     n.dot(cross<N>(motion_b.angular_velocity, s_b)) - rate_margin;
-    const R across_a = cross<N>(motion_a.angular_velocity, n).norm();
-    const R across_b = cross<N>(motion_b.angular_velocity, n).norm();
-    const R fastest = -n.dot(rel_v) + big_a * across_a + big_b * across_b + rate_margin;
+    const R across_a = cross<N>(motion_a.angular_velocity, n).stableNorm();
+    const R across_b = cross<N>(motion_b.angular_velocity, n).stableNorm();
+    const R fastest = -n.dot(rel_v) + sweep_a * across_a + sweep_b * across_b + rate_margin;
     const R curvature = (big_a * big_a * across_a * across_a / small_a + big_a * spin_a * across_a +
                          big_b * big_b * across_b * across_b / small_b + big_b * spin_b * across_b) *
                         (1 + 32 * ulp);
@@ -219,15 +264,25 @@ Contact<T, N> first_contact(const Ellipsoid<T, N>& a, const RigidMotion<T, N>& m
       touch_time = t;
       touch = d;
     }
+    // The bounding balls (radius R about the centers) never meet from t on: no contact ever.
+    const Vec<R, N> apart = cb - ca;
+    const R ahead = rel_v.squaredNorm() > R(0) ? std::max(R(0), -apart.dot(rel_v) / rel_v.squaredNorm()) : R(0);
+    const R closest = (apart + ahead * rel_v).norm();  // of the centers, from t on
+    if (closest > (big_a + big_b) * (1 + 64 * ulp) + margin) advance = inf;
     if (advance == inf || t + advance > R(t_max)) {
       if (touched) return fill(ContactStatus::hit, touch_time, touch);
       out.status = ContactStatus::no_contact_in_window;
       return out;
     }
-    // The gap is within the rounding margin of the configuration (thin bodies have a
-    // tangency band narrower than it), or its step below the resolution of t: contact, as
-    // closely as the type resolves it.
-    if (!(t + advance > t)) return fill(ContactStatus::hit, t, d);
+    if (!(t + advance > t)) {
+      // No certified progress. Where the gap is within the rounding margin of the
+      // configuration (thin bodies have a tangency band narrower than it) or its step below
+      // the resolution of t, that is contact, as closely as the type resolves it; otherwise
+      // the bounds are beyond the range of the type (speeds or spins near overflow).
+      const bool resolved = margin <= (small_a + small_b) / 4;
+      if (t > R(0) && resolved && gap <= margin + 4 * ulp * t * fastest) return fill(ContactStatus::hit, t, d);
+      break;
+    }
     t += advance;
   }
   if (touched) return fill(ContactStatus::hit, touch_time, touch);

@@ -83,7 +83,7 @@ static_assert(detail::has_plain_layout<RigidMotion<float, 2>, float[2], float> &
 // The body at time t of its motion: center + t * velocity, axes rotated by exp(t [omega]x)
 // (Rodrigues' formula, to a few ulps; the angle |omega| t is reduced by the sine and cosine
 // exactly). Throws InputError naming "velocity", "angular_velocity" or "time" where the
-// motion or t is not finite or the moved center overflows.
+// motion or t is not finite, or the moved center or the angle |omega| t overflows.
 template <class T, int N>
 Ellipsoid<T, N> body_at(const Ellipsoid<T, N>& body, const RigidMotion<T, N>& motion, T t);
 
@@ -91,32 +91,40 @@ Ellipsoid<T, N> body_at(const Ellipsoid<T, N>& body, const RigidMotion<T, N>& mo
 // the same statuses and fields as above; `iterations` counts advancement steps.
 //
 // Method (docs/method.md, section 9): conservative advancement. At the current time t the
-// signed distance (distance.hpp) gives the direction n of closest approach; the slab gap
+// distance (distance.hpp) gives the direction n of closest approach; the slab gap
 //     g_n(s) = n . (c_b(s) - c_a(s)) - rho_a(n, s) - rho_b(n, s)
 // (rho_X the support radius of body X along n at time s) is a lower bound on the distance
 // at every s, and for s >= t
 //     g_n(s) >= g_n(t) - V (s - t)   and   g_n(s) >= g_n(t) + g_n'(t) (s - t) - K (s - t)^2 / 2,
-// with V = -n . (v_b - v_a) + R_a |omega_a x n| + R_b |omega_b x n| (R the largest radius)
-// and K = sum over the bodies of R^2 |omega x n|^2 / r + R |omega| |omega x n| (r the
-// smallest radius): bounds on the rate at which a body turning about its center can move
-// its support plane. Time advances to the first zero of the larger of the two bounds, so
-// no contact is skipped; the second bound makes the steps Newton-like near a transversal
-// contact. Where V <= 0 the slab never closes: no contact, ever.
+// with V = -n . (v_b - v_a) + S_a |omega_a x n| + S_b |omega_b x n|, S = min(R, (R^2 - r^2) /
+// (2 r)) (R, r the largest and smallest radius; S = 0 for a ball), and K = sum over the
+// bodies of R^2 |omega x n|^2 / r + R |omega| |omega x n|: bounds on the rate at which a body
+// turning about its center can move its support plane. Time advances to the first zero of
+// the larger of the two bounds, so no contact is skipped; the second bound makes the steps
+// Newton-like near a transversal contact. Where V <= 0 the slab never closes, and where the
+// balls of radius R about the centers never meet from t on, neither do the bodies: no
+// contact, ever.
 //
 // Guarantees (tested against a 50-digit reference by another route, tests/property/
 // rigid_contact_property_test.cpp):
-//   * the reported time is never later than the first contact, up to the rounding of the
-//     bodies' positions and orientations at the steps (a margin of 32 ulps of the scene's
-//     coordinates is kept): a contact in the window is never missed, and
-//     no_contact_in_window is certified;
+//   * the reported time is never later than the first contact of the exact motion: each
+//     step keeps a margin for the rounding of the bodies it forms at time t (a few ulps of
+//     T of the centers, of t times the speeds and of the radii times (8 + |omega| t)) and of
+//     the gap: a contact in the window is never missed, and no_contact_in_window is
+//     certified;
 //   * hit: time within 1e-12 relative (or 1e-12 * scale / speed near 0), point within
 //     1e-10 * scale, normal within 1e-9 rad, for contacts that are not grazing (as above);
-//   * did_not_converge (Options::max_motion_steps reached): `time` is a certified lower
-//     bound on the first contact time, point and normal NaN;
+//   * did_not_converge (Options::max_motion_steps reached, or the scene's coordinates at the
+//     current time no longer resolve the bodies: far in the future of an unbounded window,
+//     or speeds near the range of the type): `time` is a certified lower bound on the first
+//     contact time, point and normal NaN;
 //   * both angular velocities exactly zero: exactly the answer of the translational
 //     first_contact above, bit for bit.
 // invalid_input where a velocity or angular velocity is not finite or t_max is NaN or
-// negative.
+// negative. Range: radii and speeds at any scale (rescaled by powers of two); pairs that
+// need more than double (radius ratios beyond 2^160 or coordinates beyond 2^340 radii,
+// shapes.hpp) and angular velocities whose magnitude overflows get their start state
+// (overlapping_at_start, touching_at_start) or did_not_converge at time 0.
 template <class T, int N>
 Contact<T, N> first_contact(const Ellipsoid<T, N>& a, const RigidMotion<T, N>& motion_a, const Ellipsoid<T, N>& b,
                             const RigidMotion<T, N>& motion_b, T t_max, const Options& options = {}) noexcept;

@@ -1,0 +1,145 @@
+// Fuzz target `rigid`: first_contact under rigid motion and body_at on two bodies (2D or 3D,
+// double or float) and motions decoded from the input, checked against what contact.hpp
+// promises for every input:
+//   invalid_input exactly for a non-finite velocity or angular velocity, or a NaN or
+//   negative t_max; both angular velocities zero: the translational first_contact bit for
+//   bit; hit: time finite in (0, t_max], finite point, unit normal; touching_at_start: time
+//   0; overlapping_at_start exactly where the bodies overlap at 0 (distance's status);
+//   a small step cap chosen by the input: the same answer, or did_not_converge with a time
+//   in [0, t_max] not later than the uncapped hit's, or (the cap reached inside the tangency
+//   band) a hit not later than it; iterations within the cap;
+//   body_at: InputError naming "velocity", "angular_velocity" or "time" for non-finite
+//   input, else a body with the same radii, finite axes and the center moved by t * velocity.
+#include "fuzz_support.hpp"
+
+#include <ellipsect/contact.hpp>
+#include <ellipsect/distance.hpp>
+
+namespace {
+
+using namespace ellipsect;
+using namespace ellipsect::fuzz;
+
+template <class T>
+constexpr T unit_tolerance = sizeof(T) >= sizeof(double) ? T(1e-12) : T(1e-5);
+
+template <class T, int N>
+RigidMotion<T, N> read_motion(Bytes& in) {
+  RigidMotion<T, N> m;
+  for (int i = 0; i < N; ++i) m.velocity[i] = static_cast<T>(in.number());
+  if (in.flag()) {  // about half the bodies turn
+    if constexpr (N == 2) {
+      m.angular_velocity = static_cast<T>(in.number());
+    } else {
+      for (int i = 0; i < 3; ++i) m.angular_velocity[i] = static_cast<T>(in.number());
+    }
+  }
+  return m;
+}
+
+template <class T, int N>
+bool finite_spin(const RigidMotion<T, N>& m) {
+  if constexpr (N == 2) return std::isfinite(m.angular_velocity);
+  else return m.angular_velocity.allFinite();
+}
+
+template <class T, int N>
+bool zero_spin(const RigidMotion<T, N>& m) {
+  if constexpr (N == 2) return m.angular_velocity == T(0);
+  else return (m.angular_velocity.array() == T(0)).all();
+}
+
+template <class T, int N>
+void check_body_at(const Ellipsoid<T, N>& body, const RigidMotion<T, N>& m, T t) {
+  const char* want = !m.velocity.allFinite() ? "velocity" : !finite_spin(m) ? "angular_velocity"
+                                                           : !std::isfinite(t) ? "time" : nullptr;
+  try {
+    const Ellipsoid<T, N> at = body_at(body, m, t);
+    FUZZ_CHECK(want == nullptr, "body_at accepted bad input " << want);
+    FUZZ_CHECK(same_bits(at.radii(), body.radii()), "radii changed");
+    const Vec<T, N> moved = body.center() + t * m.velocity;  // to a rounding, however contracted
+    const T size = body.center().cwiseAbs().maxCoeff() + (t * m.velocity).cwiseAbs().maxCoeff();
+    FUZZ_CHECK((at.center() - moved).cwiseAbs().maxCoeff() <= 4 * std::numeric_limits<T>::epsilon() * size,
+               "center not moved by t v");
+    FUZZ_CHECK(at.axes().allFinite(), "axes not finite");
+  } catch (const InputError& e) {
+    // A finite motion may still move or turn the body beyond the type's range ("time").
+    FUZZ_CHECK(want != nullptr ? e.field() == want : e.field() == "time", "body_at threw for field " << e.field());
+  }
+}
+
+template <class T, int N>
+void run(Bytes& in) {
+  const auto a = read_body<T, N>(in);
+  if (!a) return;
+  const auto b = read_partner<T, N>(in, *a);
+  if (!b) return;
+  const RigidMotion<T, N> ma = read_motion<T, N>(in), mb = read_motion<T, N>(in);
+  const T t_max = in.flag() ? std::numeric_limits<T>::infinity() : static_cast<T>(in.number());
+  Options capped;
+  capped.max_motion_steps = 1 + in.byte() % 16;
+  auto spin = [](const RigidMotion<T, N>& m) {
+    if constexpr (N == 2) return hex(m.angular_velocity);
+    else return hex(m.angular_velocity);
+  };
+  trace() += describe(*a) + " " + describe(*b) + " va " + hex(ma.velocity) + " wa " + spin(ma) + " vb " +
+             hex(mb.velocity) + " wb " + spin(mb) + " t_max " + hex(t_max) + " cap " +
+             std::to_string(capped.max_motion_steps);
+
+  check_body_at(*a, ma, t_max);
+
+  const Contact<T, N> c = first_contact(*a, ma, *b, mb, t_max);
+  const bool bad = !ma.velocity.allFinite() || !mb.velocity.allFinite() || !finite_spin(ma) || !finite_spin(mb) ||
+                   std::isnan(t_max) || t_max < T(0);
+  FUZZ_CHECK((c.status == ContactStatus::invalid_input) == bad, "invalid_input " << int(c.status));
+  if (bad) return;
+  if (zero_spin(ma) && zero_spin(mb)) {
+    const Contact<T, N> d = first_contact(*a, ma.velocity, *b, mb.velocity, t_max);
+    FUZZ_CHECK(c.status == d.status && same_bits(c.time, d.time) && same_bits_or_nan(c.point, d.point) &&
+                   same_bits_or_nan(c.normal, d.normal),
+               "zero spin differs from the translational answer");
+    return;
+  }
+  FUZZ_CHECK(c.iterations >= 0 && c.iterations <= Options{}.max_motion_steps, "iterations " << c.iterations);
+  const DistanceStatus start = distance(*a, *b).status;
+  FUZZ_CHECK((c.status == ContactStatus::overlapping_at_start) == (start == DistanceStatus::overlapping),
+             "overlapping_at_start " << int(c.status) << " vs start " << int(start));
+  switch (c.status) {
+    case ContactStatus::hit:
+      FUZZ_CHECK(std::isfinite(c.time) && c.time > T(0) && c.time <= t_max, "hit time " << c.time);
+      FUZZ_CHECK(all_finite(c.point), "hit point not finite");
+      FUZZ_CHECK(std::abs(c.normal.norm() - T(1)) <= unit_tolerance<T>, "normal not unit");
+      break;
+    case ContactStatus::touching_at_start: FUZZ_CHECK(c.time == T(0), "touching time " << c.time); break;
+    case ContactStatus::did_not_converge:
+      FUZZ_CHECK(c.time >= T(0) && c.time <= t_max, "lower bound " << c.time << " outside the window");
+      break;
+    default: break;
+  }
+  const Contact<T, N> k = first_contact(*a, ma, *b, mb, t_max, capped);
+  FUZZ_CHECK(k.iterations <= capped.max_motion_steps, "capped iterations " << k.iterations);
+  if (k.status == ContactStatus::did_not_converge) {
+    FUZZ_CHECK(k.time >= T(0) && k.time <= t_max, "capped lower bound " << k.time);
+    if (c.status == ContactStatus::hit) FUZZ_CHECK(k.time <= c.time, "lower bound " << k.time << " after " << c.time);
+  } else if (!(k.status == c.status && same_bits(k.time, c.time))) {
+    // The cap reached inside the tangency band: a hit at an earlier time in the band.
+    FUZZ_CHECK(k.status == ContactStatus::hit && c.status == ContactStatus::hit && k.time <= c.time,
+               "capped answer " << int(k.status) << " at " << k.time << " vs " << int(c.status) << " at " << c.time);
+  }
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  Bytes in(data, size);
+  trace().clear();
+  const std::uint8_t kind = in.byte();
+  trace() = std::string(kind & 1 ? "float" : "double") + (kind & 2 ? " 3D; " : " 2D; ");
+  switch (kind % 4) {
+    case 0: run<double, 2>(in); break;
+    case 1: run<float, 2>(in); break;
+    case 2: run<double, 3>(in); break;
+    default: run<float, 3>(in); break;
+  }
+  return 0;
+}
