@@ -204,13 +204,13 @@ Contact<T, N> first_contact(const Ellipsoid<T, N>& a, const RigidMotion<T, N>& m
     // Bounding balls (radius R) apart by more than their radii: the direction between the
     // centers gives a gap of at least R_a + R_b, and distance() is left for the near phase.
     const Vec<R, N> between = body_b.center().template cast<R>() - body_a.center().template cast<R>();
-    const bool far = !touched && between.norm() > 2 * (big_a + big_b);
+    const bool far = !touched && between.stableNorm() > 2 * (big_a + big_b);
     Distance<T, N> d;
     if (far) {
       d.status = DistanceStatus::separated;
       d.point_a.setConstant(nan);
       d.point_b.setConstant(nan);
-      d.normal = (between / between.norm()).template cast<T>();
+      d.normal = (between / between.stableNorm()).template cast<T>();
     } else {
       d = distance(body_a, body_b, options);
     }
@@ -228,7 +228,7 @@ Contact<T, N> first_contact(const Ellipsoid<T, N>& a, const RigidMotion<T, N>& m
     if (d.status == DistanceStatus::separated && touched)  // grazed within the band
       return fill(ContactStatus::hit, touch_time, touch);
 
-    const Vec<R, N> n = far ? Vec<R, N>(between / between.norm()) : Vec<R, N>(d.normal.template cast<R>());
+    const Vec<R, N> n = far ? Vec<R, N>(between / between.stableNorm()) : Vec<R, N>(d.normal.template cast<R>());
     Vec<R, N> s_a, s_b;
     const R rho_a = support(body_a, n, s_a), rho_b = support(body_b, n, s_b);
     const Vec<R, N> ca = body_a.center().template cast<R>(), cb = body_b.center().template cast<R>();
