@@ -185,4 +185,19 @@ std::optional<Ellipsoid<T, N>> read_partner(Bytes& in, const Ellipsoid<T, N>& a)
   return read_body<T, N>(in);
 }
 
+// Reads the input's first byte and calls run.template operator()<T, N>() for the scalar
+// type (double or float) and dimension (2 or 3) it picks, named at the start of the trace.
+template <class Run>
+void for_type_and_dim(Bytes& in, Run&& run) {
+  trace().clear();
+  const std::uint8_t kind = in.byte();
+  trace() = std::string(kind & 1 ? "float" : "double") + (kind & 2 ? " 3D; " : " 2D; ");
+  switch (kind % 4) {
+    case 0: run.template operator()<double, 2>(); break;
+    case 1: run.template operator()<float, 2>(); break;
+    case 2: run.template operator()<double, 3>(); break;
+    default: run.template operator()<float, 3>(); break;
+  }
+}
+
 }  // namespace ellipsect::fuzz

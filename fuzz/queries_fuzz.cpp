@@ -224,14 +224,6 @@ extern "C" int LLVMFuzzerInitialize(int*, char***) {
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   Bytes in(data, size);
-  trace().clear();
-  const std::uint8_t kind = in.byte();
-  trace() = std::string(kind & 1 ? "float" : "double") + (kind & 2 ? " 3D; " : " 2D; ");
-  switch (kind % 4) {
-    case 0: run<double, 2>(in); break;
-    case 1: run<float, 2>(in); break;
-    case 2: run<double, 3>(in); break;
-    default: run<float, 3>(in); break;
-  }
+  for_type_and_dim(in, [&]<class T, int N>() { run<T, N>(in); });
   return 0;
 }
