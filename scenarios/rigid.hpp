@@ -90,7 +90,7 @@ Moving<N> make_moving(Spin kind, std::uint64_t seed) {
     c.vb = t * pass;
     c.t_max = 1.0;
   }
-  Moving<N> m{c.a, c.b, {c.va, {}}, {c.vb, {}}, c.t_max, 0, 0};
+  Moving<N> m{c.a, c.b, {c.va}, {c.vb}, c.t_max, 0, 0};
   m.size = c.a.radii().maxCoeff() + c.b.radii().maxCoeff();
   const double v = (c.vb - c.va).norm();
   // Rates relative to the pair's own time scale size / v.

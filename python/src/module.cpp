@@ -133,7 +133,7 @@ void def_queries(py::module_& m) {
   using W = std::conditional_t<N == 2, double, Row<3>>;
   using M = RigidMotion<double, N>;
   auto motion = [](const Row<N>& v, const std::optional<W>& w) {
-    M out{vec<N>(v), {}};
+    M out{vec<N>(v)};
     if (w) {
       if constexpr (N == 2) out.angular_velocity = *w;
       else out.angular_velocity = vec<3>(*w);

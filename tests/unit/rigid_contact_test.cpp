@@ -35,8 +35,8 @@ void zero_spin_is_translational() {
     for (std::uint64_t seed = 1; seed <= 40; ++seed) {
       const auto c = scenarios::make_case<N>(category, seed);
       const Contact<double, N> want = first_contact(c.a, c.va, c.b, c.vb, c.t_max);
-      const Contact<double, N> got = first_contact(c.a, RigidMotion<double, N>{c.va, {}}, c.b,
-                                                   RigidMotion<double, N>{c.vb, {}}, c.t_max);
+      const Contact<double, N> got = first_contact(c.a, RigidMotion<double, N>{c.va}, c.b,
+                                                   RigidMotion<double, N>{c.vb}, c.t_max);
       ASSERT_EQ(got.status, want.status);
       if (std::isnan(want.time)) {
         EXPECT_TRUE(std::isnan(got.time));
