@@ -1,4 +1,4 @@
-// The program's broad phase: the library's sweep and prune (ellipsect/broad_phase.hpp) on a
+// The program's broad phase: the library's candidate_pairs (ellipsect/broad_phase.hpp) on a
 // scene's bodies and time window.
 #pragma once
 

@@ -2,7 +2,7 @@
 // unit ball plus axis-aligned ellipsoid, closest point by Newton on the convex secular
 // function, contact time by Newton on the convex distance function; see docs/method.md).
 //
-// Accuracy (tested against a 50-digit reference, tests/property/contact_test.cpp), for
+// Accuracy (tested against a 50-digit reference, tests/property/contact_property_test.cpp), for
 // pairs whose paths are not grazing (the relative velocity makes an angle theta with the
 // contact plane's tangent, sin(theta) >= 1e-3):
 //   time   relative error <= 1e-12, or absolute 1e-12 * scale / speed when near 0;

@@ -1,0 +1,62 @@
+// The event-driven simulation example (examples/hard_bodies.hpp): after every collision the
+// colliding pair touches and no pair of the box overlaps (classify through the periodic
+// images), energy and momentum are conserved to rounding, event times never decrease, and
+// no prediction found an overlap or stopped.
+#include "examples/hard_bodies.hpp"
+
+#include "tests/support.hpp"
+
+#include <gtest/gtest.h>
+
+namespace {
+
+using namespace ellipsect;
+
+// classify of every pair whose boxes meet, through its image: none overlaps.
+template <int N>
+void expect_no_overlap(const hard_bodies::Simulation<N>& sim, long event) {
+  const auto shapes = sim.shapes();
+  for (const ImagePair<N>& p : overlapping_pairs<double, N>(shapes, sim.box())) {
+    Vec<double, N> offset;
+    for (int k = 0; k < N; ++k) offset[k] = p.image[k] * sim.box().size[k];
+    const Relation r = classify(shapes[p.i], shapes[p.j].translated(offset), Options{1e-9});
+    EXPECT_EQ(r, Relation::touching) << "pair " << p.i << ' ' << p.j << " after event " << event;
+  }
+}
+
+template <int N>
+void run(int side, const Vec<double, N>& radii, double phi, long events) {
+  hard_bodies::Simulation<N> sim(side, radii, phi, 3);
+  const auto start = sim.totals();
+  double last = 0.0;
+  for (long k = 0; k < events; ++k) {
+    const auto e = sim.step();
+    ASSERT_GE(e.time, last) << "event " << k;
+    last = e.time;
+    // The colliding pair touches, through the nearest image of j's center.
+    const auto shapes = sim.shapes();
+    Vec<double, N> offset;
+    for (int d = 0; d < N; ++d) {
+      const double L = sim.box().size[d];
+      offset[d] = -std::round((shapes[e.j].center()[d] - shapes[e.i].center()[d]) / L) * L;
+    }
+    ASSERT_NE(e.i, e.j);
+    EXPECT_EQ(classify(shapes[e.i], shapes[e.j].translated(offset), Options{1e-9}), Relation::touching)
+        << "event " << k;
+    if (k % (events / 20) == 0) expect_no_overlap(sim, k);
+    const auto now = sim.totals();
+    EXPECT_NEAR(now.energy / start.energy, 1.0, 1e-11) << "event " << k;
+  }
+  const auto end = sim.totals();
+  EXPECT_LT((end.momentum - start.momentum).norm(), 1e-12 * end.momentum_scale);
+  EXPECT_EQ(sim.overlaps(), 0u);
+  EXPECT_EQ(sim.stopped(), 0u);
+  EXPECT_GT(sim.rebuilds(), 1u);
+  expect_no_overlap(sim, events);
+}
+
+TEST(HardBodies, Ellipses) { run<2>(8, Vec<double, 2>(1.0, 0.5), 0.5, ellipsect::testing::cases(3000)); }
+
+TEST(HardBodies, Ellipsoids) { run<3>(6, Vec<double, 3>(1.0, 0.6, 0.4), 0.3, ellipsect::testing::cases(3000)); }
+
+}  // namespace
