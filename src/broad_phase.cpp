@@ -143,26 +143,41 @@ void find_meeting(const std::vector<Entry<N>>& entries, Meet&& meet) {
     for (int k = N - 1; k >= 0; --k) key = key * cells[k] + c[k];
     return key;
   };
-  struct Filed {
-    std::int64_t key;
-    std::uint32_t entry;
-  };
-  std::vector<Filed> filed(entries.size());
-  for (std::size_t i = 0; i < entries.size(); ++i) {
+  // Entries in the order of their cells (and of their index within a cell): by counting
+  // where the cells are few (at most 4 per entry), else by sorting; start(key) is the
+  // position of the first entry in a cell >= key.
+  const std::size_t n = entries.size();
+  std::vector<std::int64_t> keys(n);
+  for (std::size_t i = 0; i < n; ++i) {
     std::int64_t c[N];
-    for (int k = 0; k < N; ++k)
-      c[k] = std::min(cells[k] - 1, std::int64_t((entries[i].box.lo[k] - origin[k]) / cell));
-    filed[i] = {key_of(c), std::uint32_t(i)};
+    for (int k = 0; k < N; ++k) c[k] = std::min(cells[k] - 1, std::int64_t((entries[i].box.lo[k] - origin[k]) / cell));
+    keys[i] = key_of(c);
   }
-  std::sort(filed.begin(), filed.end(),
-            [](const Filed& a, const Filed& b) { return a.key < b.key || (a.key == b.key && a.entry < b.entry); });
-  auto first_at = [&](std::int64_t key) {
-    return std::lower_bound(filed.begin(), filed.end(), key, [](const Filed& f, std::int64_t k) { return f.key < k; });
+  std::vector<std::uint32_t> order(n);
+  std::vector<std::size_t> starts;
+  const bool dense = total <= 4.0 * double(n) + 4096.0;
+  if (dense) {
+    starts.assign(std::size_t(total) + 1, 0);
+    for (const std::int64_t key : keys) ++starts[std::size_t(key) + 1];
+    std::partial_sum(starts.begin(), starts.end(), starts.begin());
+    std::vector<std::size_t> next(starts.begin(), starts.end() - 1);
+    for (std::size_t i = 0; i < n; ++i) order[next[std::size_t(keys[i])]++] = std::uint32_t(i);
+  } else {
+    std::iota(order.begin(), order.end(), 0u);
+    std::sort(order.begin(), order.end(),
+              [&](std::uint32_t a, std::uint32_t b) { return keys[a] < keys[b] || (keys[a] == keys[b] && a < b); });
+  }
+  std::vector<Entry<N>> sorted(n);
+  std::vector<std::int64_t> sorted_keys(n);
+  for (std::size_t a = 0; a < n; ++a) sorted[a] = entries[order[a]], sorted_keys[a] = keys[order[a]];
+  auto start = [&](std::int64_t key) {
+    return dense ? starts[std::size_t(key)]
+                 : std::size_t(std::lower_bound(sorted_keys.begin(), sorted_keys.end(), key) - sorted_keys.begin());
   };
-  for (const Filed& f : filed) {
-    const Entry<N>& p = entries[f.entry];
+  for (std::size_t a = 0; a < n; ++a) {
+    const Entry<N>& p = sorted[a];
     std::int64_t c[N];
-    std::int64_t rest = f.key;
+    std::int64_t rest = sorted_keys[a];
     for (int k = 0; k < N; ++k) c[k] = rest % cells[k], rest /= cells[k];
     // Neighbor rows along x: offsets in {-1, 0, 1} on the axes after x.
     for (int row = 0; row < (N == 2 ? 3 : 9); ++row) {
@@ -175,10 +190,9 @@ void find_meeting(const std::vector<Entry<N>>& entries, Meet&& meet) {
       if (!inside) continue;
       lo[0] = std::max<std::int64_t>(c[0] - 1, 0);
       hi[0] = std::min(c[0] + 1, cells[0] - 1);
-      const std::int64_t last = key_of(hi);
-      for (auto it = first_at(key_of(lo)); it != filed.end() && it->key <= last; ++it) {
-        if (it->entry <= f.entry) continue;  // each pair once, from its lower entry
-        const Entry<N>& q = entries[it->entry];
+      for (std::size_t b = start(key_of(lo)), end = start(key_of(hi) + 1); b < end; ++b) {
+        if (order[b] <= order[a]) continue;  // each pair once, from its lower entry
+        const Entry<N>& q = sorted[b];
         bool meets = true;
         for (int k = 0; k < N && meets; ++k) meets = p.box.lo[k] <= q.box.hi[k] && q.box.lo[k] <= p.box.hi[k];
         if (meets) meet(p, q);
