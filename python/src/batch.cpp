@@ -6,9 +6,13 @@
 // any work; the GIL is released while the library runs.
 #include "common.hpp"
 
+#include <pybind11/stl.h>
+
 #include <ellipsect/ellipsect.hpp>
 
+#include <array>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 
@@ -386,22 +390,33 @@ void def_batch_queries(py::module_& m) {
           py::arg("a"), py::arg("b"), py::arg("options") = Options{}, py::arg("threads") = 0);
   }
   m.def("overlapping_pairs",
-        [](const B& bodies, const Options& o, int threads) {
-          std::vector<IndexPair> pairs;
+        [](const B& bodies, const Options& o, int threads, std::optional<std::array<double, N>> size) {
+          // Columns: i, j, then (in a periodic box) the image of j that meets i.
+          const int columns = size ? 2 + N : 2;
+          std::vector<ImagePair<N>> pairs;
           {
             py::gil_scoped_release release;
-            pairs = overlapping_pairs<double, N>(span_of(bodies), {o, threads});
+            if (size) {
+              pairs = overlapping_pairs<double, N>(span_of(bodies), PeriodicBox<N>{*size}, {o, threads});
+            } else {
+              for (const auto& [i, j] : overlapping_pairs<double, N>(span_of(bodies), {o, threads}))
+                pairs.push_back({i, j, {}});
+            }
           }
-          py::array_t<std::int64_t> out({py::ssize_t(pairs.size()), py::ssize_t(2)});
+          py::array_t<std::int64_t> out({py::ssize_t(pairs.size()), py::ssize_t(columns)});
           std::int64_t* p = out.mutable_data();
-          for (std::size_t k = 0; k < pairs.size(); ++k) {
-            p[2 * k] = pairs[k].first;
-            p[2 * k + 1] = pairs[k].second;
+          for (const ImagePair<N>& pair : pairs) {
+            *p++ = pair.i;
+            *p++ = pair.j;
+            if (size)
+              for (int k = 0; k < N; ++k) *p++ = pair.image[k];
           }
           return out;
         },
-        py::arg("bodies"), py::arg("options") = Options{}, py::arg("threads") = 0,
-        "Every pair (i, j), i < j, of bodies that overlap, sorted: an (m, 2) int64 array.");
+        py::arg("bodies"), py::arg("options") = Options{}, py::arg("threads") = 0, py::arg("box") = py::none(),
+        "Every pair (i, j), i < j, of bodies that overlap, sorted: an (m, 2) int64 array. With box "
+        "(the sides of a periodic box), every pair and image m through which they overlap (body j "
+        "translated by m * box meets body i): an (m, 2 + dim) int64 array of i, j, m.");
 }
 
 // overlap_area and iou over pairs of ellipses.

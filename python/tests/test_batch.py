@@ -105,3 +105,39 @@ def test_batches_pickle_bit_for_bit(dim):
     assert type(again) is type(a) and len(again) == 100
     for field in ("centers", "radii", "rotations"):
         assert same_bits(getattr(again, field), getattr(a, field))
+
+
+@pytest.mark.parametrize("dim", [2, 3])
+def test_overlapping_pairs_equal_all_pairs_loop(dim):
+    bodies, scalar = MAKERS[dim](150, seed=11)
+    pairs = ellipsect.overlapping_pairs(bodies)
+    expected = [(i, j) for i in range(150) for j in range(i + 1, 150) if ellipsect.overlap(scalar[i], scalar[j])]
+    assert pairs.dtype == np.int64 and pairs.shape == (len(expected), 2)
+    assert [tuple(p) for p in pairs.tolist()] == expected and len(expected) > 20
+
+
+def test_overlapping_pairs_in_a_periodic_box():
+    # Ellipses of radii up to 3 in a box of side 14: pairs meet across the faces.
+    side = 14.0
+    rng = np.random.default_rng(12)
+    centers = rng.uniform(0, side, (80, 2)) + side * rng.integers(-2, 3, (80, 2))  # anywhere: taken modulo the box
+    radii = rng.uniform(0.2, 1.6, (80, 2))
+    angles = rng.uniform(-np.pi, np.pi, 80)
+    bodies = ellipsect.Ellipses(centers=centers, radii=radii, angles=angles)
+    got = ellipsect.overlapping_pairs(bodies, box=[side, side])
+    expected = []
+    for i in range(80):
+        a = ellipsect.Ellipse(centers[i], radii[i], angle=angles[i])
+        for j in range(i + 1, 80):
+            near = np.round((centers[i] - centers[j]) / side).astype(int)
+            for dx in (-1, 0, 1):
+                for dy in (-1, 0, 1):
+                    m = near + [dx, dy]
+                    b = ellipsect.Ellipse(centers[j] + m * side, radii[j], angle=angles[j])
+                    if ellipsect.overlap(a, b):
+                        expected.append((i, j, m[0], m[1]))
+    assert got.shape == (len(expected), 4)
+    assert [tuple(p) for p in got.tolist()] == sorted(expected)
+    assert any(p[2] != 0 or p[3] != 0 for p in got.tolist())
+    with pytest.raises(ValueError, match="box"):
+        ellipsect.overlapping_pairs(bodies, box=[side, 1.0])
