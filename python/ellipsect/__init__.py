@@ -5,8 +5,9 @@ Ellipsoid) and batches from numpy arrays (Ellipses, Ellipsoids) go to the same f
 classify, overlap, first_contact, distance, signed_distance, closest_point (and, scalar
 only, first_contact under rigid motion with body_at, perram_wertheim and
 closest_approach), and in 2D
-intersect_boundaries, overlap_area, iou and Niemitalo's tests. Every number comes from the
-library; batch answers equal the scalar ones bit for bit. Pictures: ellipsect.plot;
+intersect_boundaries, overlap_area, iou and Niemitalo's tests; among many bodies,
+overlapping_pairs and earliest_contact (open space or a periodic box). Every number comes
+from the library; batch answers equal the scalar ones bit for bit. Pictures: ellipsect.plot;
 Dask: ellipsect.dask.
 """
 
@@ -53,6 +54,7 @@ from ._ellipsect import (  # noqa: F401
     closest_point_closed_form,
     closest_point_quartic,
     distance,
+    earliest_contact,
     first_contact,
     intersect_boundaries,
     iou,

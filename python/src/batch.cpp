@@ -419,6 +419,44 @@ void def_batch_queries(py::module_& m) {
         "translated by m * box meets body i): an (m, 2 + dim) int64 array of i, j, m.");
 }
 
+// earliest_contact among n bodies with velocities (n, dim) and, optionally, angular
+// velocities ((n,) in 2D, (n, 3) in 3D), in open space or a periodic box.
+template <int N>
+void def_earliest_contact(py::module_& m) {
+  m.def("earliest_contact",
+        [](const Bodies<N>& bodies, py::handle velocities, double t_max, py::handle angular_velocities,
+           std::optional<std::array<double, N>> size, const Options& o) {
+          py::ssize_t rows = static_cast<py::ssize_t>(bodies.items.size());
+          const double* v = checked(velocities, "velocities", {N}, rows, "bodies");
+          const double* w = angular_velocities.is_none()
+                                ? nullptr
+                                : checked(angular_velocities, "angular_velocities",
+                                          N == 2 ? std::vector<py::ssize_t>{} : std::vector<py::ssize_t>{3}, rows,
+                                          "bodies");
+          std::vector<RigidMotion<double, N>> motions(bodies.items.size());
+          for (std::size_t i = 0; i < motions.size(); ++i) {
+            motions[i].velocity = row_vec<N>(v + i * N);
+            if (w == nullptr) continue;
+            if constexpr (N == 2)
+              motions[i].angular_velocity = w[i];
+            else
+              motions[i].angular_velocity = row_vec<3>(w + 3 * i);
+          }
+          PairContact<double, N> e;
+          {
+            py::gil_scoped_release release;
+            e = size ? earliest_contact<double, N>(span_of(bodies), motions, t_max, PeriodicBox<N>{*size}, o)
+                     : earliest_contact<double, N>(span_of(bodies), motions, t_max, o);
+          }
+          return py::make_tuple(e.pair.i, e.pair.j, py::tuple(py::cast(e.pair.image)), e.contact);
+        },
+        py::arg("bodies"), py::arg("velocities"), py::arg("t_max"), py::kw_only(),
+        py::arg("angular_velocities") = py::none(), py::arg("box") = py::none(), py::arg("options") = Options{},
+        "The first contact among all pairs of bodies moving with constant linear and angular velocities in "
+        "[0, t_max] (broad_phase.hpp): (i, j, image, Contact). With box (the sides of a periodic box), body j "
+        "translated by image * box meets body i.");
+}
+
 // overlap_area and iou over pairs of ellipses.
 void def_areas(py::module_& m) {
   using B = Bodies<2>;
@@ -470,6 +508,8 @@ void def_batch(py::module_& m) {
       .def(py::pickle(&state_of<3>, [](const py::tuple& t) { return make_ellipsoids(t[0], t[1], py::none(), t[2]); }));
   def_batch_queries<2>(m);
   def_batch_queries<3>(m);
+  def_earliest_contact<2>(m);
+  def_earliest_contact<3>(m);
   def_areas(m);
 }
 

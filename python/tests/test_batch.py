@@ -141,3 +141,48 @@ def test_overlapping_pairs_in_a_periodic_box():
     assert any(p[2] != 0 or p[3] != 0 for p in got.tolist())
     with pytest.raises(ValueError, match="box"):
         ellipsect.overlapping_pairs(bodies, box=[side, 1.0])
+
+
+@pytest.mark.parametrize("dim", [2, 3])
+def test_earliest_contact_equals_the_pairwise_minimum(dim):
+    rng = np.random.default_rng(20 + dim)
+    n, side = 25, 20.0 if dim == 2 else 10.0
+    centers = []
+    while len(centers) < n:  # bounding balls (radius 1) apart
+        c = rng.uniform(0, side, dim)
+        if all(np.linalg.norm(c - d) > 2.0 for d in centers):
+            centers.append(c)
+    centers = np.array(centers)
+    radii = rng.uniform(0.3, 1.0, (n, dim))
+    if dim == 2:
+        angles = rng.uniform(-np.pi, np.pi, n)
+        bodies = ellipsect.Ellipses(centers=centers, radii=radii, angles=angles)
+        scalar = [ellipsect.Ellipse(c, r, angle=a) for c, r, a in zip(centers, radii, angles)]
+        spins = rng.normal(size=n)
+    else:
+        q = rng.normal(size=(n, 4))
+        q /= np.linalg.norm(q, axis=1)[:, None]
+        bodies = ellipsect.Ellipsoids(centers=centers, radii=radii, quaternions=q)
+        scalar = [ellipsect.Ellipsoid(c, r, quaternion=w) for c, r, w in zip(centers, radii, q)]
+        spins = rng.normal(size=(n, 3))
+    velocities = rng.normal(size=(n, dim))
+    best = (np.inf, None)
+    for i in range(n):
+        for j in range(i + 1, n):
+            c = ellipsect.first_contact(scalar[i], velocities[i], scalar[j], velocities[j], 5.0,
+                                        angular_velocity_a=spins[i], angular_velocity_b=spins[j])
+            if c.status == ellipsect.ContactStatus.hit and c.time < best[0]:
+                best = (c.time, (i, j))
+    assert best[1] is not None
+    i, j, image, contact = ellipsect.earliest_contact(bodies, velocities, 5.0, angular_velocities=spins)
+    assert contact.status == ellipsect.ContactStatus.hit and (i, j) == best[1] and image == (0,) * dim
+    assert abs(contact.time - best[0]) <= 1e-12 * best[0]
+    # In a periodic box the first contact can only come sooner (more images), never later.
+    *_, periodic = ellipsect.earliest_contact(bodies, velocities, 5.0, angular_velocities=spins, box=[side] * dim)
+    assert periodic.status == ellipsect.ContactStatus.hit and periodic.time <= contact.time * (1 + 1e-12)
+    with pytest.raises(ValueError, match="velocities"):
+        ellipsect.earliest_contact(bodies, velocities[:3], 5.0)
+    bad = velocities.copy()
+    bad[4, 0] = np.nan
+    with pytest.raises(ValueError, match=r"motions\[4\].velocity"):
+        ellipsect.earliest_contact(bodies, bad, 5.0)
