@@ -3,6 +3,7 @@
 // with the violated property and the input's values.
 #pragma once
 
+#include <ellipsect/contact.hpp>
 #include <ellipsect/shapes.hpp>
 
 #include <cmath>
@@ -183,6 +184,33 @@ std::optional<Ellipsoid<T, N>> read_partner(Bytes& in, const Ellipsoid<T, N>& a)
     return std::nullopt;
   }
   return read_body<T, N>(in);
+}
+
+// A rigid motion decoded from the input: a velocity, and for about half the bodies a spin.
+template <class T, int N>
+RigidMotion<T, N> read_motion(Bytes& in) {
+  RigidMotion<T, N> m;
+  for (int i = 0; i < N; ++i) m.velocity[i] = static_cast<T>(in.number());
+  if (in.flag()) {  // about half the bodies turn
+    if constexpr (N == 2) {
+      m.angular_velocity = static_cast<T>(in.number());
+    } else {
+      for (int i = 0; i < 3; ++i) m.angular_velocity[i] = static_cast<T>(in.number());
+    }
+  }
+  return m;
+}
+
+template <class T, int N>
+bool finite_spin(const RigidMotion<T, N>& m) {
+  if constexpr (N == 2) return std::isfinite(m.angular_velocity);
+  else return m.angular_velocity.allFinite();
+}
+
+template <class T, int N>
+bool zero_spin(const RigidMotion<T, N>& m) {
+  if constexpr (N == 2) return m.angular_velocity == T(0);
+  else return (m.angular_velocity.array() == T(0)).all();
 }
 
 // Reads the input's first byte and calls run.template operator()<T, N>() for the scalar

@@ -24,32 +24,6 @@ template <class T>
 constexpr T unit_tolerance = sizeof(T) >= sizeof(double) ? T(1e-12) : T(1e-5);
 
 template <class T, int N>
-RigidMotion<T, N> read_motion(Bytes& in) {
-  RigidMotion<T, N> m;
-  for (int i = 0; i < N; ++i) m.velocity[i] = static_cast<T>(in.number());
-  if (in.flag()) {  // about half the bodies turn
-    if constexpr (N == 2) {
-      m.angular_velocity = static_cast<T>(in.number());
-    } else {
-      for (int i = 0; i < 3; ++i) m.angular_velocity[i] = static_cast<T>(in.number());
-    }
-  }
-  return m;
-}
-
-template <class T, int N>
-bool finite_spin(const RigidMotion<T, N>& m) {
-  if constexpr (N == 2) return std::isfinite(m.angular_velocity);
-  else return m.angular_velocity.allFinite();
-}
-
-template <class T, int N>
-bool zero_spin(const RigidMotion<T, N>& m) {
-  if constexpr (N == 2) return m.angular_velocity == T(0);
-  else return (m.angular_velocity.array() == T(0)).all();
-}
-
-template <class T, int N>
 void check_body_at(const Ellipsoid<T, N>& body, const RigidMotion<T, N>& m, T t) {
   const char* want = !m.velocity.allFinite() ? "velocity" : !finite_spin(m) ? "angular_velocity"
                                                            : !std::isfinite(t) ? "time" : nullptr;

@@ -1,5 +1,6 @@
 #include <ellipsect/broad_phase.hpp>
 
+#include "detail/axes.hpp"
 #include "detail/instantiate.hpp"
 
 #include <algorithm>
@@ -40,10 +41,11 @@ bool spins(const RigidMotion<T, N>& m) {
 }
 
 // The box of `body` moving with `velocity` over [t0, t1]: exact for a body that does not
-// turn, the box of its bounding ball for one that does.
+// turn (with the axes the queries compute with: float axes orthonormalized), the box of its
+// bounding ball for one that does.
 template <class T, int N>
 Box<N> box_of(const Ellipsoid<T, N>& body, const Vec<T, N>& velocity, bool turning, double t0, double t1) {
-  const auto A = body.axes();
+  const Mat<double, N> A = detail::work_axes<double>(body);
   const auto r = body.radii();
   const auto c = body.center();
   const double r_max = double(r.maxCoeff());
