@@ -2,12 +2,14 @@
 
 #include "detail/axes.hpp"
 #include "detail/instantiate.hpp"
+#include "detail/shape_access.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <memory>
 #include <numeric>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
@@ -52,19 +54,21 @@ Box<N> box_of(const Ellipsoid<T, N>& body, const Vec<T, N>& velocity, bool turni
   Box<N> box;
   for (int k = 0; k < N; ++k) {
     double h = r_max;
-    if (!turning) {
+    if (!turning) {  // r_max |row k of A diag(r / r_max)|: no underflow or overflow
       double h2 = 0.0;
       for (int j = 0; j < N; ++j) {
-        const double e = double(A(k, j)) * double(r[j]);
+        const double e = A(k, j) * (double(r[j]) / r_max);
         h2 += e * e;
       }
-      h = std::sqrt(h2);
+      h = std::min(r_max, r_max * std::sqrt(h2));
     }
     const double start = at_time(double(c[k]), double(velocity[k]), t0);
     const double end = at_time(double(c[k]), double(velocity[k]), t1);
     const double lo = std::min(start, end), hi = std::max(start, end);
-    const double pad = 1e-9 * r_max + 1e-14 * (std::abs(double(c[k])) + (std::isfinite(lo) ? std::abs(lo) : 0.0) +
-                                               (std::isfinite(hi) ? std::abs(hi) : 0.0));
+    const double pad = 1e-9 * r_max +
+                       1e-14 * (std::abs(double(c[k])) + (std::isfinite(lo) ? std::abs(lo) : 0.0) +
+                                (std::isfinite(hi) ? std::abs(hi) : 0.0)) +
+                       8 * std::numeric_limits<double>::denorm_min();  // subnormal coordinates and radii
     box.lo[k] = lo - h - pad;
     box.hi[k] = hi + h + pad;
   }
@@ -247,8 +251,12 @@ std::vector<ImagePair<N>> periodic_pairs(const std::vector<Box<N>>& boxes,
         throw InputError("box", "body " + std::to_string(i) +
                                     "'s bounding box must be shorter than half the box side on every axis");
       wrap[i][k] = std::int32_t(cells);
-      b.lo[k] -= cells * L;
-      b.hi[k] -= cells * L;
+      // Moving the box by whole sides, and its copies by one more, rounds at the scale of
+      // the sides: widen it by that much (a side far larger than the bodies then makes
+      // boxes near the faces candidates of every body there, never misses one).
+      const double rounding = 0x1p-50 * ((std::abs(cells) + 2.0) * L + std::max(std::abs(b.lo[k]), std::abs(b.hi[k])));
+      b.lo[k] = b.lo[k] - cells * L - rounding;
+      b.hi[k] = b.hi[k] - cells * L + rounding;
       crossing[k] = b.lo[k] <= 0.0 ? 1 : b.hi[k] >= L ? -1 : 0;
     }
     for (unsigned mask = 0; mask < (1u << N); ++mask) {
@@ -290,13 +298,17 @@ std::vector<std::array<double, N>> anchors_at(std::span<const Ellipsoid<T, N>> b
   return anchors;
 }
 
+// Body j's image, translated by image * size (the center summed in double and rounded to T
+// once); nothing where that center lies beyond the range of T: such an image cannot meet a
+// body of T.
 template <class T, int N>
-Ellipsoid<T, N> image_of(const Ellipsoid<T, N>& body, const std::array<std::int32_t, N>& image,
-                         const PeriodicBox<N>* box) {
-  if (box == nullptr) return body;
-  Vec<T, N> offset;
-  for (int k = 0; k < N; ++k) offset[k] = T(double(image[k]) * box->size[k]);
-  return offset.isZero(0) ? body : body.translated(offset);
+std::optional<Ellipsoid<T, N>> image_of(const Ellipsoid<T, N>& body, const std::array<std::int32_t, N>& image,
+                                        const PeriodicBox<N>* box) {
+  if (box == nullptr || std::all_of(image.begin(), image.end(), [](std::int32_t m) { return m == 0; })) return body;
+  Vec<T, N> center;
+  for (int k = 0; k < N; ++k) center[k] = T(double(body.center()[k]) + double(image[k]) * box->size[k]);
+  if (!center.allFinite()) return std::nullopt;
+  return detail::ShapeAccess::unchecked<T, N>(center, body.axes(), body.radii());
 }
 
 template <class T, int N>
@@ -376,8 +388,9 @@ PairContact<T, N> earliest(std::span<const Ellipsoid<T, N>> bodies, std::span<co
       const bool found = best.contact.status != ContactStatus::no_contact_in_window;
       if (found && rank(best.contact.status) == 0) break;
       const T window = found ? best.contact.time : T(t1);
-      const Contact<T, N> c =
-          first_contact(bodies[p.i], motions[p.i], image_of<T, N>(bodies[p.j], p.image, box), motions[p.j], window, options);
+      const auto b = image_of<T, N>(bodies[p.j], p.image, box);
+      if (!b) continue;
+      const Contact<T, N> c = first_contact(bodies[p.i], motions[p.i], *b, motions[p.j], window, options);
       if (c.status == ContactStatus::no_contact_in_window) continue;
       if (c.status == ContactStatus::did_not_converge) {
         if (c.time < stopped) stopped = c.time, stopped_pair = p;
@@ -441,8 +454,10 @@ namespace {
 // The batch overlap of the given pairs (b translated by its image where a box is given), in
 // blocks of 2^16 pairs (the batch columns take a few hundred bytes per pair).
 template <class T, int N, class P>
-std::vector<P> overlapping(std::span<const Ellipsoid<T, N>> bodies, const std::vector<P>& candidates,
+std::vector<P> overlapping(std::span<const Ellipsoid<T, N>> bodies, std::vector<P> candidates,
                            const PeriodicBox<N>* box, const BatchOptions& options) {
+  if constexpr (!std::is_same_v<P, IndexPair>)
+    std::erase_if(candidates, [&](const P& p) { return !image_of<T, N>(bodies[p.j], p.image, box); });
   constexpr std::size_t block = std::size_t(1) << 16;
   Pairs<T, N> pairs;
   pairs.reserve(std::min(block, candidates.size()));
@@ -456,7 +471,7 @@ std::vector<P> overlapping(std::span<const Ellipsoid<T, N>> bodies, const std::v
       if constexpr (std::is_same_v<P, IndexPair>)
         pairs.push_back(bodies[p.first], bodies[p.second]);
       else
-        pairs.push_back(bodies[p.i], image_of<T, N>(bodies[p.j], p.image, box));
+        pairs.push_back(bodies[p.i], *image_of<T, N>(bodies[p.j], p.image, box));
     }
     overlap(pairs, std::span<bool>(hit.get(), n), options);
     for (std::size_t k = 0; k < n; ++k)

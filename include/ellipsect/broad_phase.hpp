@@ -6,9 +6,11 @@
 // (candidates, then first_contact), in open space or in a periodic box.
 //
 // A pair the candidates leave out is certainly separated (for swept boxes: never touches in
-// the window): boxes are exact for ellipsoids and padded by 1e-9 of each body's largest
-// radius plus 1e-14 of its coordinates, far more than the tangency band of classify and the
-// rounding of the box. Boxes are computed in double for float bodies too.
+// the window): boxes are exact for ellipsoids (with the axes the queries compute with: float
+// axes orthonormalized) and padded by 1e-9 of each body's largest radius plus 1e-14 of its
+// coordinates (and a few subnormals), far more than the tangency band of classify and the
+// rounding of the box. Boxes are computed in double for float bodies too, without
+// underflow or overflow at any scale.
 #pragma once
 
 #include <ellipsect/batch.hpp>
@@ -74,7 +76,8 @@ struct ImagePair {
 
 // Periodic versions of the above, sorted: every (pair, image) whose boxes meet, and every
 // (pair, image) whose bodies share a point (the exact test on body i and body j translated
-// by image * size, that translation rounded to T).
+// by image * size, its center summed in double and rounded to T once; an image whose center
+// lies beyond the range of T meets nothing).
 template <class T, int N>
 std::vector<ImagePair<N>> candidate_pairs(std::span<const Ellipsoid<T, N>> bodies, const PeriodicBox<N>& box);
 template <class T, int N>
