@@ -100,7 +100,7 @@ fuzz_mutate() {
 
 # Inputs per target for the CI mutation run: up to about a minute each on one core.
 declare -A fuzz_runs=([factories]=1400000 [queries]=30000 [intersect2]=600000 [niemitalo]=350000 [scene]=100000
-                       [rigid]=15000 [broad_phase]=4000)
+                       [rigid]=15000 [broad_phase]=6000)
 
 # ---- web: the demo page (web/) --------------------------------------------------------
 # Debian's emscripten ships its system libraries prebuilt (a frozen cache), so nothing of
