@@ -20,6 +20,7 @@
 #include <array>
 #include <cstdint>
 #include <span>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -71,7 +72,10 @@ template <int N>
 struct ImagePair {
   std::uint32_t i = 0, j = 0;
   std::array<std::int32_t, N> image{};
-  friend auto operator<=>(const ImagePair&, const ImagePair&) = default;
+  friend bool operator==(const ImagePair&, const ImagePair&) = default;
+  friend bool operator<(const ImagePair& a, const ImagePair& b) {  // lexicographic: i, j, image
+    return std::tie(a.i, a.j, a.image) < std::tie(b.i, b.j, b.image);
+  }
 };
 
 // Periodic versions of the above, sorted: every (pair, image) whose boxes meet, and every
