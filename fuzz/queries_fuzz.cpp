@@ -19,7 +19,15 @@
 //               overlapping relation; closest_approach along va: InputError("direction") exactly
 //               for a zero or non-finite va, else a finite positive distance, a finite point
 //               and a unit normal, and the same distance for (b, a, -va) bit for bit;
-//   batch       overlap, classify and first_contact equal the scalar answers bit for bit.
+//   batch       overlap, classify and first_contact equal the scalar answers bit for bit;
+//   half-space  a against the half-space through b's center with normal va: InputError
+//               naming the normal exactly for a zero or non-finite va; the relation is one
+//               of separated, touching, overlapping, b_contains_a, and b_contains_a exactly
+//               where the complement (normal -va) says separated or touching; overlap and
+//               signed_distance's status agree with it, the normal is -n bit for bit, the
+//               distance finite, > 0 when separated, <= 0 when overlapping; first_contact
+//               (velocities vb and 0): invalid_input exactly for bad input, else the start
+//               status is the relation's, and a hit is in (0, t_max] at a finite point.
 #include "fuzz_support.hpp"
 
 #include <ellipsect/batch.hpp>
@@ -27,6 +35,7 @@
 #include <ellipsect/contact.hpp>
 #include <ellipsect/contact_function.hpp>
 #include <ellipsect/distance.hpp>
+#include <ellipsect/half_space.hpp>
 
 #include <cstdlib>
 #include <memory>
@@ -173,6 +182,50 @@ void check_batch(const std::vector<Ellipsoid<T, N>>& as, const std::vector<Ellip
 }
 
 template <class T, int N>
+void check_half_space(const Ellipsoid<T, N>& a, const Vec<T, N>& point, const Vec<T, N>& normal, const Vec<T, N>& v,
+                      T t_max) {
+  const bool valid_normal = all_finite(normal) && normal.cwiseAbs().maxCoeff() > T(0);
+  std::optional<HalfSpace<T, N>> h, complement;
+  try {
+    h = make_half_space<T, N>(point, normal);
+    complement = make_half_space<T, N>(point, -normal);
+  } catch (const InputError& e) {
+    FUZZ_CHECK(!valid_normal && e.field().starts_with("normal"), << "InputError " << e.what());
+    return;
+  }
+  FUZZ_CHECK(valid_normal, << "no InputError for the normal " << hex(normal));
+  const Relation rel = classify(a, *h), rel_c = classify(a, *complement);
+  FUZZ_CHECK(rel != Relation::a_contains_b && rel != Relation::equal, << "relation " << to_string(rel));
+  FUZZ_CHECK(overlap(a, *h) == (rel != Relation::separated), << "overlap vs classify " << to_string(rel));
+  const auto apart = [](Relation r) { return r == Relation::separated || r == Relation::touching; };
+  FUZZ_CHECK((rel == Relation::b_contains_a) == apart(rel_c) && (rel_c == Relation::b_contains_a) == apart(rel),
+             << "half-space " << to_string(rel) << ", its complement " << to_string(rel_c));
+  const Distance<T, N> d = signed_distance(a, *h);
+  FUZZ_CHECK(d.status == distance_status_of(rel) && same_bits(d.normal, Vec<T, N>(-h->normal())) &&
+                 std::isfinite(d.distance) && all_finite(d.point_a) && all_finite(d.point_b),
+             << "signed_distance " << to_string(d.status) << " " << hex(d.distance) << " normal " << hex(d.normal)
+             << ", classify " << to_string(rel));
+  if (rel == Relation::separated) FUZZ_CHECK(d.distance > 0, << "separated at " << hex(d.distance));
+  if (d.status == DistanceStatus::overlapping) {
+    FUZZ_CHECK(d.distance <= 0, << "overlapping at " << hex(d.distance));
+    const Distance<T, N> u = distance(a, *h);
+    FUZZ_CHECK(u.distance == 0 && std::isnan(u.point_a[0]), << "distance() " << hex(u.distance));
+  }
+  const Contact<T, N> c = first_contact(a, v, *h, Vec<T, N>::Zero(), t_max);
+  const bool valid = all_finite(v) && !std::isnan(t_max) && t_max >= 0;
+  FUZZ_CHECK((c.status == ContactStatus::invalid_input) == !valid, << "status " << to_string(c.status));
+  if (!valid) return;
+  const bool start_ok = rel == Relation::separated
+                            ? c.status == ContactStatus::hit || c.status == ContactStatus::no_contact_in_window
+                        : rel == Relation::touching ? c.status == ContactStatus::touching_at_start
+                                                    : c.status == ContactStatus::overlapping_at_start;
+  FUZZ_CHECK(start_ok, << "contact " << to_string(c.status) << ", classify " << to_string(rel));
+  if (c.status == ContactStatus::hit)
+    FUZZ_CHECK(std::isfinite(c.time) && c.time > 0 && c.time <= t_max && all_finite(c.point),
+               << "hit at " << hex(c.time) << ", t_max " << hex(t_max) << " point " << hex(c.point));
+}
+
+template <class T, int N>
 void run(Bytes& in) {
   std::vector<Ellipsoid<T, N>> as, bs;
   std::vector<Vec<T, N>> vas, vbs;
@@ -203,6 +256,7 @@ void run(Bytes& in) {
     check_distance<T, N>(*a, *b, rel, distinct);
     check_contact<T, N>(*a, va, *b, vb, t_max, rel, rel_wide);
     check_contact_function<T, N>(*a, *b, va, rel);
+    check_half_space<T, N>(*a, Vec<T, N>(b->center()), va, vb, t_max);
     as.push_back(*a);
     bs.push_back(*b);
     vas.push_back(va);

@@ -4,9 +4,9 @@
 #                                 `ellipsect render` on a bundled scene
 #   bash scripts/run.sh test      install what is missing, build, run the whole test suite
 #                                 (Release build, the demo page's browser test, the Python
-#                                 package's tests, then an ASan+UBSan build, then every fuzz
-#                                 target on its kept inputs and corpus and a short seeded
-#                                 mutation run)
+#                                 package's tests, then the sanitized build's tests and
+#                                 every fuzz target on its kept inputs and corpus and a
+#                                 short seeded mutation run)
 #   bash scripts/run.sh fuzz [NAME [SECONDS]]   the long run of one fuzz target or all
 #                                 (default 600 s each; docs/fuzzing.md)
 #   bash scripts/run.sh bench [NAME [ARGS]]   install what is missing, build, run
@@ -51,12 +51,20 @@ build() {  # build DIR [cmake args...]
   cmake --build "$dir" -j "$(nproc)"
 }
 
-# The libFuzzer targets (fuzz/): clang with the fuzzing instrumentation, ASan and UBSan.
-build_fuzz() {
-  cmake -S . -B build/fuzz -G Ninja -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-    -DELLIPSECT_BUILD_FUZZ=ON -DELLIPSECT_BUILD_TESTS=OFF -DELLIPSECT_BUILD_BENCH=OFF \
-    -DELLIPSECT_BUILD_TOOLS=OFF >/dev/null
-  cmake --build build/fuzz -j "$(nproc)" --target fuzz
+step() { echo "==> [$((SECONDS / 60)) min $((SECONDS % 60)) s] $*"; }
+
+# The sanitized build, build/sanitize: clang with ASan and UBSan, line tables for their
+# reports, and libFuzzer's coverage instrumentation, so that the tests and the fuzz targets
+# (fuzz/) share one build of the library (CMakeLists.txt). build_sanitized [TARGET...]
+build_sanitized() {
+  # A tree configured by another compiler is rebuilt from scratch.
+  if [ -f build/sanitize/CMakeCache.txt ] && ! grep -q '^CMAKE_CXX_COMPILER:.*clang' build/sanitize/CMakeCache.txt; then
+    rm -rf build/sanitize
+  fi
+  cmake -S . -B build/sanitize -G Ninja -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+    -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -gline-tables-only -DNDEBUG" -DELLIPSECT_SANITIZE=ON \
+    -DELLIPSECT_BUILD_FUZZ=ON -DELLIPSECT_BUILD_TESTS=ON -DELLIPSECT_BUILD_BENCH=OFF -DELLIPSECT_BUILD_TOOLS=ON >/dev/null
+  cmake --build build/sanitize -j "$(nproc)" ${1:+--target} "$@"
 }
 
 fuzz_targets() {
@@ -69,9 +77,9 @@ fuzz_targets() {
 
 # fuzz_check NAME: every kept input of fuzz/regressions/NAME/ and every file of the committed
 # corpus fuzz/corpus/NAME/, each run once (no mutation: docs/fuzzing.md says why); a
-# failing input is written to build/fuzz/artifacts/.
+# failing input is written to build/sanitize/artifacts/.
 fuzz_check() {
-  local name=$1 program=build/fuzz/fuzz/fuzz_$1 log f inputs=() artifacts=build/fuzz/artifacts/
+  local name=$1 program=build/sanitize/fuzz/fuzz_$1 log f inputs=() artifacts=build/sanitize/artifacts/
   for f in fuzz/regressions/"$name"/* fuzz/corpus/"$name"/*; do [ -f "$f" ] && inputs+=("$f"); done
   mkdir -p "$artifacts"
   echo "==> fuzz_$name: ${#inputs[@]} kept and corpus inputs"
@@ -88,12 +96,12 @@ fuzz_check() {
 # extra inputs at moments set by the clock). -max_total_time only cuts a slow machine's run
 # short, to a prefix of the same sequence of inputs (docs/fuzzing.md).
 fuzz_mutate() {
-  local name=$1 runs=$2 corpus=build/fuzz/mutation/$1 artifacts=build/fuzz/artifacts/$1- log
+  local name=$1 runs=$2 corpus=build/sanitize/mutation/$1 artifacts=build/sanitize/artifacts/$1- log
   rm -rf "$corpus"
-  mkdir -p "$corpus" build/fuzz/artifacts
+  mkdir -p "$corpus" build/sanitize/artifacts
   cp fuzz/corpus/"$name"/* "$corpus"/
   echo "==> fuzz_$name: seeded mutation run, $runs inputs"
-  log=$(ELLIPSECT_FUZZ_SIMD_TARGET=EMU128 build/fuzz/fuzz/fuzz_"$name" -seed=1 -runs="$runs" -use_cmp=0 \
+  log=$(ELLIPSECT_FUZZ_SIMD_TARGET=EMU128 build/sanitize/fuzz/fuzz_"$name" -seed=1 -runs="$runs" -use_cmp=0 \
     -use_memmem=0 -reload=0 -max_total_time=180 -max_len=4096 -timeout=10 -artifact_prefix="$artifacts" "$corpus" 2>&1) ||
     { echo "$log" | tail -40; return 1; }
 }
@@ -101,6 +109,28 @@ fuzz_mutate() {
 # Inputs per target for the CI mutation run: up to about a minute each on one core.
 declare -A fuzz_runs=([factories]=1400000 [queries]=30000 [intersect2]=600000 [niemitalo]=350000 [scene]=100000
                        [rigid]=15000 [broad_phase]=6000)
+
+# Every target's check and mutation run, as many at once as there are cores; each target's
+# output is printed when it ends, and the step fails if any target did (all of them run).
+fuzz_all() {
+  local name logs=build/sanitize/fuzz-logs failed=()
+  rm -rf "$logs"
+  mkdir -p "$logs"
+  for name in $(fuzz_targets); do
+    while [ "$(jobs -rp | wc -l)" -ge "$(nproc)" ]; do sleep 1; done
+    {
+      status=1
+      fuzz_check "$name" && fuzz_mutate "$name" "${fuzz_runs[$name]}" && status=0
+      echo "$status" >"$logs/$name.rc"
+    } >"$logs/$name.log" 2>&1 &
+  done
+  wait
+  for name in $(fuzz_targets); do
+    cat "$logs/$name.log"
+    [ "$(cat "$logs/$name.rc")" = 0 ] || failed+=("$name")
+  done
+  [ ${#failed[@]} -eq 0 ] || { echo "==> fuzz targets failed: ${failed[*]}" >&2; return 1; }
+}
 
 # ---- web: the demo page (web/) --------------------------------------------------------
 # Debian's emscripten ships its system libraries prebuilt (a frozen cache), so nothing of
@@ -147,30 +177,32 @@ case "${1:-}" in
   test)
     install_missing
     # Options set explicitly: `example` may have configured build/release without tests.
+    step "Release build"
     build build/release -DCMAKE_BUILD_TYPE=Release -DELLIPSECT_BUILD_TESTS=ON -DELLIPSECT_BUILD_BENCH=ON \
       -DELLIPSECT_BUILD_TOOLS=ON
+    step "Release tests"
     (cd build/release && ctest --output-on-failure --no-tests=error -j "$(nproc)")
+    step "demo page: build and browser test"
     web_test
+    step "Python package: build and tests"
     python_test
-    # Sanitizer pass: same suite, fewer random cases per property test.
-    build build/sanitize -DCMAKE_BUILD_TYPE=RelWithDebInfo -DELLIPSECT_SANITIZE=ON -DELLIPSECT_BUILD_TESTS=ON \
-      -DELLIPSECT_BUILD_BENCH=OFF -DELLIPSECT_BUILD_TOOLS=ON
+    step "sanitized build (tests and fuzz targets)"
+    build_sanitized all fuzz
+    # Same suite under the sanitizers, fewer random cases per property test.
+    step "sanitized tests"
     (cd build/sanitize && ELLIPSECT_CASE_SCALE=0.05 ctest --output-on-failure --no-tests=error -j "$(nproc)")
-    build_fuzz
-    failed=()
-    for name in $(fuzz_targets); do
-      fuzz_check "$name" && fuzz_mutate "$name" "${fuzz_runs[$name]}" || failed+=("$name")
-    done
-    [ ${#failed[@]} -eq 0 ] || { echo "==> fuzz targets failed: ${failed[*]}" >&2; exit 1; }
+    step "fuzz targets: kept inputs, corpus, seeded mutation runs"
+    fuzz_all
+    step "all passed"
     ;;
   fuzz)
     install_missing
-    build_fuzz
+    build_sanitized fuzz
     # fuzz [NAME [SECONDS]]: new inputs are added to fuzz/corpus/NAME; failures are written
     # as crash-* files in the current directory (docs/fuzzing.md: keep them as regressions).
     for name in ${2:-$(fuzz_targets)}; do
       [[ -f fuzz/${name}_fuzz.cpp ]] || { echo "no fuzz target $name (see fuzz/)" >&2; exit 2; }
-      build/fuzz/fuzz/fuzz_"$name" -max_total_time="${3:-600}" -max_len=4096 -timeout=10 -jobs="$(nproc)" \
+      build/sanitize/fuzz/fuzz_"$name" -max_total_time="${3:-600}" -max_len=4096 -timeout=10 -jobs="$(nproc)" \
         -workers="$(nproc)" fuzz/corpus/"$name"
     done
     ;;

@@ -1,5 +1,7 @@
+#include <ellipsect/half_space.hpp>
 #include <ellipsect/shapes.hpp>
 
+#include "detail/axes.hpp"
 #include "detail/instantiate.hpp"
 #include "detail/shape_access.hpp"
 #include "detail/show.hpp"
@@ -105,8 +107,11 @@ template <class T, int N>
 [[gnu::always_inline]] inline bool kept_as_given(const Vec<T, N>& center, const Mat<T, N>& axes,
                                                  const Vec<T, N>& radii) {
   bool ok = true;
-  for (int i = 0; i < N; ++i)
-    ok &= (center[i] - center[i] == T(0)) & (radii[i] > T(0)) & (radii[i] <= std::numeric_limits<T>::max());
+  for (int i = 0; i < N; ++i) {
+    ok &= center[i] - center[i] == T(0);
+    ok &= radii[i] > T(0);
+    ok &= radii[i] <= std::numeric_limits<T>::max();
+  }
   ok &= radii.maxCoeff() <= Ellipsoid<T, N>::max_aspect_ratio * radii.minCoeff();
   T gram[N][N] = {};
   for (int k = 0; k < N; ++k)
@@ -316,7 +321,30 @@ void make_bodies(std::span<const T> centers, std::span<const T> rotations, std::
   });
 }
 
+template <class T, int N>
+HalfSpace<T, N> HalfSpace<T, N>::from_point_normal(const Vec<T, N>& point, const Vec<T, N>& normal) {
+  require_finite(point, "point");
+  require_finite(normal, "normal");
+  if (!(normal.cwiseAbs().maxCoeff() > T(0))) throw InputError("normal", "must not be zero");
+  HalfSpace h;
+  Eigen::Map<Vec<T, N>>(h.point_.data()) = point;
+  Eigen::Map<Vec<T, N>>(h.normal_.data()) = detail::unit_vector<T, N>(normal);
+  return h;
+}
+
+template <class T, int N>
+HalfSpace<T, N> HalfSpace<T, N>::translated(const Vec<T, N>& offset) const {
+  require_finite(offset, "offset");
+  const Vec<T, N> moved = point() + offset;
+  for (int i = 0; i < N; ++i)
+    if (!std::isfinite(moved[i])) throw InputError("offset", "moves the point beyond the range of the type");
+  HalfSpace h = *this;
+  Eigen::Map<Vec<T, N>>(h.point_.data()) = moved;
+  return h;
+}
+
 #define ELLIPSECT_INSTANTIATE(T, N) \
+  template class HalfSpace<T, N>;   \
   template class Ellipsoid<T, N>;   \
   template Ellipsoid<T, N> make_ball<T, N>(const Vec<T, N>&, T); \
   template void make_bodies<T, N>(std::span<const T>, std::span<const T>, std::span<const T>, std::span<Ellipsoid<T, N>>);

@@ -7,6 +7,7 @@
 #include <ellipsect/contact.hpp>
 #include <ellipsect/contact_function.hpp>
 #include <ellipsect/distance.hpp>
+#include <ellipsect/half_space.hpp>
 #include <ellipsect/intersect2.hpp>
 #include <ellipsect/options.hpp>
 #include <ellipsect/point.hpp>

@@ -5,7 +5,9 @@ Ellipsoid) and batches from numpy arrays (Ellipses, Ellipsoids) go to the same f
 classify, overlap, first_contact, distance, signed_distance, closest_point (and, scalar
 only, first_contact under rigid motion with body_at, perram_wertheim and
 closest_approach), and in 2D
-intersect_boundaries, overlap_area, iou and Niemitalo's tests; among many bodies,
+intersect_boundaries, overlap_area, iou and Niemitalo's tests. classify, overlap,
+distance, signed_distance and first_contact also take a body and a HalfPlane (2D) or
+HalfSpace (3D). Among many bodies,
 overlapping_pairs and earliest_contact (open space or a periodic box). Every number comes
 from the library; batch answers equal the scalar ones bit for bit. Pictures: ellipsect.plot;
 Dask: ellipsect.dask.
@@ -34,6 +36,8 @@ from ._ellipsect import (  # noqa: F401
     Ellipses,
     Ellipsoid,
     Ellipsoids,
+    HalfPlane,
+    HalfSpace,
     InputError,
     Options,
     OverlapArea,

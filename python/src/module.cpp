@@ -76,6 +76,36 @@ void def_body(py::class_<Ellipsoid<double, N>>& c) {
                       }));
 }
 
+// HalfPlane (N = 2) and HalfSpace (N = 3): { x : normal . (x - point) <= 0 } (half_space.hpp).
+template <int N>
+void def_half_space(py::module_& m, const char* name) {
+  using H = HalfSpace<double, N>;
+  py::class_<H>(m, name, "A validated half-space {x : normal . (x - point) <= 0} (half_space.hpp).")
+      .def(py::init([](const Row<N>& point, const Row<N>& normal) {
+             return make_half_space<double, N>(vec<N>(point), vec<N>(normal));
+           }),
+           py::arg("point"), py::arg("normal"), "The normal (outward, any length) is stored as a unit vector.")
+      .def_property_readonly("point", [](const H& h) { return to_array<N>(h.point()); })
+      .def_property_readonly("normal", [](const H& h) { return to_array<N>(h.normal()); })
+      .def("translated", [](const H& h, const Row<N>& offset) { return h.translated(vec<N>(offset)); },
+           py::arg("offset"))
+      .def("__repr__",
+           [name](const H& h) {
+             std::ostringstream s;
+             s.precision(17);
+             s << name << "(point=[";
+             for (int k = 0; k < N; ++k) s << (k ? ", " : "") << h.point()[k];
+             s << "], normal=[";
+             for (int k = 0; k < N; ++k) s << (k ? ", " : "") << h.normal()[k];
+             s << "])";
+             return s.str();
+           })
+      .def(py::pickle([](const H& h) { return py::make_tuple(to_array<N>(h.point()), to_array<N>(h.normal())); },
+                      [](const py::tuple& t) {
+                        return make_half_space<double, N>(vec<N>(t[0].cast<Row<N>>()), vec<N>(t[1].cast<Row<N>>()));
+                      }));
+}
+
 template <int N>
 void def_results(py::module_& m, const char* suffix) {
   const std::string s = suffix;
@@ -169,6 +199,22 @@ void def_queries(py::module_& m) {
           return closest_approach(a, b, vec<N>(direction), o);
         },
         py::arg("a"), py::arg("b"), py::arg("direction"), py::arg("options") = Options{});
+  // A body against a half-space (half_space.hpp).
+  using H = HalfSpace<double, N>;
+  m.def("classify", py::overload_cast<const E&, const H&, const Options&>(&classify<double, N>), py::arg("a"),
+        py::arg("b"), py::arg("options") = Options{});
+  m.def("overlap", py::overload_cast<const E&, const H&, const Options&>(&overlap<double, N>), py::arg("a"),
+        py::arg("b"), py::arg("options") = Options{});
+  m.def("distance", py::overload_cast<const E&, const H&, const Options&>(&distance<double, N>), py::arg("a"),
+        py::arg("b"), py::arg("options") = Options{});
+  m.def("signed_distance", py::overload_cast<const E&, const H&, const Options&>(&signed_distance<double, N>),
+        py::arg("a"), py::arg("b"), py::arg("options") = Options{});
+  m.def("first_contact",
+        [](const E& a, const Row<N>& va, const H& b, const Row<N>& vb, double t_max, const Options& o) {
+          return first_contact(a, vec<N>(va), b, vec<N>(vb), t_max, o);
+        },
+        py::arg("a"), py::arg("velocity_a"), py::arg("b"), py::arg("velocity_b"), py::arg("t_max"),
+        py::arg("options") = Options{}, "First contact of a body and a moving half-space in [0, t_max].");
 }
 
 void def_two_d(py::module_& m) {
@@ -322,6 +368,8 @@ void def_scalar(py::module_& m) {
                 py::arg("rotation") = py::none(),
                 "Ellipsoid rotated by a unit quaternion (w, x, y, z), or with axes the columns of `rotation`.");
   def_body<3>(ellipsoid);
+  def_half_space<2>(m, "HalfPlane");
+  def_half_space<3>(m, "HalfSpace");
 
   using F = ContactFunction<double>;
   py::class_<F>(m, "ContactFunction", "perram_wertheim's answer (see contact_function.hpp).")

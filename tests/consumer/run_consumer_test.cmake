@@ -1,13 +1,12 @@
-# Installs ellipsect into a scratch prefix, then configures, builds and runs a small
-# consumer project against it with find_package(ellipsect): `consumer`, and the layout
-# checks abi_* built with other SIMD flags and Eigen alignments (abi_avx512f runs only on
-# a CPU with AVX-512; elsewhere it is only built).
+# Installs the build LIBRARY_BINARY_DIR (the one under test) into a scratch prefix, then
+# configures, builds and runs a small consumer project against it with
+# find_package(ellipsect): `consumer`, and the layout checks abi_* built with other SIMD
+# flags and Eigen alignments (abi_avx512f runs only on a CPU with AVX-512; elsewhere it is
+# only built).
 set(prefix ${BINARY_DIR}/prefix)
 file(REMOVE_RECURSE ${BINARY_DIR})
 foreach(step
-    "${CMAKE_COMMAND};-S;${SOURCE_DIR};-B;${BINARY_DIR}/lib;-G;${GENERATOR};-DCMAKE_BUILD_TYPE=Release;-DELLIPSECT_BUILD_TESTS=OFF;-DELLIPSECT_BUILD_BENCH=OFF;-DELLIPSECT_BUILD_TOOLS=OFF;-DCMAKE_INSTALL_PREFIX=${prefix}"
-    "${CMAKE_COMMAND};--build;${BINARY_DIR}/lib"
-    "${CMAKE_COMMAND};--install;${BINARY_DIR}/lib"
+    "${CMAKE_COMMAND};--install;${LIBRARY_BINARY_DIR};--prefix;${prefix}"
     "${CMAKE_COMMAND};-S;${SOURCE_DIR}/tests/consumer;-B;${BINARY_DIR}/app;-G;${GENERATOR};-DCMAKE_PREFIX_PATH=${prefix}"
     "${CMAKE_COMMAND};--build;${BINARY_DIR}/app"
     "${BINARY_DIR}/app/consumer")

@@ -15,8 +15,8 @@ int main() {
     ellipsect::web::Params params;
     for (const auto& [name, value] : q.at("params").items()) params.emplace(name, value.get<double>());
     nlohmann::json answer = nlohmann::json::object();
-    for (const auto& [name, value] : ellipsect::web::answer(q.at("demo").get<std::string>(), params))
-      std::visit([&](const auto& v) { answer[name] = v; }, value);
+    for (const auto& entry : ellipsect::web::answer(q.at("demo").get<std::string>(), params))
+      std::visit([&](const auto& v) { answer[entry.first] = v; }, entry.second);
     out.push_back(answer);
   }
   std::cout << out.dump() << '\n';

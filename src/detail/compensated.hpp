@@ -1,0 +1,73 @@
+// Error-free transformations and double-length values (Knuth's two-sum, Dekker's product
+// with Veltkamp's split: exact without a fused multiply-add) for F = double or long double,
+// and the compensated dot product of Ogita, Rump and Oishi (SIAM J. Sci. Comput. 2005,
+// "Dot2"), whose unevaluated result hi + lo is within gamma_2n^2 sum |x_i y_i| of the exact
+// dot product (gamma_k = k eps / (1 - k eps)). The source file including this header must be
+// compiled with -ffp-contract=off: a contracted split or product is no longer error-free.
+// Valid while no product over- or underflows (the callers keep their lengths in range).
+#pragma once
+
+#include <limits>
+
+namespace ellipsect::detail {
+
+template <class F>
+struct Double {
+  F hi = 0, lo = 0;  // the value hi + lo, |lo| <= ulp(hi) / 2 once normalized
+};
+
+template <class F>
+Double<F> two_sum(F a, F b) noexcept {
+  const F s = a + b;
+  const F z = s - a;
+  return {s, (a - (s - z)) + (b - z)};
+}
+
+template <class F>
+Double<F> two_product(F a, F b) noexcept {
+  constexpr F split = F((1ull << ((std::numeric_limits<F>::digits + 1) / 2)) + 1);
+  const auto halves = [](F x, F& high, F& low) {
+    const F c = split * x;
+    high = c - (c - x);
+    low = x - high;
+  };
+  F ah, al, bh, bl;
+  halves(a, ah, al);
+  halves(b, bh, bl);
+  const F p = a * b;
+  return {p, ((ah * bh - p) + ah * bl + al * bh) + al * bl};
+}
+
+// a + b, a * b, a * a of double-length values, to a few eps^2 relative.
+template <class F>
+Double<F> add(Double<F> a, Double<F> b) noexcept {
+  const Double<F> s = two_sum(a.hi, b.hi);
+  return two_sum(s.hi, s.lo + a.lo + b.lo);
+}
+
+template <class F>
+Double<F> times(Double<F> a, F b) noexcept {
+  const Double<F> p = two_product(a.hi, b);
+  return two_sum(p.hi, p.lo + a.lo * b);
+}
+
+template <class F>
+Double<F> square(Double<F> a) noexcept {
+  const Double<F> p = two_product(a.hi, a.hi);
+  return two_sum(p.hi, p.lo + F(2) * a.hi * a.lo);
+}
+
+// Dot2: add(x, y) for each term, then value().
+template <class F>
+struct CompensatedDot {
+  F sum = 0, error = 0;
+  void add(F x, F y) noexcept {
+    const Double<F> p = two_product(x, y);
+    const Double<F> s = two_sum(sum, p.hi);
+    sum = s.hi;
+    error += s.lo + p.lo;
+  }
+  Double<F> value() const noexcept { return two_sum(sum, error); }
+};
+
+}  // namespace ellipsect::detail

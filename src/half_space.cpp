@@ -1,0 +1,259 @@
+#include <ellipsect/half_space.hpp>
+
+#include "detail/axes.hpp"
+#include "detail/compensated.hpp"
+#include "detail/instantiate.hpp"
+#include "detail/reduce.hpp"
+#include "detail/scale.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace ellipsect {
+namespace {
+
+using detail::CompensatedDot;
+using detail::Double;
+
+// x times 2^e; most pairs run at e = 0, where this is free (std::ldexp is a library call).
+template <class F>
+F pow2(F x, int e) noexcept {
+  return e == 0 ? x : std::ldexp(x, e);
+}
+
+// The body against the plane in the working type F, every length times 2^-exponent
+// (half_space.hpp, "Math"): the lower gap L = s - rho, the upper gap U = -s - rho, the support
+// radius rho, the lowest point and the unit normal n; `error` bounds |L - exact| and
+// |U - exact| (0: computed in compensated arithmetic, taken as exact), `size` is the
+// largest radius.
+template <class F, int N>
+struct Gaps {
+  using Scalar = F;
+  F lower, upper, rho, error, size;
+  Vec<F, N> lowest, normal;
+  int exponent;
+};
+
+// Plain arithmetic when `compensated` is false, with the error bound
+//   (N + 4) eps (sum |n_i (c_i - p_i)| + rho + r_max),
+// twice the first-order bound u ((N + 2) sum |n_i (c_i - p_i)| + (N + 4) rho + N^1.5 r_max)
+// (u = eps / 2: the differences and the dot product s; rho's own rounding; the rounding of
+// A^T n, at most gamma_N sqrt(N) per entry, times r_max; the final difference).
+// Compensated: s and A^T n by compensated dot products, c - p split exactly, and L, U from
+// (s^2 - rho^2) / (s + rho) in double length where they cancel.
+template <class F, class T, int N>
+Gaps<F, N> gaps_in(const Ellipsoid<T, N>& a, const HalfSpace<T, N>& b, int exponent, bool compensated) noexcept {
+  const Mat<F, N> axes = detail::work_axes<F>(a);
+  Vec<F, N> c, p, r, n;
+  for (int i = 0; i < N; ++i) {
+    c[i] = pow2(F(a.center()[i]), -exponent);
+    p[i] = pow2(F(b.point()[i]), -exponent);
+    r[i] = pow2(F(a.radii()[i]), -exponent);
+    n[i] = F(b.normal()[i]);
+  }
+  Gaps<F, N> g;
+  Vec<F, N> t;  // t_k = r_k (A^T n)_k, rho = |t|
+  if (!compensated) {
+    F s = 0, spread = 0;
+    for (int i = 0; i < N; ++i) {
+      const F term = n[i] * (c[i] - p[i]);
+      s += term;
+      spread += std::abs(term);
+    }
+    t = r.cwiseProduct(axes.transpose() * n);
+    g.rho = t.norm();
+    g.lower = s - g.rho;
+    g.upper = -s - g.rho;
+    g.error = F(N + 4) * std::numeric_limits<F>::epsilon() * (spread + g.rho + r.maxCoeff());
+  } else {
+    CompensatedDot<F> sd;
+    for (int i = 0; i < N; ++i) {
+      const Double<F> d = detail::two_sum(c[i], -p[i]);
+      sd.add(n[i], d.hi);
+      sd.add(n[i], d.lo);
+    }
+    const Double<F> s = sd.value();
+    Double<F> rho2{};
+    for (int k = 0; k < N; ++k) {
+      CompensatedDot<F> ud;
+      for (int i = 0; i < N; ++i) ud.add(axes(i, k), n[i]);
+      const Double<F> tk = detail::times(ud.value(), r[k]);
+      t[k] = tk.hi;
+      rho2 = detail::add(rho2, detail::square(tk));
+    }
+    g.rho = std::sqrt(rho2.hi);
+    // s^2 - rho^2 = (s - rho)(s + rho): L and U where they cancel, directly where they do not.
+    const F q = detail::add(detail::square(s), Double<F>{-rho2.hi, -rho2.lo}).hi;
+    g.lower = s.hi > F(0) ? q / (s.hi + g.rho) : s.hi - g.rho;
+    g.upper = s.hi < F(0) ? q / (g.rho - s.hi) : -(s.hi + g.rho);
+    g.error = 0;
+  }
+  g.size = r.maxCoeff();
+  // Lowest point: c - A diag(r) t / rho.
+  g.lowest = c - axes * (r.cwiseProduct(t) / g.rho);
+  g.normal = n;
+  g.exponent = exponent;
+  return g;
+}
+
+// Whether the relation is certain: each gap farther than its error from the band's edges.
+template <class F, int N>
+bool decided(const Gaps<F, N>& g, const Options& options) noexcept {
+  const F band = F(options.tolerance) * g.rho;
+  const F margin = g.error * (F(1) + F(options.tolerance));
+  return std::abs(g.lower - band) > margin && std::abs(g.lower + band) > margin && std::abs(g.upper + band) > margin;
+}
+
+// Calls then(gaps), the gaps computed at the pair's scale (detail/scale.hpp): in the working
+// type, rescaled by a power of two where needed, or in long double; in plain arithmetic
+// where accept(gaps) holds, else compensated.
+template <class T, int N, class Accept, class Then>
+auto with_gaps(const Ellipsoid<T, N>& a, const HalfSpace<T, N>& b, Accept&& accept, Then&& then) noexcept {
+  const detail::Scale scale = detail::scale_of<T>(a.radii().maxCoeff(), a.radii().minCoeff(),
+                                                  std::max(detail::max_abs(a.center()), detail::max_abs(b.point())));
+  if (scale.range == detail::Range::wide) return then(gaps_in<long double>(a, b, 0, true));
+  using F = detail::Work<T>;
+  const Gaps<F, N> quick = gaps_in<F>(a, b, scale.exponent, false);
+  return then(accept(quick) ? quick : gaps_in<F>(a, b, scale.exponent, true));
+}
+
+// The stated accuracy of lengths (half_space.hpp: 1e-14 scale) with a margin: plain results
+// are kept where their error bound is below 5e-15 of scale.
+template <class F, int N>
+bool accurate(const Gaps<F, N>& g, F length) noexcept {
+  return g.error <= F(5e-15) * (g.size + std::abs(length));
+}
+
+template <class F, int N>
+Relation relation_of(const Gaps<F, N>& g, const Options& options) noexcept {
+  const F band = F(options.tolerance) * g.rho;
+  if (g.lower > band) return Relation::separated;
+  if (g.lower >= -band) return Relation::touching;
+  if (g.upper >= -band) return Relation::b_contains_a;
+  return Relation::overlapping;
+}
+
+template <class T, class F, int N>
+Vec<T, N> world(const Vec<F, N>& v, int exponent) noexcept {
+  Vec<T, N> out;
+  for (int i = 0; i < N; ++i) out[i] = T(pow2(v[i], exponent));
+  return out;
+}
+
+template <class T, int N>
+Vec<T, N> nan_vec() noexcept {
+  return Vec<T, N>::Constant(std::numeric_limits<T>::quiet_NaN());
+}
+
+template <class T, int N>
+Distance<T, N> distance_of(const Ellipsoid<T, N>& a, const HalfSpace<T, N>& b, const Options& options,
+                           bool penetration) noexcept {
+  const auto accept = [&](const auto& g) { return decided(g, options) && accurate(g, g.lower); };
+  return with_gaps(a, b, accept, [&](const auto& g) {
+    Distance<T, N> d;
+    const Relation rel = relation_of(g, options);
+    d.status = rel == Relation::separated  ? DistanceStatus::separated
+               : rel == Relation::touching ? DistanceStatus::touching
+                                           : DistanceStatus::overlapping;
+    if (d.status == DistanceStatus::overlapping && !penetration) {
+      d.distance = T(0);
+      d.point_a = d.point_b = d.normal = nan_vec<T, N>();
+      return d;
+    }
+    d.distance = T(pow2(g.lower, g.exponent));
+    d.point_a = world<T>(g.lowest, g.exponent);
+    d.point_b = world<T>(decltype(g.lowest)(g.lowest - g.lower * g.normal), g.exponent);
+    d.normal = -b.normal();
+    return d;
+  });
+}
+
+}  // namespace
+
+template <class T, int N>
+Relation classify(const Ellipsoid<T, N>& a, const HalfSpace<T, N>& b, const Options& options) noexcept {
+  return with_gaps(
+      a, b, [&](const auto& g) { return decided(g, options); }, [&](const auto& g) { return relation_of(g, options); });
+}
+
+template <class T, int N>
+bool overlap(const Ellipsoid<T, N>& a, const HalfSpace<T, N>& b, const Options& options) noexcept {
+  return classify(a, b, options) != Relation::separated;
+}
+
+template <class T, int N>
+Distance<T, N> distance(const Ellipsoid<T, N>& a, const HalfSpace<T, N>& b, const Options& options) noexcept {
+  return distance_of(a, b, options, false);
+}
+
+template <class T, int N>
+Distance<T, N> signed_distance(const Ellipsoid<T, N>& a, const HalfSpace<T, N>& b, const Options& options) noexcept {
+  return distance_of(a, b, options, true);
+}
+
+// L(t) = L(0) - t sigma: the hit at L(0) / sigma. The velocities are rescaled by 2^-v (v the
+// exponent of the largest speed, or 0), and the time comes back times 2^(exponent - v).
+template <class T, int N>
+Contact<T, N> first_contact(const Ellipsoid<T, N>& a, const VecArg<T, N>& velocity_a, const HalfSpace<T, N>& b,
+                            const VecArg<T, N>& velocity_b, T t_max, const Options& options) noexcept {
+  Contact<T, N> out;
+  out.time = std::numeric_limits<T>::quiet_NaN();
+  out.point = out.normal = nan_vec<T, N>();
+  if (!velocity_a.allFinite() || !velocity_b.allFinite() || !(t_max >= T(0))) return out;
+  // The hit time is L / sigma: L to within 2e-15 relative (the stated 1e-14 with a margin).
+  const auto accept = [&](const auto& g) {
+    return decided(g, options) && (relation_of(g, options) != Relation::separated || g.error <= 2e-15 * g.lower);
+  };
+  return with_gaps(a, b, accept, [&](const auto& g) {
+    using F = typename std::decay_t<decltype(g)>::Scalar;
+    const Relation rel = relation_of(g, options);
+    if (rel != Relation::separated) {
+      out.time = T(0);
+      if (rel != Relation::touching) {
+        out.status = ContactStatus::overlapping_at_start;
+        return out;
+      }
+      out.status = ContactStatus::touching_at_start;
+      out.point = world<T>(g.lowest, g.exponent);
+      out.normal = -b.normal();
+      return out;
+    }
+    out.status = ContactStatus::no_contact_in_window;
+    const T speed = std::max(detail::max_abs(velocity_a), detail::max_abs(velocity_b));
+    if (!(speed > T(0))) return out;
+    // The velocities are rescaled only beyond 2^+-500, where their difference could overflow
+    // or the error terms of its products underflow.
+    const int v = F(speed) >= F(0x1p-500) && F(speed) <= F(0x1p500) ? 0 : std::ilogb(speed);
+    CompensatedDot<F> sd;  // sigma = -n . (v_a - v_b)
+    for (int i = 0; i < N; ++i) {
+      const Double<F> w = detail::two_sum(pow2(F(velocity_a[i]), -v), -pow2(F(velocity_b[i]), -v));
+      sd.add(-g.normal[i], w.hi);
+      sd.add(-g.normal[i], w.lo);
+    }
+    const F sigma = sd.value().hi;
+    if (!(sigma > F(0))) return out;
+    const F time = std::max(pow2(g.lower / sigma, g.exponent - v), F(std::numeric_limits<T>::denorm_min()));
+    if (!(std::isfinite(T(time)) && T(time) <= t_max)) return out;
+    out.status = ContactStatus::hit;
+    out.time = T(time);
+    Vec<F, N> point;
+    for (int i = 0; i < N; ++i) point[i] = pow2(g.lowest[i], g.exponent) + time * F(velocity_a[i]);
+    out.point = point.template cast<T>();
+    out.normal = -b.normal();
+    return out;
+  });
+}
+
+#define ELLIPSECT_INSTANTIATE(T, N)                                                                                 \
+  template Relation classify<T, N>(const Ellipsoid<T, N>&, const HalfSpace<T, N>&, const Options&) noexcept;     \
+  template bool overlap<T, N>(const Ellipsoid<T, N>&, const HalfSpace<T, N>&, const Options&) noexcept;          \
+  template Distance<T, N> distance<T, N>(const Ellipsoid<T, N>&, const HalfSpace<T, N>&, const Options&) noexcept; \
+  template Distance<T, N> signed_distance<T, N>(const Ellipsoid<T, N>&, const HalfSpace<T, N>&,                   \
+                                                const Options&) noexcept;                                          \
+  template Contact<T, N> first_contact<T, N>(const Ellipsoid<T, N>&, const VecArg<T, N>&, const HalfSpace<T, N>&, \
+                                             const VecArg<T, N>&, T, const Options&) noexcept;
+ELLIPSECT_FOR_EACH_TYPE_AND_DIM(ELLIPSECT_INSTANTIATE)
+#undef ELLIPSECT_INSTANTIATE
+
+}  // namespace ellipsect
