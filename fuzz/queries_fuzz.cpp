@@ -27,7 +27,11 @@
 //               signed_distance's status agree with it, the normal is -n bit for bit, the
 //               distance finite, > 0 when separated, <= 0 when overlapping; first_contact
 //               (velocities vb and 0): invalid_input exactly for bad input, else the start
-//               status is the relation's, and a hit is in (0, t_max] at a finite point.
+//               status is the relation's, and a hit is in (0, t_max] at a finite point;
+//               collide_and_slide by vb in the world of that half-space: overlapping_at_start
+//               exactly where classify says so, invalid_input only for a non-finite end,
+//               otherwise an end outside the half-space (separated or touching), moved by at
+//               most |vb| (to 1e-12).
 #include "fuzz_support.hpp"
 
 #include <ellipsect/batch.hpp>
@@ -36,6 +40,7 @@
 #include <ellipsect/contact_function.hpp>
 #include <ellipsect/distance.hpp>
 #include <ellipsect/half_space.hpp>
+#include <ellipsect/slide.hpp>
 
 #include <cstdlib>
 #include <memory>
@@ -210,6 +215,19 @@ void check_half_space(const Ellipsoid<T, N>& a, const Vec<T, N>& point, const Ve
     FUZZ_CHECK(d.distance <= 0, << "overlapping at " << hex(d.distance));
     const Distance<T, N> u = distance(a, *h);
     FUZZ_CHECK(u.distance == 0 && std::isnan(u.point_a[0]), << "distance() " << hex(u.distance));
+  }
+  const Slide<T, N> slide = collide_and_slide(a, v, std::span(&*h, 1));
+  const bool inside = rel == Relation::overlapping || rel == Relation::b_contains_a;
+  if (slide.status == SlideStatus::invalid_input) {
+    FUZZ_CHECK(!all_finite(Vec<T, N>(a.center() + v)), << "invalid_input for the displacement " << hex(v));
+  } else {
+    FUZZ_CHECK((slide.status == SlideStatus::overlapping_at_start) == inside,
+               << "slide " << to_string(slide.status) << ", classify " << to_string(rel));
+    const Relation end = classify(slide.body, *h);
+    FUZZ_CHECK(inside || end == Relation::separated || end == Relation::touching,
+               << "slide ends " << to_string(end) << " at " << hex(Vec<T, N>(slide.body.center())));
+    FUZZ_CHECK(slide.moved.norm() <= v.norm() * (1 + T(1e-6)) || !std::isfinite(v.norm()),
+               << "moved " << hex(slide.moved) << " for " << hex(v));
   }
   const Contact<T, N> c = first_contact(a, v, *h, Vec<T, N>::Zero(), t_max);
   const bool valid = all_finite(v) && !std::isnan(t_max) && t_max >= 0;

@@ -8,6 +8,7 @@
 #include <ellipsect/contact_function.hpp>
 #include <ellipsect/distance.hpp>
 #include <ellipsect/half_space.hpp>
+#include <ellipsect/slide.hpp>
 #include <ellipsect/intersect2.hpp>
 #include <ellipsect/options.hpp>
 #include <ellipsect/point.hpp>

@@ -7,7 +7,8 @@ only, first_contact under rigid motion with body_at, perram_wertheim and
 closest_approach), and in 2D
 intersect_boundaries, overlap_area, iou and Niemitalo's tests. classify, overlap,
 distance, signed_distance and first_contact also take a body and a HalfPlane (2D) or
-HalfSpace (3D). Among many bodies,
+HalfSpace (3D), and collide_and_slide moves a body through a list of them. Among many
+bodies,
 overlapping_pairs and earliest_contact (open space or a periodic box). Every number comes
 from the library; batch answers equal the scalar ones bit for bit. Pictures: ellipsect.plot;
 Dask: ellipsect.dask.
@@ -49,11 +50,15 @@ from ._ellipsect import (  # noqa: F401
     Relation,
     SegmentCircle,
     Side,
+    Slide2,
+    Slide3,
+    SlideStatus,
     Verdict,
     body_at,
     circle_cover_overlap,
     classify,
     closest_approach,
+    collide_and_slide,
     closest_point,
     closest_point_closed_form,
     closest_point_quartic,

@@ -24,7 +24,8 @@ template <class E>
 inline constexpr bool is_bound_enum =
     std::is_same_v<E, Relation> || std::is_same_v<E, ContactStatus> || std::is_same_v<E, DistanceStatus> ||
     std::is_same_v<E, CrossingKind> || std::is_same_v<E, BoundaryStatus> || std::is_same_v<E, Verdict> ||
-    std::is_same_v<E, Side> || std::is_same_v<E, QuarticStatus> || std::is_same_v<E, ContactFunctionStatus>;
+    std::is_same_v<E, Side> || std::is_same_v<E, QuarticStatus> || std::is_same_v<E, ContactFunctionStatus> ||
+    std::is_same_v<E, SlideStatus>;
 
 // The Python class (an enum.IntEnum) that stands for the C++ enum E; set by def_enum.
 template <class E>

@@ -119,6 +119,17 @@ void def_results(py::module_& m, const char* suffix) {
       .def("__repr__", [](const C& c) {
         return "Contact(status=" + std::string(to_string(c.status)) + ", time=" + std::to_string(c.time) + ")";
       });
+  using S = Slide<double, N>;
+  py::class_<S>(m, ("Slide" + s).c_str(), "collide_and_slide's answer (see slide.hpp).")
+      .def_property_readonly("status", [](const S& r) { return r.status; })
+      .def_property_readonly("body", [](const S& r) { return r.body; }, "The body where it ends.")
+      .def_property_readonly("moved", [](const S& r) { return to_array<N>(r.moved); })
+      .def_property_readonly("contacts", [](const S& r) { return r.contacts; })
+      .def_property_readonly("last_contact", [](const S& r) { return r.last_contact; },
+                             "Index in the world of the last half-space hit, or -1.")
+      .def("__repr__", [](const S& r) {
+        return "Slide(status=" + std::string(to_string(r.status)) + ", contacts=" + std::to_string(r.contacts) + ")";
+      });
   using D = Distance<double, N>;
   py::class_<D>(m, ("Distance" + s).c_str(), "distance / signed_distance's answer (see distance.hpp).")
       .def_property_readonly("status", [](const D& d) { return d.status; })
@@ -215,6 +226,14 @@ void def_queries(py::module_& m) {
         },
         py::arg("a"), py::arg("velocity_a"), py::arg("b"), py::arg("velocity_b"), py::arg("t_max"),
         py::arg("options") = Options{}, "First contact of a body and a moving half-space in [0, t_max].");
+  m.def("collide_and_slide",
+        [](const E& body, const Row<N>& displacement, const std::vector<H>& world, const Options& o) {
+          py::gil_scoped_release release;
+          return collide_and_slide(body, vec<N>(displacement), std::span<const H>(world), o);
+        },
+        py::arg("body"), py::arg("displacement"), py::arg("world"), py::arg("options") = Options{},
+        "Move the body by the displacement through a list of half-spaces, sliding along what it touches "
+        "(slide.hpp).");
 }
 
 void def_two_d(py::module_& m) {
@@ -321,6 +340,12 @@ void def_enums(py::module_& m) {
                                   {{"ok", ContactFunctionStatus::ok},
                                    {"concentric", ContactFunctionStatus::concentric},
                                    {"did_not_converge", ContactFunctionStatus::did_not_converge}});
+  def_enum<SlideStatus>(m, "SlideStatus",
+                        {{"moved", SlideStatus::moved},
+                         {"slid", SlideStatus::slid},
+                         {"blocked", SlideStatus::blocked},
+                         {"overlapping_at_start", SlideStatus::overlapping_at_start},
+                         {"invalid_input", SlideStatus::invalid_input}});
   def_enum<QuarticStatus>(m, "QuarticStatus",
                           {{"outside", QuarticStatus::outside},
                            {"inside", QuarticStatus::inside},

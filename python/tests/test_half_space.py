@@ -63,3 +63,19 @@ def test_bad_input_names_the_field():
     ball = ellipsect.Ellipse.ball([0, 0], 1)
     bad = ellipsect.first_contact(ball, [math.nan, 0], ellipsect.HalfPlane([0, -2], [0, 1]), [0, 0], 1.0)
     assert bad.status == ellipsect.ContactStatus.invalid_input
+
+
+def test_collide_and_slide_in_a_corner():
+    walls = [ellipsect.HalfPlane([0, 0], [1, 0]), ellipsect.HalfPlane([0, 0], [0, 1])]
+    e = ellipsect.Ellipse([5, 5], [2, 1])
+    s = ellipsect.collide_and_slide(e, [-10, -6], walls)
+    assert s.status == ellipsect.SlideStatus.slid and s.contacts == 2
+    assert np.allclose(s.body.center, [2, 1], atol=1e-14)
+    assert all(ellipsect.classify(s.body, w) == ellipsect.Relation.touching for w in walls)
+    assert np.allclose(s.moved, [-3, -4], atol=1e-14)
+    floor = [ellipsect.HalfSpace([0, 0, 0], [0, 0, 1])]
+    ball = ellipsect.Ellipsoid.ball([0, 0, 2], 1)
+    slid = ellipsect.collide_and_slide(ball, [4, 0, -3], floor)
+    assert slid.last_contact == 0 and np.allclose(slid.body.center, [4, 0, 1], atol=1e-14)
+    assert ellipsect.collide_and_slide(ball, [1, 1, 1], []).status == ellipsect.SlideStatus.moved
+    assert ellipsect.collide_and_slide(ball, [math.nan, 0, 0], floor).status == ellipsect.SlideStatus.invalid_input
