@@ -431,6 +431,51 @@ function relationDemo() {
   });
 }
 
+// A room of half-planes (outward normals into the room), the ellipse and the point it is
+// sent to; the library moves it there, sliding along the walls it meets (slide.hpp).
+function slideDemo() {
+  const e = {cx: -2, cy: 1, angle: 0.4, r0: 1.5, r1: 0.75}, target = {x: 4, y: -4.5};
+  const walls = [{px: 0, py: -3.5, nx: 0, ny: 1}, {px: -6.5, py: 0, nx: 1, ny: 0},
+                 {px: 5, py: 0, nx: -1, ny: 0.5}, {px: 0, py: 4.5, nx: 0, ny: -1}];
+  const params = () => {
+    const out = {...flatten('e', e), tx: target.x, ty: target.y, walls: walls.length};
+    walls.forEach((w, k) => Object.assign(out, flatten('w' + k, w)));
+    return out;
+  };
+  return new Demo('slide', {
+    params,
+    handles: () => [...ellipseHandles('e', e), handle('target', () => [target.x, target.y], ([x, y]) => { target.x = x; target.y = y; })],
+    draw(v, a) {
+      const c = v.ctx, far = 100;
+      for (const w of walls) {  // the solid side, shaded: the plane's line pushed far out
+        const t = [-w.ny, w.nx], o = [w.px, w.py], back = [-w.nx * far, -w.ny * far];
+        const corners = [add(o, dir(Math.atan2(t[1], t[0]), far)), add(o, dir(Math.atan2(-t[1], -t[0]), far))];
+        c.beginPath();
+        [corners[0], corners[1], add(corners[1], back), add(corners[0], back)].forEach((p, i) => {
+          const [x, y] = v.px(p);
+          if (i === 0) c.moveTo(x, y); else c.lineTo(x, y);
+        });
+        c.closePath();
+        c.fillStyle = 'rgba(0,0,0,0.12)';
+        c.fill();
+      }
+      const end = pt(a.end), stopped = a.status !== 'moved';
+      v.ellipse(e, GREY, {dash: [5, 4]});
+      v.ellipse({...e, cx: target.x, cy: target.y}, '#ccc', {dash: [2, 4]});
+      v.segment([e.cx, e.cy], [target.x, target.y], '#ccc', 1);
+      v.segment([e.cx, e.cy], end, ORANGE, 2);
+      v.ellipse({...e, cx: end[0], cy: end[1]}, stopped ? RED : GREEN, {width: 3});
+      this.drawHandles();
+    },
+    headline(a) {
+      if (a.status === 'overlapping_at_start') return ['The ellipse starts inside a wall: not moved.', 'failed'];
+      if (a.status === 'moved') return ['Moved the whole way: nothing in between.', 'no_collision'];
+      return [`${a.status === 'slid' ? 'Slid' : 'Blocked'} after ${a.contacts} contact(s); moved ${format(a.moved)}.`,
+              'collision'];
+    },
+  });
+}
+
 // ---- start --------------------------------------------------------------------------
 
 const demos = {};
@@ -453,7 +498,7 @@ window.ellipsectDemo = {
 
 createEllipsect().then((m) => {
   Module = m;
-  for (const make of [ellipseCircleDemo, segmentCircleDemo, polygonalDemo, sweptDemo, relationDemo]) {
+  for (const make of [ellipseCircleDemo, segmentCircleDemo, polygonalDemo, sweptDemo, relationDemo, slideDemo]) {
     const d = make();
     demos[d.id] = d;
     d.update();

@@ -165,6 +165,24 @@ Answer relation(const Params& p) {
           {"iou", intersection_over_union(a, b)}};
 }
 
+// Collide and slide through the half-planes w0 ... w(walls - 1) (wK.px, wK.py: a point of
+// the boundary; wK.nx, wK.ny: the outward normal) towards the target (tx, ty).
+Answer slide(const Params& p) {
+  const auto e = ellipse(p, "e");
+  std::vector<HalfSpace<double, 2>> world;
+  for (int k = 0; k < static_cast<int>(get(p, "walls")); ++k) {
+    const std::string w = "w" + std::to_string(k);
+    world.push_back(make_half_space<double, 2>(point(p, w + ".px", w + ".py"), point(p, w + ".nx", w + ".ny")));
+  }
+  const Vec2<double> displacement = point(p, "tx", "ty") - e.center();
+  const Slide<double, 2> s = collide_and_slide(e, displacement, std::span<const HalfSpace<double, 2>>(world));
+  return {{"status", label(to_string(s.status))},
+          {"contacts", double(s.contacts)},
+          {"last_contact", double(s.last_contact)},
+          {"end", list(s.body.center())},
+          {"moved", list(s.moved)}};
+}
+
 }  // namespace
 
 Answer answer(std::string_view demo, const Params& params) {
@@ -174,6 +192,7 @@ Answer answer(std::string_view demo, const Params& params) {
     if (demo == "polygonal") return polygonal(params);
     if (demo == "swept") return swept(params);
     if (demo == "relation") return relation(params);
+    if (demo == "slide") return slide(params);
   } catch (const InputError& e) {
     return {{"error", e.field()}, {"message", std::string(e.what())}};
   }

@@ -134,6 +134,13 @@ const scenarios = [
    actions: [['drag', 'b.center', [5, 3]]], expect: {relation: 'separated', 'crossings.count': 0, area: 0}},
   {name: 'relation-overlapping', demo: 'relation',
    actions: [['drag', 'b.center', [2, 0.5]]], expect: {relation: 'overlapping', 'distance.status': 'overlapping'}},
+
+  {name: 'slide-free', demo: 'slide',
+   actions: [['drag', 'target', [0, 2]]], expect: {status: 'moved', contacts: 0}},
+  {name: 'slide-along-the-floor', demo: 'slide',
+   actions: [['drag', 'target', [1, -4.5]]], expect: {status: 'slid', contacts: 1, last_contact: 0}},
+  {name: 'slide-into-a-corner', demo: 'slide',
+   actions: [['drag', 'target', [-6.875, -4.875]]], expect: {status: 'slid', contacts: 2}},
 ];
 
 const results = [];
@@ -182,7 +189,7 @@ console.log(`compared ${compared} values with the native library: ${identical} i
 // ---- time per frame -------------------------------------------------------------------
 
 const timing = {};
-for (const demo of ['ellipse_circle', 'segment_circle', 'polygonal', 'swept', 'relation']) {
+for (const demo of ['ellipse_circle', 'segment_circle', 'polygonal', 'swept', 'relation', 'slide']) {
   const query = await page.evaluate((d) => window.ellipsectDemo.time(d, 300), demo);
   const frame = await page.evaluate((d) => window.ellipsectDemo.time(d, 100, true), demo);
   timing[demo] = {query_ms: query, frame_ms: frame};
