@@ -1,4 +1,5 @@
 #include <ellipsect/half_space.hpp>
+#include <ellipsect/triangle.hpp>
 #include <ellipsect/shapes.hpp>
 
 #include "detail/axes.hpp"
@@ -343,8 +344,33 @@ HalfSpace<T, N> HalfSpace<T, N>::translated(const Vec<T, N>& offset) const {
   return h;
 }
 
+template <class T, int N>
+Triangle<T, N> Triangle<T, N>::from_vertices(const Vec<T, N>& v0, const Vec<T, N>& v1, const Vec<T, N>& v2) {
+  require_finite(v0, "vertices[0]");
+  require_finite(v1, "vertices[1]");
+  require_finite(v2, "vertices[2]");
+  Triangle t;
+  Eigen::Map<Vec<T, N>>(t.vertices_[0].data()) = v0;
+  Eigen::Map<Vec<T, N>>(t.vertices_[1].data()) = v1;
+  Eigen::Map<Vec<T, N>>(t.vertices_[2].data()) = v2;
+  return t;
+}
+
+template <class T, int N>
+Triangle<T, N> Triangle<T, N>::translated(const Vec<T, N>& offset) const {
+  require_finite(offset, "offset");
+  Triangle t = *this;
+  for (auto& v : t.vertices_)
+    for (int i = 0; i < N; ++i) {
+      v[i] += offset[i];
+      if (!std::isfinite(v[i])) throw InputError("offset", "moves a vertex beyond the range of the type");
+    }
+  return t;
+}
+
 #define ELLIPSECT_INSTANTIATE(T, N) \
   template class HalfSpace<T, N>;   \
+  template class Triangle<T, N>;    \
   template class Ellipsoid<T, N>;   \
   template Ellipsoid<T, N> make_ball<T, N>(const Vec<T, N>&, T); \
   template void make_bodies<T, N>(std::span<const T>, std::span<const T>, std::span<const T>, std::span<Ellipsoid<T, N>>);

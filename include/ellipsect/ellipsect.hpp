@@ -15,4 +15,5 @@
 #include <ellipsect/polygonal2.hpp>
 #include <ellipsect/quartic2.hpp>
 #include <ellipsect/shapes.hpp>
+#include <ellipsect/triangle.hpp>
 #include <ellipsect/version.hpp>

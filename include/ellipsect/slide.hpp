@@ -54,6 +54,8 @@ struct Slide {
   int contacts = 0;                            // rounds that ended at a contact
   int last_contact = -1;                       // index in `world` of the last half-space hit, or -1
 };
+static_assert(detail::has_plain_layout<Slide<float, 2>, SlideStatus, Ellipsoid<float, 2>, float[2], int, int> &&
+              detail::has_plain_layout<Slide<double, 3>, SlideStatus, Ellipsoid<double, 3>, double[3], int, int>);
 
 template <class T, int N>
 Slide<T, N> collide_and_slide(const Ellipsoid<T, N>& body, const VecArg<T, N>& displacement,

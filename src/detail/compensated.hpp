@@ -7,6 +7,7 @@
 // Valid while no product over- or underflows (the callers keep their lengths in range).
 #pragma once
 
+#include <cmath>
 #include <limits>
 
 namespace ellipsect::detail {
@@ -55,6 +56,58 @@ template <class F>
 Double<F> square(Double<F> a) noexcept {
   const Double<F> p = two_product(a.hi, a.hi);
   return two_sum(p.hi, p.lo + F(2) * a.hi * a.lo);
+}
+
+// Double-length arithmetic as operators, for code written once over F and Double<F> (each
+// result within a few eps^2 of the exact operation on its operands; products and quotients
+// of normalized values). Comparisons compare the values hi + lo.
+template <class F>
+Double<F> operator+(Double<F> a, Double<F> b) noexcept {
+  return add(a, b);
+}
+template <class F>
+Double<F> operator-(Double<F> a) noexcept {
+  return {-a.hi, -a.lo};
+}
+template <class F>
+Double<F> operator-(Double<F> a, Double<F> b) noexcept {
+  return add(a, -b);
+}
+template <class F>
+Double<F> operator*(Double<F> a, Double<F> b) noexcept {
+  const Double<F> p = two_product(a.hi, b.hi);
+  return two_sum(p.hi, p.lo + (a.hi * b.lo + a.lo * b.hi));
+}
+template <class F>
+Double<F> operator/(Double<F> a, Double<F> b) noexcept {
+  const F q = a.hi / b.hi;
+  const Double<F> r = a - b * Double<F>{q, 0};
+  return two_sum(q, (r.hi + r.lo) / b.hi);
+}
+template <class F>
+bool operator<(Double<F> a, Double<F> b) noexcept {
+  return a.hi < b.hi || (a.hi == b.hi && a.lo < b.lo);
+}
+template <class F>
+bool operator<=(Double<F> a, Double<F> b) noexcept {
+  return !(b < a);
+}
+template <class F>
+bool operator>(Double<F> a, Double<F> b) noexcept {
+  return b < a;
+}
+template <class F>
+bool operator>=(Double<F> a, Double<F> b) noexcept {
+  return !(a < b);
+}
+// sqrt(a) for a >= 0: one Newton correction of the working-precision root.
+template <class F>
+Double<F> sqrt(Double<F> a) noexcept {
+  using std::sqrt;
+  if (!(a.hi > F(0))) return {};
+  const F s = sqrt(a.hi);
+  const Double<F> r = a - two_product(s, s);
+  return two_sum(s, (r.hi + r.lo) / (F(2) * s));
 }
 
 // Dot2: add(x, y) for each term, then value().

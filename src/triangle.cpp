@@ -1,0 +1,434 @@
+#include <ellipsect/triangle.hpp>
+
+#include "detail/axes.hpp"
+#include "detail/compensated.hpp"
+#include "detail/instantiate.hpp"
+#include "detail/reduce.hpp"
+#include "detail/scale.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <type_traits>
+
+namespace ellipsect {
+namespace {
+
+using detail::CompensatedDot;
+using detail::Double;
+
+// The computations below are written once over S = F (plain) and S = Double<F> (double
+// length), F = double or long double.
+template <class S>
+struct Base {
+  using type = S;
+};
+template <class F>
+struct Base<Double<F>> {
+  using type = F;
+};
+template <class S>
+using BaseOf = typename Base<S>::type;
+
+template <class S>
+S lit(double x) noexcept {
+  return S{BaseOf<S>(x)};
+}
+template <class F>
+F value(F x) noexcept {
+  return x;
+}
+template <class F>
+F value(Double<F> x) noexcept {
+  return x.hi + x.lo;
+}
+
+template <class S, int N>
+using Point = std::array<S, N>;
+template <class S, int N>
+using Vertices = std::array<Point<S, N>, 3>;
+
+template <class S, int N>
+S dot(const Point<S, N>& a, const Point<S, N>& b) noexcept {
+  S s = a[0] * b[0];
+  for (int i = 1; i < N; ++i) s = s + a[i] * b[i];
+  return s;
+}
+
+template <class S, int N>
+Point<S, N> minus(const Point<S, N>& a, const Point<S, N>& b) noexcept {
+  Point<S, N> d;
+  for (int i = 0; i < N; ++i) d[i] = a[i] - b[i];
+  return d;
+}
+
+// a + s b
+template <class S, int N>
+Point<S, N> plus_times(const Point<S, N>& a, S s, const Point<S, N>& b) noexcept {
+  Point<S, N> d;
+  for (int i = 0; i < N; ++i) d[i] = a[i] + s * b[i];
+  return d;
+}
+
+// The ball frame: diag(r)^-1 A^T (x - y), x - y split exactly and the products compensated
+// for S = Double<F>.
+template <class S, class F, int N>
+Point<S, N> to_ball(const Mat<F, N>& axes, const Vec<F, N>& r, const Vec<F, N>& x, const Vec<F, N>& y) noexcept {
+  Point<S, N> u;
+  if constexpr (std::is_same_v<S, F>) {
+    Vec<F, N> e;
+    for (int i = 0; i < N; ++i) e[i] = x[i] - y[i];
+    const Vec<F, N> m = axes.transpose() * e;
+    for (int k = 0; k < N; ++k) u[k] = m[k] / r[k];
+  } else {
+    std::array<Double<F>, N> e;
+    for (int i = 0; i < N; ++i) e[i] = detail::two_sum(x[i], -y[i]);
+    for (int k = 0; k < N; ++k) {
+      CompensatedDot<F> d;
+      for (int i = 0; i < N; ++i) {
+        d.add(axes(i, k), e[i].hi);
+        d.add(axes(i, k), e[i].lo);
+      }
+      u[k] = d.value() / Double<F>{r[k], 0};
+    }
+  }
+  return u;
+}
+
+// Barycentric weights (>= 0, summing to 1) of the point of the triangle u nearest the origin,
+// as the nearest of seven candidates: the vertices, the feet on the three edges, the foot on
+// the face (where the Gram matrix of the edges is not singular). However they are rounded,
+// they are weights of a point of the triangle; the bracket below makes any error harmless.
+template <class S, int N>
+std::array<S, 3> nearest_weights(const Vertices<S, N>& u) noexcept {
+  const S zero{}, one = lit<S>(1);
+  std::array<S, 3> best{one, zero, zero};
+  S best_q = dot<S, N>(u[0], u[0]);
+  const auto consider = [&](const std::array<S, 3>& weights, const Point<S, N>& x) {
+    const S q = dot<S, N>(x, x);
+    if (q < best_q) {
+      best_q = q;
+      best = weights;
+    }
+  };
+  for (int k = 1; k < 3; ++k) {
+    std::array<S, 3> weights{zero, zero, zero};
+    weights[k] = one;
+    consider(weights, u[k]);
+  }
+  for (int i = 0; i < 3; ++i) {
+    const int j = (i + 1) % 3;
+    const Point<S, N> f = minus<S, N>(u[j], u[i]);
+    const S ff = dot<S, N>(f, f);
+    if (!(ff > zero)) continue;
+    const S s = -dot<S, N>(u[i], f) / ff;
+    if (!(s > zero && s < one)) continue;
+    std::array<S, 3> weights{zero, zero, zero};
+    weights[i] = one - s;
+    weights[j] = s;
+    consider(weights, plus_times<S, N>(u[i], s, f));
+  }
+  const Point<S, N> f1 = minus<S, N>(u[1], u[0]), f2 = minus<S, N>(u[2], u[0]);
+  const S g00 = dot<S, N>(f1, f1), g01 = dot<S, N>(f1, f2), g11 = dot<S, N>(f2, f2);
+  const S det = g00 * g11 - g01 * g01;
+  if (det > zero) {
+    const S b0 = dot<S, N>(u[0], f1), b1 = dot<S, N>(u[0], f2);
+    const S s = (g01 * b1 - g11 * b0) / det, t = (g01 * b0 - g00 * b1) / det;
+    if (s >= zero && t >= zero && s + t <= one)
+      consider({one - s - t, s, t}, plus_times<S, N>(plus_times<S, N>(u[0], s, f1), t, f2));
+  }
+  const S sum = best[0] + best[1] + best[2];
+  for (S& w : best) w = w / sum;
+  return best;
+}
+
+// The relation's numbers, as gaps from 1 with their error bounds included: the relative gap
+// g = d - 1 in [gap_lo, gap_hi], the containment gap D - 1 in [contain_lo, contain_hi]; the
+// nearest point of the triangle in the ball frame.
+template <class F, int N>
+struct Bracket {
+  F gap_lo, gap_hi, contain_lo, contain_hi;
+  Vec<F, N> nearest;
+};
+
+// hi = |x| for x the weighted vertices; lo = min_k (x / |x|) . u_k, since every point y of the
+// triangle has |y| >= (x / |x|) . y >= that minimum. `slack` bounds the rounding of u and of
+// these evaluations.
+template <class F, class S, int N>
+Bracket<F, N> bracket(const Vertices<S, N>& u, F slack) noexcept {
+  const std::array<S, 3> weights = nearest_weights<S, N>(u);
+  Point<S, N> x;
+  for (int i = 0; i < N; ++i) x[i] = weights[0] * u[0][i] + weights[1] * u[1][i] + weights[2] * u[2][i];
+  using std::sqrt;
+  const S one = lit<S>(1), n = sqrt(dot<S, N>(x, x));
+  Bracket<F, N> b;
+  b.gap_hi = value(n - one) + slack;
+  if (n > S{}) {
+    S m = dot<S, N>(x, u[0]);
+    for (int k = 1; k < 3; ++k) m = std::min(m, dot<S, N>(x, u[k]));
+    b.gap_lo = value(m / n - one) - slack;
+  } else {
+    b.gap_lo = F(-1) - slack;
+  }
+  S far = dot<S, N>(u[0], u[0]);
+  for (int k = 1; k < 3; ++k) far = std::max(far, dot<S, N>(u[k], u[k]));
+  const S far_norm = sqrt(far);
+  b.contain_lo = value(far_norm - one) - slack;
+  b.contain_hi = value(far_norm - one) + slack;
+  for (int i = 0; i < N; ++i) b.nearest[i] = value(x[i]);
+  return b;
+}
+
+// The relation a bracket decides, or nullopt-like `undecided`.
+enum class Decision { separated, touching, overlapping, a_contains_b, undecided };
+
+template <class F, int N>
+Decision decide(const Bracket<F, N>& b, F band) noexcept {
+  if (b.gap_lo > band) return Decision::separated;
+  if (b.gap_lo >= -band && b.gap_hi <= band) return Decision::touching;
+  if (b.gap_hi < -band) {
+    if (b.contain_hi <= band) return Decision::a_contains_b;
+    if (b.contain_lo > band) return Decision::overlapping;
+  }
+  return Decision::undecided;
+}
+
+// The midpoints of a bracket that the double-length pass could not narrow to one side.
+template <class F, int N>
+Decision decide_by_midpoint(const Bracket<F, N>& b, F band) noexcept {
+  const F gap = (b.gap_lo + b.gap_hi) / 2, contain = (b.contain_lo + b.contain_hi) / 2;
+  if (gap > band) return Decision::separated;
+  if (gap >= -band) return Decision::touching;
+  return contain <= band ? Decision::a_contains_b : Decision::overlapping;
+}
+
+// One pair in the working type F: the body's frame, the triangle's vertices in the ball frame
+// in both precisions as needed, and the decided relation.
+template <class F, int N>
+struct Pair {
+  Mat<F, N> axes;
+  Vec<F, N> center, radii;
+  std::array<Vec<F, N>, 3> vertices;
+  Vertices<F, N> u;
+  Vertices<Double<F>, N> u2;
+  bool double_length = false;  // u2 computed and used
+  Bracket<F, N> bracket;
+  Decision relation;
+};
+
+template <class F, class T, int N>
+Pair<F, N> pair_in(const Ellipsoid<T, N>& a, const Triangle<T, N>& b, const Options& options) noexcept {
+  Pair<F, N> p;
+  p.axes = detail::work_axes<F>(a);
+  p.center = a.center().template cast<F>();
+  p.radii = a.radii().template cast<F>();
+  for (int k = 0; k < 3; ++k) p.vertices[k] = b.vertex(k).template cast<F>();
+  F extent = 0, size = 1;  // max |v_k - c| / r_min and max |u_k| + 1
+  for (int k = 0; k < 3; ++k) {
+    p.u[k] = to_ball<F, F, N>(p.axes, p.radii, p.vertices[k], p.center);
+    extent = std::max(extent, detail::max_abs(Vec<F, N>(p.vertices[k] - p.center)) / p.radii.minCoeff());
+    size = std::max(size, std::sqrt(dot<F, N>(p.u[k], p.u[k])) + 1);
+  }
+  extent *= std::sqrt(F(N));
+  constexpr F eps = std::numeric_limits<F>::epsilon();
+  const F band = F(options.tolerance);
+  p.bracket = bracket<F, F, N>(p.u, 2 * eps * (F((N + 2) * N) * extent + F(4 * (N + 4)) * size));
+  p.relation = decide(p.bracket, band);
+  if (p.relation != Decision::undecided && size <= F(1024)) return p;
+  // Double length: near a band edge, or a triangle far larger than the body in its frame
+  // (whose contact times cancel in plain arithmetic).
+  for (int k = 0; k < 3; ++k) p.u2[k] = to_ball<Double<F>, F, N>(p.axes, p.radii, p.vertices[k], p.center);
+  p.double_length = true;
+  if (p.relation != Decision::undecided) return p;
+  p.bracket = bracket<F, Double<F>, N>(p.u2, 2 * eps * eps * (F(8 * N * N) * extent + F(64 * (N + 4)) * size));
+  p.relation = decide(p.bracket, band);
+  if (p.relation == Decision::undecided) p.relation = decide_by_midpoint(p.bracket, band);
+  return p;
+}
+
+// Calls then(pair) with the pair in double, or in long double beyond the native range.
+template <class T, int N, class Then>
+auto with_pair(const Ellipsoid<T, N>& a, const Triangle<T, N>& b, const Options& options, Then&& then) noexcept {
+  T coordinate = detail::max_abs(a.center());
+  for (int k = 0; k < 3; ++k) coordinate = std::max(coordinate, detail::max_abs(b.vertex(k)));
+  const detail::Scale scale = detail::scale_of<T>(a.radii().maxCoeff(), a.radii().minCoeff(), coordinate);
+  if (scale.range == detail::Range::wide) return then(pair_in<long double>(a, b, options));
+  return then(pair_in<detail::Work<T>>(a, b, options));
+}
+
+Relation relation_of(Decision d) noexcept {
+  switch (d) {
+    case Decision::separated: return Relation::separated;
+    case Decision::touching: return Relation::touching;
+    case Decision::a_contains_b: return Relation::a_contains_b;
+    default: return Relation::overlapping;
+  }
+}
+
+// The world point c + A diag(r) x of the ball-frame point x, moved by `shift`, and the body's
+// outward unit normal there, A diag(r)^-1 x normalized.
+template <class T, class F, int N>
+void world_contact(const Pair<F, N>& p, const Vec<F, N>& x, const Vec<F, N>& shift, Contact<T, N>& out) noexcept {
+  out.point = (p.center + shift + p.axes * p.radii.cwiseProduct(x)).template cast<T>();
+  out.normal = detail::unit_vector<F, N>(p.axes * x.cwiseQuotient(p.radii)).template cast<T>();
+}
+
+// The entering root of |p + t q|^2 = 1 from |p| > 1 (c = |p|^2 - 1 > 0, b = p . q, a = |q|^2):
+// t = c / (-b + sqrt(b^2 - a c)), or a negative value where there is none.
+template <class S>
+S entering_root(S a, S b, S c) noexcept {
+  const S zero{};
+  if (!(b < zero)) return -lit<S>(1);
+  const S disc = b * b - a * c;
+  if (disc < zero) return -lit<S>(1);
+  using std::sqrt;
+  return c / (sqrt(disc) - b);
+}
+
+// The first time t > 0 at which the ball touches the triangle u moving at w (d(0) > 1), with
+// the ball-frame contact point; time < 0 where there is none.
+template <class S, int N>
+struct Hit {
+  S time;
+  Point<S, N> point;
+};
+
+template <class S, int N>
+Hit<S, N> earliest_hit(const Vertices<S, N>& u, const Point<S, N>& w) noexcept {
+  const S zero{}, one = lit<S>(1);
+  Hit<S, N> best{-one, {}};
+  const auto consider = [&](S t, const Point<S, N>& x) {
+    if (t >= zero && (best.time < zero || t < best.time)) best = {t, x};
+  };
+  const S ww = dot<S, N>(w, w);
+  for (int k = 0; k < 3; ++k) {
+    const S t = entering_root(ww, dot<S, N>(u[k], w), dot<S, N>(u[k], u[k]) - one);
+    if (t >= zero) consider(t, plus_times<S, N>(u[k], t, w));
+  }
+  for (int i = 0; i < 3; ++i) {
+    const int j = (i + 1) % 3;
+    const Point<S, N> f = minus<S, N>(u[j], u[i]);
+    const S ff = dot<S, N>(f, f);
+    if (!(ff > zero)) continue;
+    // The components of u_i and w across the edge's line.
+    const Point<S, N> p = plus_times<S, N>(u[i], -dot<S, N>(u[i], f) / ff, f);
+    const Point<S, N> q = plus_times<S, N>(w, -dot<S, N>(w, f) / ff, f);
+    const S c = dot<S, N>(p, p) - one;
+    if (!(c > zero)) continue;  // the line already meets the ball: d(t) convex, no entry on it
+    const S t = entering_root(dot<S, N>(q, q), dot<S, N>(p, q), c);
+    if (!(t >= zero)) continue;
+    const Point<S, N> y = plus_times<S, N>(u[i], t, w);
+    const S s = -dot<S, N>(y, f) / ff;
+    if (s >= zero && s <= one) consider(t, plus_times<S, N>(y, s, f));
+  }
+  if constexpr (N == 3) {
+    const Point<S, N> f1 = minus<S, N>(u[1], u[0]), f2 = minus<S, N>(u[2], u[0]);
+    const Point<S, N> n{f1[1] * f2[2] - f1[2] * f2[1], f1[2] * f2[0] - f1[0] * f2[2], f1[0] * f2[1] - f1[1] * f2[0]};
+    const S nn = dot<S, N>(n, n);
+    using std::sqrt;
+    const S rn = sqrt(nn), d0 = dot<S, N>(u[0], n), dw = dot<S, N>(w, n);
+    // The plane enters the ball from the side of sign(d0): at |d0 + t dw| = rn.
+    const bool above = d0 > rn && dw < zero, below = -d0 > rn && dw > zero;
+    if (nn > zero && (above || below)) {
+      const S t = above ? (d0 - rn) / -dw : (-d0 - rn) / dw;
+      const S side = above ? one : -one;
+      Point<S, N> x;
+      for (int i = 0; i < N; ++i) x[i] = side * n[i] / rn;
+      // x - t w in the triangle at rest: barycentric coordinates from the Gram matrix.
+      const Point<S, N> y = minus<S, N>(plus_times<S, N>(x, -t, w), u[0]);
+      const S g00 = dot<S, N>(f1, f1), g01 = dot<S, N>(f1, f2), g11 = dot<S, N>(f2, f2);
+      const S det = g00 * g11 - g01 * g01, b0 = dot<S, N>(y, f1), b1 = dot<S, N>(y, f2);
+      const S s = (g11 * b0 - g01 * b1) / det, r = (g00 * b1 - g01 * b0) / det;
+      if (det > zero && s >= zero && r >= zero && s + r <= one) consider(t, x);
+    }
+  }
+  return best;
+}
+
+template <class T, int N>
+Vec<T, N> nan_vec() noexcept {
+  return Vec<T, N>::Constant(std::numeric_limits<T>::quiet_NaN());
+}
+
+}  // namespace
+
+template <class T, int N>
+Relation classify(const Ellipsoid<T, N>& a, const Triangle<T, N>& b, const Options& options) noexcept {
+  return with_pair(a, b, options, [](const auto& p) { return relation_of(p.relation); });
+}
+
+template <class T, int N>
+bool overlap(const Ellipsoid<T, N>& a, const Triangle<T, N>& b, const Options& options) noexcept {
+  return classify(a, b, options) != Relation::separated;
+}
+
+// The velocities are rescaled by 2^-v (v the exponent of the largest speed beyond 2^+-500, or
+// 0) before their difference is taken; the time comes back times 2^-v.
+template <class T, int N>
+Contact<T, N> first_contact(const Ellipsoid<T, N>& a, const VecArg<T, N>& velocity_a, const Triangle<T, N>& b,
+                            const VecArg<T, N>& velocity_b, T t_max, const Options& options) noexcept {
+  Contact<T, N> out;
+  out.time = std::numeric_limits<T>::quiet_NaN();
+  out.point = out.normal = nan_vec<T, N>();
+  if (!velocity_a.allFinite() || !velocity_b.allFinite() || !(t_max >= T(0))) return out;
+  return with_pair(a, b, options, [&](const auto& p) {
+    using F = typename std::decay_t<decltype(p.center)>::Scalar;
+    if (p.relation != Decision::separated) {
+      out.time = T(0);
+      if (p.relation != Decision::touching) {
+        out.status = ContactStatus::overlapping_at_start;
+        return out;
+      }
+      out.status = ContactStatus::touching_at_start;
+      world_contact<T, F, N>(p, p.bracket.nearest, Vec<F, N>::Zero(), out);
+      return out;
+    }
+    out.status = ContactStatus::no_contact_in_window;
+    const T speed = std::max(detail::max_abs(velocity_a), detail::max_abs(velocity_b));
+    if (!(speed > T(0))) return out;
+    const int v = F(speed) >= F(0x1p-500) && F(speed) <= F(0x1p500) ? 0 : std::ilogb(speed);
+    Vec<F, N> va, vb;
+    for (int i = 0; i < N; ++i) {
+      va[i] = std::ldexp(F(velocity_a[i]), -v);
+      vb[i] = std::ldexp(F(velocity_b[i]), -v);
+    }
+    F time;
+    Vec<F, N> x;
+    const auto solve = [&](const auto& u, auto zero) {
+      using S = decltype(zero);
+      const Hit<S, N> hit = earliest_hit<S, N>(u, to_ball<S, F, N>(p.axes, p.radii, vb, va));
+      time = value(hit.time);
+      for (int i = 0; i < N; ++i) x[i] = value(hit.point[i]);
+    };
+    // The entering roots cancel in |u|^2 - 1 as the gap closes: within a gap of 1/4, double length.
+    if (p.double_length) {
+      solve(p.u2, Double<F>{});
+    } else if (p.bracket.gap_lo < F(0.25)) {
+      Vertices<Double<F>, N> u2;
+      for (int k = 0; k < 3; ++k) u2[k] = to_ball<Double<F>, F, N>(p.axes, p.radii, p.vertices[k], p.center);
+      solve(u2, Double<F>{});
+    } else {
+      solve(p.u, F(0));
+    }
+    if (!(time >= F(0))) return out;
+    time = std::max(std::ldexp(time, -v), F(std::numeric_limits<T>::denorm_min()));
+    if (!(std::isfinite(T(time)) && T(time) <= t_max)) return out;
+    out.status = ContactStatus::hit;
+    out.time = T(time);
+    Vec<F, N> shift;
+    for (int i = 0; i < N; ++i) shift[i] = time * F(velocity_a[i]);
+    world_contact<T, F, N>(p, x / x.norm(), shift, out);
+    return out;
+  });
+}
+
+#define ELLIPSECT_INSTANTIATE(T, N)                                                                                \
+  template Relation classify<T, N>(const Ellipsoid<T, N>&, const Triangle<T, N>&, const Options&) noexcept;     \
+  template bool overlap<T, N>(const Ellipsoid<T, N>&, const Triangle<T, N>&, const Options&) noexcept;          \
+  template Contact<T, N> first_contact<T, N>(const Ellipsoid<T, N>&, const VecArg<T, N>&, const Triangle<T, N>&, \
+                                             const VecArg<T, N>&, T, const Options&) noexcept;
+ELLIPSECT_FOR_EACH_TYPE_AND_DIM(ELLIPSECT_INSTANTIATE)
+#undef ELLIPSECT_INSTANTIATE
+
+}  // namespace ellipsect
