@@ -1,6 +1,7 @@
 #include <ellipsect/slide.hpp>
 
 #include "detail/instantiate.hpp"
+#include "detail/mesh_walk.hpp"
 #include "detail/shape_access.hpp"
 
 #include <algorithm>
@@ -28,24 +29,72 @@ Ellipsoid<T, N> at(const Ellipsoid<T, N>& body, const Vec<T, N>& center) noexcep
   return detail::ShapeAccess::unchecked<T, N>(center, body.axes(), body.radii());
 }
 
+// The obstacles of a world: near(body, visit) calls visit(k, obstacle) for every obstacle
+// that may touch the body, swept(body, r, visit) for every one it may meet moving by t r,
+// t in [0, 1].
 template <class T, int N>
-bool inside_any(const Ellipsoid<T, N>& body, std::span<const HalfSpace<T, N>> world, const Options& options) noexcept {
-  for (const auto& h : world) {
-    const Relation r = classify(body, h, options);
-    if (r == Relation::overlapping || r == Relation::b_contains_a) return true;
+struct HalfSpaces {
+  std::span<const HalfSpace<T, N>> world;
+  template <class Visit>
+  void near(const Ellipsoid<T, N>&, Visit&& visit) const {
+    for (std::size_t k = 0; k < world.size(); ++k) visit(k, world[k]);
   }
-  return false;
+  template <class Visit>
+  void swept(const Ellipsoid<T, N>&, const Vec<T, N>&, Visit&& visit) const {
+    for (std::size_t k = 0; k < world.size(); ++k) visit(k, world[k]);
+  }
+};
+
+template <class T, int N>
+struct Mesh {
+  const TriangleMesh<T, N>& mesh;
+  double tolerance;
+  template <class Visit>
+  void near(const Ellipsoid<T, N>& body, Visit&& visit) const {
+    detail::for_each_near<T, N>(mesh, Vec<T, N>(body.center()), detail::half_extents(body, tolerance),
+                                [&](std::uint32_t k) { visit(k, mesh.triangle(k)); });
+  }
+  template <class Visit>
+  void swept(const Ellipsoid<T, N>& body, const Vec<T, N>& r, Visit&& visit) const {
+    detail::for_each_swept<T, N>(mesh, Vec<T, N>(body.center()), r, detail::half_extents(body, tolerance), T(1),
+                                 [&](std::uint32_t k, T t_end) {
+                                   visit(k, mesh.triangle(k));
+                                   return t_end;
+                                 });
+  }
+};
+
+// Overlapping an obstacle, or containing or contained in it.
+bool inside(Relation r) noexcept {
+  return r != Relation::separated && r != Relation::touching;
 }
 
-// r without what pushes into the touched half-spaces (unit outward normals): projected onto
-// one plane, onto two planes' common line (3D), or to nothing (slide.hpp).
+template <class T, int N, class World>
+bool inside_any(const Ellipsoid<T, N>& body, const World& world, const Options& options) {
+  bool found = false;
+  world.near(body, [&](std::size_t, const auto& obstacle) { found = found || inside(classify(body, obstacle, options)); });
+  return found;
+}
+
+// The obstacle's side facing the body at their contact: minus the body's outward normal
+// there (for a half-space, its outward normal).
+template <class T, int N>
+Vec<T, N> facing(const Contact<T, N>& c) noexcept {
+  return -c.normal;
+}
+
+// r without what pushes into the touched obstacles (unit normals facing the body): projected
+// onto one plane, onto two planes' common line (3D), or to nothing (slide.hpp). Normals
+// within 1e-12 of each other are one plane (several triangles touched at one point).
 template <class T, int N>
 Vec<T, N> project(Vec<T, N> r, const std::vector<Vec<T, N>>& touched) noexcept {
   std::vector<Vec<T, N>> active;
+  const auto same = [](const Vec<T, N>& x, const Vec<T, N>& y) { return (x - y).norm() <= T(1e-12); };
   for (int round = 0; round <= N; ++round) {
     const Vec<T, N>* push = nullptr;
     for (const auto& n : touched)
-      if (r.dot(n) < T(0) && std::find(active.begin(), active.end(), n) == active.end()) {
+      if (r.dot(n) < T(0) &&
+          std::none_of(active.begin(), active.end(), [&](const Vec<T, N>& m) { return same(m, n); })) {
         push = &n;
         break;
       }
@@ -66,11 +115,9 @@ Vec<T, N> project(Vec<T, N> r, const std::vector<Vec<T, N>>& touched) noexcept {
   return Vec<T, N>::Zero();
 }
 
-}  // namespace
-
-template <class T, int N>
-Slide<T, N> collide_and_slide(const Ellipsoid<T, N>& body, const VecArg<T, N>& displacement,
-                              std::span<const std::type_identity_t<HalfSpace<T, N>>> world, const Options& options) {
+template <class T, int N, class World>
+Slide<T, N> slide_through(const Ellipsoid<T, N>& body, const VecArg<T, N>& displacement, const World& world,
+                          const Options& options) {
   Slide<T, N> out;
   out.body = body;
   if (!displacement.allFinite() || !Vec<T, N>(body.center() + displacement).allFinite()) return out;
@@ -78,32 +125,40 @@ Slide<T, N> collide_and_slide(const Ellipsoid<T, N>& body, const VecArg<T, N>& d
     out.status = SlideStatus::overlapping_at_start;
     return out;
   }
+  const Vec<T, N> still = Vec<T, N>::Zero();
   Vec<T, N> r = displacement, center = body.center();
-  std::vector<std::size_t> hit_last;  // the half-spaces hit by the previous round's move
-  bool constrained = false;           // a touched half-space took some of the displacement
+  // The obstacles hit by the previous round's move, with their normals facing the body.
+  std::vector<std::pair<std::size_t, Vec<T, N>>> hit_last;
+  bool constrained = false;  // a touched obstacle took some of the displacement
   for (int round = 0; round < options.max_iterations; ++round) {
     const Ellipsoid<T, N> now = at(body, center);
     // Touched: within the tangency band, or just hit (a move shortened by its rounding can
     // stop short of the band).
     std::vector<Vec<T, N>> touched;
-    for (std::size_t k = 0; k < world.size(); ++k)
-      if (classify(now, world[k], options) == Relation::touching ||
-          std::find(hit_last.begin(), hit_last.end(), k) != hit_last.end())
-        touched.push_back(world[k].normal());
+    for (const auto& hit : hit_last) touched.push_back(hit.second);
+    world.near(now, [&](std::size_t, const auto& obstacle) {
+      const Contact<T, N> c = first_contact(now, still, obstacle, still, T(0), options);
+      if (c.status == ContactStatus::touching_at_start) touched.push_back(facing(c));
+    });
     const Vec<T, N> free = project<T, N>(r, touched);
     constrained |= free != r;
     r = free;
     if (r == Vec<T, N>::Zero()) break;
-    // The earliest contact along r in [0, 1] (ties: every half-space hit then).
+    // The earliest contact along r in [0, 1] (ties: every obstacle hit then).
     T first = T(1);
     hit_last.clear();
-    for (std::size_t k = 0; k < world.size(); ++k) {
-      const Contact<T, N> c = first_contact(now, r, world[k], Vec<T, N>::Zero(), T(1), options);
-      if (c.status != ContactStatus::hit || c.time > first) continue;
+    // A graze (r within 1e-9 of the contact's tangent plane: a seam between coplanar
+    // triangles slid across) does not stop the move; were it to end inside, the check below
+    // shortens it.
+    const T grazing = T(1e-9) * r.norm();
+    world.swept(now, r, [&](std::size_t k, const auto& obstacle) {
+      const Contact<T, N> c = first_contact(now, r, obstacle, still, T(1), options);
+      if (c.status != ContactStatus::hit || c.time > first || !(r.dot(facing(c)) < -grazing)) return;
       if (c.time < first) hit_last.clear();
       first = c.time;
-      hit_last.push_back(k);
-    }
+      hit_last.emplace_back(k, facing(c));
+    });
+    std::sort(hit_last.begin(), hit_last.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
     // The move, shortened by 2^-52, 2^-51, ... of itself where its rounding ends inside.
     T t = first;
     Vec<T, N> next = center + t * r;
@@ -116,12 +171,15 @@ Slide<T, N> collide_and_slide(const Ellipsoid<T, N>& body, const VecArg<T, N>& d
     const bool shortened = t < first;
     if (hit_last.empty() && shortened) {
       // Nothing hit, but the rounded end of the move was inside: what it was inside of is
-      // touched from here on.
-      const Ellipsoid<T, N> end = at(body, Vec<T, N>(center + first * r));
-      for (std::size_t k = 0; k < world.size(); ++k) {
-        const Relation rel = classify(end, world[k], options);
-        if (rel == Relation::overlapping || rel == Relation::b_contains_a) hit_last.push_back(k);
-      }
+      // touched from here on, with the normal it is met with along r.
+      const Ellipsoid<T, N> end = at(body, Vec<T, N>(center + first * r)), from = at(body, next);
+      world.near(end, [&](std::size_t k, const auto& obstacle) {
+        if (!inside(classify(end, obstacle, options))) return;
+        const Contact<T, N> c =
+            first_contact(from, r, obstacle, still, std::numeric_limits<T>::infinity(), options);
+        if (c.status == ContactStatus::hit || c.status == ContactStatus::touching_at_start)
+          hit_last.emplace_back(k, facing(c));
+      });
     }
     out.moved += t * r;
     center = next;
@@ -132,7 +190,7 @@ Slide<T, N> collide_and_slide(const Ellipsoid<T, N>& body, const VecArg<T, N>& d
     }
     if (!shortened || first < T(1)) {
       ++out.contacts;
-      out.last_contact = static_cast<int>(hit_last.front());
+      out.last_contact = static_cast<int>(hit_last.front().first);
     }
   }
   out.body = at(body, center);
@@ -142,10 +200,26 @@ Slide<T, N> collide_and_slide(const Ellipsoid<T, N>& body, const VecArg<T, N>& d
   return out;
 }
 
-#define ELLIPSECT_INSTANTIATE(T, N)                                                                       \
-  template Slide<T, N> collide_and_slide<T, N>(const Ellipsoid<T, N>&, const VecArg<T, N>&,             \
+}  // namespace
+
+template <class T, int N>
+Slide<T, N> collide_and_slide(const Ellipsoid<T, N>& body, const VecArg<T, N>& displacement,
+                              std::span<const std::type_identity_t<HalfSpace<T, N>>> world, const Options& options) {
+  return slide_through(body, displacement, HalfSpaces<T, N>{world}, options);
+}
+
+template <class T, int N>
+Slide<T, N> collide_and_slide(const Ellipsoid<T, N>& body, const VecArg<T, N>& displacement,
+                              const TriangleMesh<T, N>& world, const Options& options) {
+  return slide_through(body, displacement, Mesh<T, N>{world, options.tolerance}, options);
+}
+
+#define ELLIPSECT_INSTANTIATE(T, N)                                                                        \
+  template Slide<T, N> collide_and_slide<T, N>(const Ellipsoid<T, N>&, const VecArg<T, N>&,              \
                                                std::span<const std::type_identity_t<HalfSpace<T, N>>>, \
-                                               const Options&);
+                                               const Options&);                                          \
+  template Slide<T, N> collide_and_slide<T, N>(const Ellipsoid<T, N>&, const VecArg<T, N>&,              \
+                                               const TriangleMesh<T, N>&, const Options&);
 ELLIPSECT_FOR_EACH_TYPE_AND_DIM(ELLIPSECT_INSTANTIATE)
 #undef ELLIPSECT_INSTANTIATE
 

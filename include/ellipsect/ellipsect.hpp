@@ -10,6 +10,7 @@
 #include <ellipsect/half_space.hpp>
 #include <ellipsect/slide.hpp>
 #include <ellipsect/intersect2.hpp>
+#include <ellipsect/mesh.hpp>
 #include <ellipsect/options.hpp>
 #include <ellipsect/point.hpp>
 #include <ellipsect/polygonal2.hpp>

@@ -1,31 +1,40 @@
 // Collide and slide (Fauerby, "Improved Collision Detection and Response"; Nettle, "Generic
 // Collision Detection for Games Using Ellipsoids"): move a body by a desired displacement
-// through a world of half-spaces (floors, walls, ceilings: half_space.hpp), stopping at the
-// first contact and sliding along what it touches for the rest of the way.
+// through a world of half-spaces (floors, walls, ceilings: half_space.hpp) or a triangle mesh
+// (mesh.hpp), stopping at the first contact and sliding along what it touches for the rest of
+// the way.
 //
 // Method. Each round moves the body along the remaining displacement r to the earliest
-// contact with any half-space (half_space.hpp's first_contact, exact), then removes from r
-// what pushes into the half-spaces the body now touches (those with r . n < 0, n their
-// outward normals): one such plane, r is projected onto it; two (a crease), onto their
-// common line in 3D, to nothing in 2D; three in 3D (a corner), to nothing. The body never
-// moves into a touched half-space, so it slides along floors and walls and stops in
-// corners.
+// contact with any obstacle (the exact first_contact of half_space.hpp or triangle.hpp), then
+// removes from r what pushes into the obstacles the body now touches: each contributes the
+// plane tangent to the body at the contact point, with the normal n facing the body (a
+// half-space's own outward normal; for a triangle, minus the body's outward normal at the
+// point of its face, edge or vertex touched), and pushes when r . n < 0. One such plane, r
+// is projected onto it; two (a crease), onto their common line in 3D, to nothing in 2D;
+// three in 3D (a corner), to nothing; normals within 1e-12 of each other count as one plane
+// (the triangles around a vertex or along an edge touched at one point). The body never
+// moves into a touched obstacle, so it slides along floors and walls, around a mesh's edges
+// and vertices (whose tangent plane turns as the body moves), and stops in corners.
+// Steps are walls: a riser stops the body or turns it along itself; climbing a step is the
+// caller's (a move up, one forward, one down), as in the controllers cited.
 //
 // Guarantees:
-//   * the body never ends overlapping a half-space: every position is checked with
-//     classify (half_space.hpp) before it is taken; a move whose rounding would end inside
+//   * the body never ends overlapping an obstacle (a half-space, or any triangle of the
+//     mesh: a mesh is a surface, the body never passes through it): every position is
+//     checked with classify before it is taken; a move whose rounding would end inside
 //     (a contact time is exact, the moved center is rounded to T) is shortened until it
 //     does not, or not made;
 //   * the moves add up to `moved` (the body's center is the start center plus `moved`, to
 //     the rounding of each move), and the displacement is never exceeded: each round's
 //     remaining displacement is the previous one's, minus the move, projected;
 //   * at most Options::max_iterations rounds (default 64; `blocked` when displacement is left);
-//   * a body that starts overlapping a half-space is not moved (overlapping_at_start); one
+//   * a body that starts overlapping an obstacle is not moved (overlapping_at_start); one
 //     that starts touching slides along it or leaves it.
 // Touching is classify's tangency band (options.hpp).
 #pragma once
 
 #include <ellipsect/half_space.hpp>
+#include <ellipsect/mesh.hpp>
 #include <ellipsect/options.hpp>
 #include <ellipsect/shapes.hpp>
 
@@ -52,7 +61,7 @@ struct Slide {
   Ellipsoid<T, N> body;                        // where it ends (the start body if not moved)
   Vec<T, N> moved = Vec<T, N>::Zero();         // the sum of the moves
   int contacts = 0;                            // rounds that ended at a contact
-  int last_contact = -1;                       // index in `world` of the last half-space hit, or -1
+  int last_contact = -1;                       // index in `world` of the last obstacle hit, or -1
 };
 static_assert(detail::has_plain_layout<Slide<float, 2>, SlideStatus, Ellipsoid<float, 2>, float[2], int, int> &&
               detail::has_plain_layout<Slide<double, 3>, SlideStatus, Ellipsoid<double, 3>, double[3], int, int>);
@@ -61,5 +70,12 @@ template <class T, int N>
 Slide<T, N> collide_and_slide(const Ellipsoid<T, N>& body, const VecArg<T, N>& displacement,
                               std::span<const std::type_identity_t<HalfSpace<T, N>>> world,
                               const Options& options = {});
+
+// The same through a triangle mesh (mesh.hpp): the contacts are the triangles' (faces, edges
+// and vertices), the plane slid along at each is the one tangent to the body at the contact
+// point; last_contact is a triangle index.
+template <class T, int N>
+Slide<T, N> collide_and_slide(const Ellipsoid<T, N>& body, const VecArg<T, N>& displacement,
+                              const TriangleMesh<T, N>& world, const Options& options = {});
 
 }  // namespace ellipsect
