@@ -7,8 +7,9 @@ only, first_contact under rigid motion with body_at, perram_wertheim and
 closest_approach), and in 2D
 intersect_boundaries, overlap_area, iou and Niemitalo's tests. classify, overlap,
 distance, signed_distance and first_contact also take a body and a HalfPlane (2D) or
-HalfSpace (3D), and collide_and_slide moves a body through a list of them. Among many
-bodies,
+HalfSpace (3D); classify, overlap and first_contact a Triangle2 / Triangle3 or a
+TriangleMesh2 / TriangleMesh3 (the answer then names the triangle); collide_and_slide moves
+a body through a list of half-spaces or a mesh. Among many bodies,
 overlapping_pairs and earliest_contact (open space or a periodic box). Every number comes
 from the library; batch answers equal the scalar ones bit for bit. Pictures: ellipsect.plot;
 Dask: ellipsect.dask.
@@ -40,6 +41,9 @@ from ._ellipsect import (  # noqa: F401
     HalfPlane,
     HalfSpace,
     InputError,
+    MeshContact2,
+    MeshContact3,
+    MeshRelation,
     Options,
     OverlapArea,
     Pairs2,
@@ -53,6 +57,10 @@ from ._ellipsect import (  # noqa: F401
     Slide2,
     Slide3,
     SlideStatus,
+    Triangle2,
+    Triangle3,
+    TriangleMesh2,
+    TriangleMesh3,
     Verdict,
     body_at,
     circle_cover_overlap,

@@ -20,38 +20,6 @@ namespace ellipsect::python {
 
 namespace {
 
-std::string shape_text(const std::vector<py::ssize_t>& shape) {
-  std::string s = "(";
-  for (std::size_t i = 0; i < shape.size(); ++i)
-    s += (i ? ", " : "") + (shape[i] < 0 ? std::string("n") : std::to_string(shape[i]));
-  return s + (shape.size() == 1 ? ",)" : ")");
-}
-
-// The data of argument `name`: a C-contiguous float64 numpy array of shape
-// (rows, trailing...); rows < 0 accepts any count and sets it. `rows_from` names the
-// argument that set the count, for the message.
-const double* checked(py::handle obj, const std::string& name, std::vector<py::ssize_t> trailing, py::ssize_t& rows,
-                      const std::string& rows_from) {
-  if (!py::isinstance<py::array>(obj))
-    throw py::type_error(name + ": expected a numpy array of float64, got " +
-                         std::string(py::str(py::type::handle_of(obj).attr("__name__"))));
-  const auto a = py::reinterpret_borrow<py::array>(obj);
-  if (!py::isinstance<py::array_t<double>>(a))  // float64 in native byte order
-    throw py::type_error(name + ": expected dtype float64, got " + std::string(py::str(a.dtype())));
-  trailing.insert(trailing.begin(), rows);
-  std::vector<py::ssize_t> shape(a.shape(), a.shape() + a.ndim());
-  bool fits = shape.size() == trailing.size();
-  for (std::size_t i = 1; fits && i < shape.size(); ++i) fits = shape[i] == trailing[i];
-  if (!fits) throw py::value_error(name + ": expected shape " + shape_text(trailing) + ", got " + shape_text(shape));
-  if (rows >= 0 && shape[0] != rows)
-    throw py::value_error(name + ": expected " + std::to_string(rows) + " rows, as " + rows_from + ", got " +
-                          std::to_string(shape[0]));
-  if (!(a.flags() & py::array::c_style))
-    throw py::value_error(name + ": must be C-contiguous (numpy.ascontiguousarray)");
-  rows = shape[0];
-  return static_cast<const double*>(a.data());
-}
-
 // The argument name and index for a factory's field at row `row`: "radii[1]" -> "radii[17, 1]",
 // "quaternion.x" -> "quaternions[17, 1]", "angle" -> "angles[17]".
 std::string row_field(const std::string& field, py::ssize_t row) {

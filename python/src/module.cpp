@@ -106,6 +106,75 @@ void def_half_space(py::module_& m, const char* name) {
                       }));
 }
 
+// Triangle2 / Triangle3 (triangle.hpp) and TriangleMesh2 / TriangleMesh3 (mesh.hpp).
+template <int N>
+void def_triangle(py::module_& m, const char* name) {
+  using Tr = Triangle<double, N>;
+  const auto vertices = [](const Tr& t) {
+    py::array_t<double> out({py::ssize_t(3), py::ssize_t(N)});
+    for (int k = 0; k < 3; ++k)
+      for (int i = 0; i < N; ++i) out.mutable_at(k, i) = t.vertex(k)[i];
+    return out;
+  };
+  py::class_<Tr>(m, name, "A triangle: the convex hull of three points, degenerate ones included (triangle.hpp).")
+      .def(py::init([](const Row<N>& v0, const Row<N>& v1, const Row<N>& v2) {
+             return make_triangle<double, N>(vec<N>(v0), vec<N>(v1), vec<N>(v2));
+           }),
+           py::arg("v0"), py::arg("v1"), py::arg("v2"))
+      .def_property_readonly("vertices", vertices, "The vertices, one per row.")
+      .def("translated", [](const Tr& t, const Row<N>& offset) { return t.translated(vec<N>(offset)); },
+           py::arg("offset"))
+      .def("__repr__",
+           [name](const Tr& t) {
+             std::ostringstream s;
+             s.precision(17);
+             s << name << "(";
+             for (int k = 0; k < 3; ++k) {
+               s << (k ? ", [" : "[");
+               for (int i = 0; i < N; ++i) s << (i ? ", " : "") << t.vertex(k)[i];
+               s << "]";
+             }
+             s << ")";
+             return s.str();
+           })
+      .def(py::pickle([](const Tr& t) { return py::make_tuple(to_array<N>(t.vertex(0)), to_array<N>(t.vertex(1)),
+                                                              to_array<N>(t.vertex(2))); },
+                      [](const py::tuple& t) {
+                        return make_triangle<double, N>(vec<N>(t[0].cast<Row<N>>()), vec<N>(t[1].cast<Row<N>>()),
+                                                        vec<N>(t[2].cast<Row<N>>()));
+                      }));
+  using M = TriangleMesh<double, N>;
+  py::class_<M>(m, ("TriangleMesh" + std::to_string(N)).c_str(),
+                "Triangles sharing vertices, with a box hierarchy for the queries (mesh.hpp).")
+      .def(py::init([](py::handle vertices, py::handle triangles) {
+             py::ssize_t rows = -1;
+             const double* v = checked(vertices, "vertices", {N}, rows, "vertices");
+             if (!py::isinstance<py::array>(triangles))
+               throw py::type_error("triangles: expected a numpy array of integers");
+             const auto a = py::reinterpret_borrow<py::array>(triangles);
+             const char kind = a.dtype().kind();
+             if (kind != 'i' && kind != 'u')
+               throw py::type_error("triangles: expected an integer dtype, got " + std::string(py::str(a.dtype())));
+             if (a.ndim() != 2 || a.shape(1) != 3)
+               throw py::value_error("triangles: expected shape (n, 3), got " +
+                                     shape_text(std::vector<py::ssize_t>(a.shape(), a.shape() + a.ndim())));
+             const auto t = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>::ensure(a);
+             py::gil_scoped_release release;
+             return M::from_arrays(std::span<const double>(v, std::size_t(rows) * N),
+                                   std::span<const std::int64_t>(t.data(), std::size_t(t.size())));
+           }),
+           py::arg("vertices"), py::arg("triangles"),
+           "vertices: float64 array (n, N); triangles: integer array (m, 3) of vertex indices.")
+      .def_property_readonly("vertex_count", &M::vertex_count)
+      .def_property_readonly("triangle_count", &M::triangle_count)
+      .def("__len__", &M::triangle_count)
+      .def("triangle", &M::triangle, py::arg("k"))
+      .def("__repr__", [](const M& mesh) {
+        return "TriangleMesh" + std::to_string(N) + "(vertices=" + std::to_string(mesh.vertex_count()) +
+               ", triangles=" + std::to_string(mesh.triangle_count()) + ")";
+      });
+}
+
 template <int N>
 void def_results(py::module_& m, const char* suffix) {
   const std::string s = suffix;
@@ -126,9 +195,17 @@ void def_results(py::module_& m, const char* suffix) {
       .def_property_readonly("moved", [](const S& r) { return to_array<N>(r.moved); })
       .def_property_readonly("contacts", [](const S& r) { return r.contacts; })
       .def_property_readonly("last_contact", [](const S& r) { return r.last_contact; },
-                             "Index in the world of the last half-space hit, or -1.")
+                             "Index of the last half-space or triangle hit, or -1.")
       .def("__repr__", [](const S& r) {
         return "Slide(status=" + std::string(to_string(r.status)) + ", contacts=" + std::to_string(r.contacts) + ")";
+      });
+  using MC = MeshContact<double, N>;
+  py::class_<MC>(m, ("MeshContact" + s).c_str(), "first_contact's answer against a mesh (see mesh.hpp).")
+      .def_property_readonly("contact", [](const MC& c) { return c.contact; })
+      .def_property_readonly("triangle", [](const MC& c) { return c.triangle; }, "The triangle hit, or -1.")
+      .def("__repr__", [](const MC& c) {
+        return "MeshContact(status=" + std::string(to_string(c.contact.status)) + ", time=" +
+               std::to_string(c.contact.time) + ", triangle=" + std::to_string(c.triangle) + ")";
       });
   using D = Distance<double, N>;
   py::class_<D>(m, ("Distance" + s).c_str(), "distance / signed_distance's answer (see distance.hpp).")
@@ -234,6 +311,45 @@ void def_queries(py::module_& m) {
         py::arg("body"), py::arg("displacement"), py::arg("world"), py::arg("options") = Options{},
         "Move the body by the displacement through a list of half-spaces, sliding along what it touches "
         "(slide.hpp).");
+  // A body against a triangle (triangle.hpp) and a mesh (mesh.hpp).
+  using Tr = Triangle<double, N>;
+  using TM = TriangleMesh<double, N>;
+  m.def("classify", py::overload_cast<const E&, const Tr&, const Options&>(&classify<double, N>), py::arg("a"),
+        py::arg("b"), py::arg("options") = Options{});
+  m.def("overlap", py::overload_cast<const E&, const Tr&, const Options&>(&overlap<double, N>), py::arg("a"),
+        py::arg("b"), py::arg("options") = Options{});
+  m.def("first_contact",
+        [](const E& a, const Row<N>& va, const Tr& b, const Row<N>& vb, double t_max, const Options& o) {
+          return first_contact(a, vec<N>(va), b, vec<N>(vb), t_max, o);
+        },
+        py::arg("a"), py::arg("velocity_a"), py::arg("b"), py::arg("velocity_b"), py::arg("t_max"),
+        py::arg("options") = Options{}, "First contact of a body and a moving triangle in [0, t_max].");
+  m.def("classify",
+        [](const E& a, const TM& b, const Options& o) {
+          py::gil_scoped_release release;
+          return classify(a, b, o);
+        },
+        py::arg("a"), py::arg("b"), py::arg("options") = Options{});
+  m.def("overlap",
+        [](const E& a, const TM& b, const Options& o) {
+          py::gil_scoped_release release;
+          return overlap(a, b, o);
+        },
+        py::arg("a"), py::arg("b"), py::arg("options") = Options{});
+  m.def("first_contact",
+        [](const E& a, const Row<N>& va, const TM& b, const Row<N>& vb, double t_max, const Options& o) {
+          py::gil_scoped_release release;
+          return first_contact(a, vec<N>(va), b, vec<N>(vb), t_max, o);
+        },
+        py::arg("a"), py::arg("velocity_a"), py::arg("b"), py::arg("velocity_b"), py::arg("t_max"),
+        py::arg("options") = Options{}, "First contact of a body and a moving mesh in [0, t_max], with the triangle.");
+  m.def("collide_and_slide",
+        [](const E& body, const Row<N>& displacement, const TM& world, const Options& o) {
+          py::gil_scoped_release release;
+          return collide_and_slide(body, vec<N>(displacement), world, o);
+        },
+        py::arg("body"), py::arg("displacement"), py::arg("world"), py::arg("options") = Options{},
+        "Move the body by the displacement through a triangle mesh, sliding along what it touches (slide.hpp).");
 }
 
 void def_two_d(py::module_& m) {
@@ -395,6 +511,16 @@ void def_scalar(py::module_& m) {
   def_body<3>(ellipsoid);
   def_half_space<2>(m, "HalfPlane");
   def_half_space<3>(m, "HalfSpace");
+  def_triangle<2>(m, "Triangle2");
+  def_triangle<3>(m, "Triangle3");
+  py::class_<MeshRelation>(m, "MeshRelation", "classify's answer against a mesh (see mesh.hpp).")
+      .def_property_readonly("relation", [](const MeshRelation& r) { return r.relation; })
+      .def_property_readonly("triangle", [](const MeshRelation& r) { return r.triangle; },
+                             "The lowest-index triangle with that relation, or -1.")
+      .def("__repr__", [](const MeshRelation& r) {
+        return "MeshRelation(relation=" + std::string(to_string(r.relation)) + ", triangle=" +
+               std::to_string(r.triangle) + ")";
+      });
 
   using F = ContactFunction<double>;
   py::class_<F>(m, "ContactFunction", "perram_wertheim's answer (see contact_function.hpp).")
