@@ -32,6 +32,17 @@
 //               exactly where classify says so, invalid_input only for a non-finite end,
 //               otherwise an end outside the half-space (separated or touching), moved by at
 //               most |vb| (to 1e-12).
+//   triangle    a against the triangle (b's center, + va, + vb): InputError naming a vertex
+//               exactly for non-finite vertices; overlap is classify != separated; the
+//               relation is the same for the vertices in another order unless it is within
+//               the tangency band of 1e-6; a_contains_b: every vertex (as a point triangle)
+//               inside or touching; a one-triangle mesh answers as the triangle (classify,
+//               first_contact bit for bit, triangle 0 or -1); first_contact (velocities vb and
+//               0): invalid_input exactly for bad input, the start status is the relation's, a
+//               hit is in (0, t_max] at a finite point with a unit normal; collide_and_slide
+//               by vb through the mesh: overlapping_at_start exactly where classify says
+//               overlapping or a_contains_b, otherwise an end separated or touching, moved by
+//               at most |vb|.
 #include "fuzz_support.hpp"
 
 #include <ellipsect/batch.hpp>
@@ -40,6 +51,7 @@
 #include <ellipsect/contact_function.hpp>
 #include <ellipsect/distance.hpp>
 #include <ellipsect/half_space.hpp>
+#include <ellipsect/mesh.hpp>
 #include <ellipsect/slide.hpp>
 
 #include <cstdlib>
@@ -244,6 +256,77 @@ void check_half_space(const Ellipsoid<T, N>& a, const Vec<T, N>& point, const Ve
 }
 
 template <class T, int N>
+void check_triangle(const Ellipsoid<T, N>& a, const Vec<T, N>& p, const Vec<T, N>& va, const Vec<T, N>& vb, T t_max) {
+  const Vec<T, N> q = p + va, r = p + vb;
+  const bool finite = all_finite(q) && all_finite(r);
+  std::optional<Triangle<T, N>> tri;
+  try {
+    tri = make_triangle<T, N>(p, q, r);
+  } catch (const InputError& e) {
+    FUZZ_CHECK(!finite && e.field().starts_with("vertices["), << "InputError " << e.what());
+    return;
+  }
+  FUZZ_CHECK(finite, << "no InputError for the vertices " << hex(q) << " " << hex(r));
+  const Relation rel = classify(a, *tri);
+  FUZZ_CHECK(rel == Relation::separated || rel == Relation::touching || rel == Relation::overlapping ||
+                 rel == Relation::a_contains_b,
+             << "relation " << to_string(rel));
+  FUZZ_CHECK(overlap(a, *tri) == (rel != Relation::separated), << "overlap vs classify " << to_string(rel));
+  Options wide;
+  wide.tolerance = 1e-6;
+  const Relation turned = classify(a, make_triangle<T, N>(r, p, q));
+  FUZZ_CHECK(turned == rel || classify(a, *tri, wide) == Relation::touching,
+             << "classify " << to_string(rel) << ", with the vertices turned " << to_string(turned));
+  if (rel == Relation::a_contains_b)
+    for (const Vec<T, N>& v : {p, q, r}) {
+      const Relation at = classify(a, make_triangle<T, N>(v, v, v));
+      FUZZ_CHECK(at == Relation::a_contains_b || at == Relation::touching,
+                 << "contained triangle, its vertex " << hex(v) << " " << to_string(at));
+    }
+  std::array<T, 3 * N> vertices;
+  for (int i = 0; i < N; ++i) vertices[i] = p[i], vertices[N + i] = q[i], vertices[2 * N + i] = r[i];
+  const std::array<std::int64_t, 3> indices{0, 1, 2};
+  const auto mesh = make_triangle_mesh<T, N>(vertices, indices);
+  const MeshRelation mrel = classify(a, mesh);
+  FUZZ_CHECK(mrel.relation == rel && mrel.triangle == (rel == Relation::separated ? -1 : 0),
+             << "mesh " << to_string(mrel.relation) << " " << mrel.triangle << ", triangle " << to_string(rel));
+  const Contact<T, N> c = first_contact(a, vb, *tri, Vec<T, N>::Zero(), t_max);
+  const bool valid = all_finite(vb) && !std::isnan(t_max) && t_max >= 0;
+  FUZZ_CHECK((c.status == ContactStatus::invalid_input) == !valid, << "status " << to_string(c.status));
+  const MeshContact<T, N> mc = first_contact(a, vb, mesh, Vec<T, N>::Zero(), t_max);
+  FUZZ_CHECK(mc.contact.status == c.status && same_bits(mc.contact.time, c.time) &&
+                 (mc.triangle == 0) == (c.status == ContactStatus::hit || c.status == ContactStatus::touching_at_start ||
+                                        c.status == ContactStatus::overlapping_at_start),
+             << "mesh contact " << to_string(mc.contact.status) << " " << hex(mc.contact.time) << " triangle "
+             << mc.triangle << ", triangle's " << to_string(c.status) << " " << hex(c.time));
+  const bool inside = rel == Relation::overlapping || rel == Relation::a_contains_b;
+  if (valid) {
+    const bool start_ok = rel == Relation::separated
+                              ? c.status == ContactStatus::hit || c.status == ContactStatus::no_contact_in_window
+                          : rel == Relation::touching ? c.status == ContactStatus::touching_at_start
+                                                      : c.status == ContactStatus::overlapping_at_start;
+    FUZZ_CHECK(start_ok, << "contact " << to_string(c.status) << ", classify " << to_string(rel));
+    if (c.status == ContactStatus::hit)
+      FUZZ_CHECK(std::isfinite(c.time) && c.time > 0 && c.time <= t_max && all_finite(c.point) &&
+                     std::abs(c.normal.norm() - 1) <= T(1e-5),
+                 << "hit at " << hex(c.time) << ", t_max " << hex(t_max) << " point " << hex(c.point) << " normal "
+                 << hex(c.normal));
+  }
+  const Slide<T, N> slide = collide_and_slide(a, vb, mesh);
+  if (slide.status == SlideStatus::invalid_input) {
+    FUZZ_CHECK(!all_finite(Vec<T, N>(a.center() + vb)), << "invalid_input for the displacement " << hex(vb));
+    return;
+  }
+  FUZZ_CHECK((slide.status == SlideStatus::overlapping_at_start) == inside,
+             << "slide " << to_string(slide.status) << ", classify " << to_string(rel));
+  const Relation end = classify(slide.body, *tri);
+  FUZZ_CHECK(inside || end == Relation::separated || end == Relation::touching,
+             << "slide ends " << to_string(end) << " at " << hex(Vec<T, N>(slide.body.center())));
+  FUZZ_CHECK(slide.moved.norm() <= vb.norm() * (1 + T(1e-6)) || !std::isfinite(vb.norm()),
+             << "moved " << hex(slide.moved) << " for " << hex(vb));
+}
+
+template <class T, int N>
 void run(Bytes& in) {
   std::vector<Ellipsoid<T, N>> as, bs;
   std::vector<Vec<T, N>> vas, vbs;
@@ -275,6 +358,7 @@ void run(Bytes& in) {
     check_contact<T, N>(*a, va, *b, vb, t_max, rel, rel_wide);
     check_contact_function<T, N>(*a, *b, va, rel);
     check_half_space<T, N>(*a, Vec<T, N>(b->center()), va, vb, t_max);
+    check_triangle<T, N>(*a, Vec<T, N>(b->center()), va, vb, t_max);
     as.push_back(*a);
     bs.push_back(*b);
     vas.push_back(va);
