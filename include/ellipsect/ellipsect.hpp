@@ -2,6 +2,7 @@
 #pragma once
 
 #include <ellipsect/batch.hpp>
+#include <ellipsect/box.hpp>
 #include <ellipsect/broad_phase.hpp>
 #include <ellipsect/classify.hpp>
 #include <ellipsect/contact.hpp>

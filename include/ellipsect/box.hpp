@@ -1,0 +1,77 @@
+// Ellipses and ellipsoids against oriented boxes (rectangles in 2D): relation, overlap, first
+// contact under constant velocities.
+//
+// Math. The box { center + axes u : |u_i| <= half_extents_i } is solid. It is the union of
+// two filled triangles in 2D; in 3D its boundary is twelve triangles and a body meets the
+// solid box exactly when it meets one of them or its center lies inside. So every answer
+// comes from the triangle queries (triangle.hpp), exact outside the tangency band:
+//     a_contains_b  every triangle inside the body (the box is their convex hull);
+//     b_contains_a  the body overlaps the box and lies in each of its 2N faces' half-spaces
+//                   (half_space.hpp, touching from inside included);
+//     overlapping   some triangle overlapping or inside the body, or (3D) the body's center
+//                   inside the box;
+//     touching      otherwise some triangle touching; separated otherwise.
+// first_contact: the start relation as classify's; a separated body first meets the box on
+// its boundary, so the hit is the earliest of the triangles' (closed form, triangle.hpp),
+// with their accuracy. The box answered for is the convex hull of its corners as computed
+// (center +- half extents along the axes, rounded to T: within a few ulps of the center's
+// magnitude of the stored box).
+#pragma once
+
+#include <ellipsect/classify.hpp>
+#include <ellipsect/contact.hpp>
+#include <ellipsect/options.hpp>
+#include <ellipsect/shapes.hpp>
+#include <ellipsect/triangle.hpp>
+
+#include <array>
+
+namespace ellipsect {
+
+template <class T, int N>
+class Box {
+public:
+  // The cube [-1, 1]^N.
+  Box() noexcept : frame_(make_ball<T, N>(Vec<T, N>::Zero(), T(1))) {}
+
+  // center: finite ("center[i]"); axes: orthonormal columns ("axes"); half_extents: finite,
+  // > 0 and within a ratio of 1e8 ("half_extents[i]", "half_extents"): the checks and
+  // messages of Ellipsoid::from_axes.
+  static Box from_axes(const Vec<T, N>& center, const Mat<T, N>& axes, const Vec<T, N>& half_extents);
+
+  auto center() const noexcept { return frame_.center(); }
+  auto axes() const noexcept { return frame_.axes(); }
+  auto half_extents() const noexcept { return frame_.radii(); }
+
+  // Corner k (bit i of k set: +half_extents_i along axis i), k in [0, 2^N).
+  Vec<T, N> corner(int k) const noexcept;
+
+  // The box's triangles: two covering the rectangle in 2D, twelve covering the boundary in 3D.
+  std::array<Triangle<T, N>, N == 2 ? 2 : 12> triangles() const noexcept;
+
+  // The box moved by offset (InputError "offset").
+  Box translated(const Vec<T, N>& offset) const;
+
+private:
+  explicit Box(const Ellipsoid<T, N>& frame) noexcept : frame_(frame) {}
+  Ellipsoid<T, N> frame_;  // center, axes and half extents, stored as a body's
+};
+static_assert(detail::has_plain_layout<Box<double, 3>, Ellipsoid<double, 3>>);
+
+template <class T, int N>
+Box<T, N> make_box(const Vec<T, N>& center, const Mat<T, N>& axes, const Vec<T, N>& half_extents) {
+  return Box<T, N>::from_axes(center, axes, half_extents);
+}
+
+template <class T, int N>
+Relation classify(const Ellipsoid<T, N>& a, const Box<T, N>& b, const Options& options = {}) noexcept;
+
+template <class T, int N>
+bool overlap(const Ellipsoid<T, N>& a, const Box<T, N>& b, const Options& options = {}) noexcept;
+
+// Statuses as for two bodies (contact.hpp); the box moves as center + t * velocity_b.
+template <class T, int N>
+Contact<T, N> first_contact(const Ellipsoid<T, N>& a, const VecArg<T, N>& velocity_a, const Box<T, N>& b,
+                            const VecArg<T, N>& velocity_b, T t_max, const Options& options = {}) noexcept;
+
+}  // namespace ellipsect
