@@ -175,6 +175,38 @@ void def_triangle(py::module_& m, const char* name) {
       });
 }
 
+// Box2 / Box3: an oriented rectangle or box (box.hpp).
+template <int N>
+void def_box(py::module_& m, const char* name) {
+  using B = Box<double, N>;
+  py::class_<B>(m, name, "A validated oriented box {center + axes u : |u_i| <= half_extents_i} (box.hpp).")
+      .def(py::init([](const Row<N>& center, const Row<N>& half_extents, std::optional<Rows<N>> axes) {
+             return make_box<double, N>(vec<N>(center), axes ? mat<N>(*axes) : Mat<double, N>::Identity(),
+                                        vec<N>(half_extents));
+           }),
+           py::arg("center"), py::arg("half_extents"), py::arg("axes") = py::none(),
+           "Axes: orthonormal columns (default: the coordinate axes).")
+      .def_property_readonly("center", [](const B& b) { return to_array<N>(b.center()); })
+      .def_property_readonly("axes", [](const B& b) { return to_array<N>(b.axes()); })
+      .def_property_readonly("half_extents", [](const B& b) { return to_array<N>(b.half_extents()); })
+      .def("corner", [](const B& b, int k) {
+             if (k < 0 || k >= (1 << N)) throw py::index_error("corner: k must be in [0, " + std::to_string(1 << N) + ")");
+             return to_array<N>(b.corner(k));
+           }, py::arg("k"))
+      .def("translated", [](const B& b, const Row<N>& offset) { return b.translated(vec<N>(offset)); },
+           py::arg("offset"))
+      .def("__repr__", [name](const B& b) {
+        std::ostringstream s;
+        s.precision(17);
+        s << name << "(center=[";
+        for (int k = 0; k < N; ++k) s << (k ? ", " : "") << b.center()[k];
+        s << "], half_extents=[";
+        for (int k = 0; k < N; ++k) s << (k ? ", " : "") << b.half_extents()[k];
+        s << "])";
+        return s.str();
+      });
+}
+
 template <int N>
 void def_results(py::module_& m, const char* suffix) {
   const std::string s = suffix;
@@ -311,6 +343,18 @@ void def_queries(py::module_& m) {
         py::arg("body"), py::arg("displacement"), py::arg("world"), py::arg("options") = Options{},
         "Move the body by the displacement through a list of half-spaces, sliding along what it touches "
         "(slide.hpp).");
+  // A body against a box (box.hpp).
+  using Bx = Box<double, N>;
+  m.def("classify", py::overload_cast<const E&, const Bx&, const Options&>(&classify<double, N>), py::arg("a"),
+        py::arg("b"), py::arg("options") = Options{});
+  m.def("overlap", py::overload_cast<const E&, const Bx&, const Options&>(&overlap<double, N>), py::arg("a"),
+        py::arg("b"), py::arg("options") = Options{});
+  m.def("first_contact",
+        [](const E& a, const Row<N>& va, const Bx& b, const Row<N>& vb, double t_max, const Options& o) {
+          return first_contact(a, vec<N>(va), b, vec<N>(vb), t_max, o);
+        },
+        py::arg("a"), py::arg("velocity_a"), py::arg("b"), py::arg("velocity_b"), py::arg("t_max"),
+        py::arg("options") = Options{}, "First contact of a body and a moving box in [0, t_max].");
   // A body against a triangle (triangle.hpp) and a mesh (mesh.hpp).
   using Tr = Triangle<double, N>;
   using TM = TriangleMesh<double, N>;
@@ -511,6 +555,8 @@ void def_scalar(py::module_& m) {
   def_body<3>(ellipsoid);
   def_half_space<2>(m, "HalfPlane");
   def_half_space<3>(m, "HalfSpace");
+  def_box<2>(m, "Box2");
+  def_box<3>(m, "Box3");
   def_triangle<2>(m, "Triangle2");
   def_triangle<3>(m, "Triangle3");
   py::class_<MeshRelation>(m, "MeshRelation", "classify's answer against a mesh (see mesh.hpp).")

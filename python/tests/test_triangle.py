@@ -1,5 +1,5 @@
-"""Bodies against triangles and triangle meshes: closed forms, a 50-digit check, the mesh
-against its triangles one by one, collide-and-slide over a tiled floor, bad input."""
+"""Bodies against triangles, triangle meshes and boxes: closed forms, a 50-digit check, the
+mesh against its triangles one by one, collide-and-slide over a tiled floor, bad input."""
 
 import math
 import pickle
@@ -126,3 +126,20 @@ def test_mesh_bad_input_names_the_argument():
         ellipsect.Triangle2([0, 0], [math.inf, 0], [0, 1])
     with pytest.raises(ellipsect.InputError, match="triangle"):
         ellipsect.TriangleMesh3(v, t).triangle(1)
+
+
+def test_box():
+    ball = ellipsect.Ellipsoid.ball([0, 0, 0], 1)
+    box = ellipsect.Box3([3, 0, 0], [1, 1, 1])
+    assert box.corner(7).tolist() == [4, 1, 1]
+    assert ellipsect.classify(ball, box) == ellipsect.Relation.separated
+    c = ellipsect.first_contact(ball, [1, 0, 0], box, [0, 0, 0], math.inf)
+    assert c.status == ellipsect.ContactStatus.hit and c.time == pytest.approx(1, abs=1e-15)
+    assert ellipsect.classify(ball, ellipsect.Box3([0, 0, 0], [2, 2, 2])) == ellipsect.Relation.b_contains_a
+    assert ellipsect.classify(ball, ellipsect.Box3([0, 0, 0], [0.5, 0.5, 0.5])) == ellipsect.Relation.a_contains_b
+    rect = ellipsect.Box2([0, 2], [1, 1], axes=[[0, -1], [1, 0]])
+    assert ellipsect.classify(ellipsect.Ellipse.ball([0, 0], 1), rect) == ellipsect.Relation.touching
+    with pytest.raises(ellipsect.InputError, match=r"half_extents\[1\]"):
+        ellipsect.Box3([0, 0, 0], [1, 0, 1])
+    with pytest.raises(IndexError):
+        box.corner(8)
