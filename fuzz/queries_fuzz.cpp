@@ -43,9 +43,15 @@
 //               by vb through the mesh: overlapping_at_start exactly where classify says
 //               overlapping or a_contains_b, otherwise an end separated or touching, moved by
 //               at most |vb|.
+//   box         a against the box with b's center, axes and radii as half extents: overlap is
+//               classify != separated; a_contains_b exactly when every triangle of the box is
+//               inside a; b_contains_a only where every face's half-space contains a;
+//               first_contact (velocities va and 0) starts as the relation says, a hit is in
+//               (0, t_max] and no later than the earliest of the box's triangles' hits.
 #include "fuzz_support.hpp"
 
 #include <ellipsect/batch.hpp>
+#include <ellipsect/box.hpp>
 #include <ellipsect/classify.hpp>
 #include <ellipsect/contact.hpp>
 #include <ellipsect/contact_function.hpp>
@@ -67,6 +73,14 @@ Relation mirrored(Relation r) {
   if (r == Relation::a_contains_b) return Relation::b_contains_a;
   if (r == Relation::b_contains_a) return Relation::a_contains_b;
   return r;
+}
+
+// Whether first_contact's status is the one the start relation implies (hit or none when
+// separated).
+bool starts_as(Relation rel, ContactStatus s) {
+  return rel == Relation::separated ? s == ContactStatus::hit || s == ContactStatus::no_contact_in_window
+         : rel == Relation::touching ? s == ContactStatus::touching_at_start
+                                     : s == ContactStatus::overlapping_at_start;
 }
 
 DistanceStatus distance_status_of(Relation r) {
@@ -245,10 +259,7 @@ void check_half_space(const Ellipsoid<T, N>& a, const Vec<T, N>& point, const Ve
   const bool valid = all_finite(v) && !std::isnan(t_max) && t_max >= 0;
   FUZZ_CHECK((c.status == ContactStatus::invalid_input) == !valid, << "status " << to_string(c.status));
   if (!valid) return;
-  const bool start_ok = rel == Relation::separated
-                            ? c.status == ContactStatus::hit || c.status == ContactStatus::no_contact_in_window
-                        : rel == Relation::touching ? c.status == ContactStatus::touching_at_start
-                                                    : c.status == ContactStatus::overlapping_at_start;
+  const bool start_ok = starts_as(rel, c.status);
   FUZZ_CHECK(start_ok, << "contact " << to_string(c.status) << ", classify " << to_string(rel));
   if (c.status == ContactStatus::hit)
     FUZZ_CHECK(std::isfinite(c.time) && c.time > 0 && c.time <= t_max && all_finite(c.point),
@@ -301,10 +312,7 @@ void check_triangle(const Ellipsoid<T, N>& a, const Vec<T, N>& p, const Vec<T, N
              << mc.triangle << ", triangle's " << to_string(c.status) << " " << hex(c.time));
   const bool inside = rel == Relation::overlapping || rel == Relation::a_contains_b;
   if (valid) {
-    const bool start_ok = rel == Relation::separated
-                              ? c.status == ContactStatus::hit || c.status == ContactStatus::no_contact_in_window
-                          : rel == Relation::touching ? c.status == ContactStatus::touching_at_start
-                                                      : c.status == ContactStatus::overlapping_at_start;
+    const bool start_ok = starts_as(rel, c.status);
     FUZZ_CHECK(start_ok, << "contact " << to_string(c.status) << ", classify " << to_string(rel));
     if (c.status == ContactStatus::hit)
       FUZZ_CHECK(std::isfinite(c.time) && c.time > 0 && c.time <= t_max && all_finite(c.point) &&
@@ -324,6 +332,39 @@ void check_triangle(const Ellipsoid<T, N>& a, const Vec<T, N>& p, const Vec<T, N
              << "slide ends " << to_string(end) << " at " << hex(Vec<T, N>(slide.body.center())));
   FUZZ_CHECK(slide.moved.norm() <= vb.norm() * (1 + T(1e-6)) || !std::isfinite(vb.norm()),
              << "moved " << hex(slide.moved) << " for " << hex(vb));
+}
+
+template <class T, int N>
+void check_box(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b, const Vec<T, N>& va, T t_max) {
+  const auto box = make_box<T, N>(b.center(), b.axes(), b.radii());
+  const Relation rel = classify(a, box);
+  FUZZ_CHECK(overlap(a, box) == (rel != Relation::separated), << "box: overlap vs classify " << to_string(rel));
+  const auto triangles = box.triangles();
+  bool all_inside = true;
+  for (const auto& t : triangles) all_inside = all_inside && classify(a, t) == Relation::a_contains_b;
+  FUZZ_CHECK((rel == Relation::a_contains_b) == all_inside, << "box " << to_string(rel) << ", every triangle inside "
+                                                              << all_inside);
+  if (rel == Relation::b_contains_a)
+    for (int i = 0; i < N; ++i)
+      for (const T side : {T(-1), T(1)}) {
+        const Vec<T, N> normal = side * box.axes().col(i);
+        const Relation face = classify(a, make_half_space<T, N>(box.center() + box.half_extents()[i] * normal, normal));
+        FUZZ_CHECK(face == Relation::b_contains_a, << "box contains a, its face " << i << " says " << to_string(face));
+      }
+  const Contact<T, N> c = first_contact(a, va, box, Vec<T, N>::Zero(), t_max);
+  if (c.status == ContactStatus::invalid_input) {
+    FUZZ_CHECK(!all_finite(va) || !(t_max >= 0), << "box: invalid_input");
+    return;
+  }
+  const bool start_ok = starts_as(rel, c.status);
+  FUZZ_CHECK(start_ok, << "box contact " << to_string(c.status) << ", classify " << to_string(rel));
+  if (c.status != ContactStatus::hit) return;
+  FUZZ_CHECK(std::isfinite(c.time) && c.time > 0 && c.time <= t_max, << "box hit at " << hex(c.time));
+  for (const auto& t : triangles) {
+    const Contact<T, N> ct = first_contact(a, va, t, Vec<T, N>::Zero(), t_max);
+    FUZZ_CHECK(ct.status != ContactStatus::hit || ct.time >= c.time,
+               << "box hit at " << hex(c.time) << ", a triangle's at " << hex(ct.time));
+  }
 }
 
 template <class T, int N>
@@ -359,6 +400,7 @@ void run(Bytes& in) {
     check_contact_function<T, N>(*a, *b, va, rel);
     check_half_space<T, N>(*a, Vec<T, N>(b->center()), va, vb, t_max);
     check_triangle<T, N>(*a, Vec<T, N>(b->center()), va, vb, t_max);
+    check_box<T, N>(*a, *b, va, t_max);
     as.push_back(*a);
     bs.push_back(*b);
     vas.push_back(va);

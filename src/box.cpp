@@ -1,6 +1,7 @@
 #include <ellipsect/box.hpp>
 #include <ellipsect/half_space.hpp>
 
+#include "detail/contact_start.hpp"
 #include "detail/instantiate.hpp"
 
 #include <algorithm>
@@ -104,10 +105,8 @@ bool overlap(const Ellipsoid<T, N>& a, const Box<T, N>& b, const Options& option
 template <class T, int N>
 Contact<T, N> first_contact(const Ellipsoid<T, N>& a, const VecArg<T, N>& velocity_a, const Box<T, N>& b,
                             const VecArg<T, N>& velocity_b, T t_max, const Options& options) noexcept {
-  Contact<T, N> out;
-  out.time = std::numeric_limits<T>::quiet_NaN();
-  out.point = out.normal = Vec<T, N>::Constant(std::numeric_limits<T>::quiet_NaN());
-  if (!velocity_a.allFinite() || !velocity_b.allFinite() || !(t_max >= T(0))) return out;
+  Contact<T, N> out = detail::unanswered_contact<T, N>();
+  if (!detail::valid_motion<T, N>(velocity_a, velocity_b, t_max)) return out;
   const auto triangles = b.triangles();
   const auto [relation, triangle] = relation_of(a, b, options);
   if (relation == Relation::touching)

@@ -16,6 +16,7 @@
 
 #include "detail/certificates-inl.hpp"
 #include "detail/classify_impl.hpp"
+#include "detail/contact_start.hpp"
 #include "detail/instantiate.hpp"
 #include "detail/scale.hpp"
 
@@ -180,11 +181,8 @@ template <class T, int N>
 Contact<T, N> first_contact(const Ellipsoid<T, N>& a, const VecArg<T, N>& velocity_a, const Ellipsoid<T, N>& b,
                             const VecArg<T, N>& velocity_b, T t_max, const Options& options) noexcept {
   using R = detail::Work<T>;
-  Contact<T, N> out;
-  out.time = std::numeric_limits<T>::quiet_NaN();
-  out.point.setConstant(out.time);
-  out.normal.setConstant(out.time);
-  if (!velocity_a.allFinite() || !velocity_b.allFinite() || std::isnan(t_max) || t_max < T(0)) return out;
+  Contact<T, N> out = detail::unanswered_contact<T, N>();
+  if (!detail::valid_motion<T, N>(velocity_a, velocity_b, t_max)) return out;
 
   // Lengths and times rescaled by powers of two (detail/scale.hpp): lengths by 2^-e, times
   // by 2^f where the speeds in the rescaled lengths (2^f) leave the window, so velocities

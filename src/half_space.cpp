@@ -2,6 +2,7 @@
 
 #include "detail/axes.hpp"
 #include "detail/compensated.hpp"
+#include "detail/contact_start.hpp"
 #include "detail/instantiate.hpp"
 #include "detail/reduce.hpp"
 #include "detail/scale.hpp"
@@ -142,11 +143,6 @@ Vec<T, N> world(const Vec<F, N>& v, int exponent) noexcept {
 }
 
 template <class T, int N>
-Vec<T, N> nan_vec() noexcept {
-  return Vec<T, N>::Constant(std::numeric_limits<T>::quiet_NaN());
-}
-
-template <class T, int N>
 Distance<T, N> distance_of(const Ellipsoid<T, N>& a, const HalfSpace<T, N>& b, const Options& options,
                            bool penetration) noexcept {
   const auto accept = [&](const auto& g) { return decided(g, options) && accurate(g, g.lower); };
@@ -158,7 +154,7 @@ Distance<T, N> distance_of(const Ellipsoid<T, N>& a, const HalfSpace<T, N>& b, c
                                            : DistanceStatus::overlapping;
     if (d.status == DistanceStatus::overlapping && !penetration) {
       d.distance = T(0);
-      d.point_a = d.point_b = d.normal = nan_vec<T, N>();
+      d.point_a = d.point_b = d.normal = detail::nan_vec<T, N>();
       return d;
     }
     d.distance = T(pow2(g.lower, g.exponent));
@@ -197,10 +193,8 @@ Distance<T, N> signed_distance(const Ellipsoid<T, N>& a, const HalfSpace<T, N>& 
 template <class T, int N>
 Contact<T, N> first_contact(const Ellipsoid<T, N>& a, const VecArg<T, N>& velocity_a, const HalfSpace<T, N>& b,
                             const VecArg<T, N>& velocity_b, T t_max, const Options& options) noexcept {
-  Contact<T, N> out;
-  out.time = std::numeric_limits<T>::quiet_NaN();
-  out.point = out.normal = nan_vec<T, N>();
-  if (!velocity_a.allFinite() || !velocity_b.allFinite() || !(t_max >= T(0))) return out;
+  Contact<T, N> out = detail::unanswered_contact<T, N>();
+  if (!detail::valid_motion<T, N>(velocity_a, velocity_b, t_max)) return out;
   // The hit time is L / sigma: L to within 2e-15 relative (the stated 1e-14 with a margin).
   const auto accept = [&](const auto& g) {
     return decided(g, options) && (relation_of(g, options) != Relation::separated || g.error <= 2e-15 * g.lower);

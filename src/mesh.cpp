@@ -1,5 +1,6 @@
 #include <ellipsect/mesh.hpp>
 
+#include "detail/contact_start.hpp"
 #include "detail/instantiate.hpp"
 #include "detail/mesh_walk.hpp"
 
@@ -146,10 +147,8 @@ bool overlap(const Ellipsoid<T, N>& a, const TriangleMesh<T, N>& b, const Option
 template <class T, int N>
 MeshContact<T, N> first_contact(const Ellipsoid<T, N>& a, const VecArg<T, N>& velocity_a, const TriangleMesh<T, N>& b,
                                 const VecArg<T, N>& velocity_b, T t_max, const Options& options) noexcept {
-  MeshContact<T, N> out;
-  out.contact.time = std::numeric_limits<T>::quiet_NaN();
-  out.contact.point = out.contact.normal = Vec<T, N>::Constant(std::numeric_limits<T>::quiet_NaN());
-  if (!velocity_a.allFinite() || !velocity_b.allFinite() || !(t_max >= T(0))) return out;
+  MeshContact<T, N> out{detail::unanswered_contact<T, N>(), -1};
+  if (!detail::valid_motion<T, N>(velocity_a, velocity_b, t_max)) return out;
   const MeshRelation start = classify(a, b, options);
   if (start.relation != Relation::separated) {
     out.triangle = start.triangle;

@@ -2,6 +2,7 @@
 
 #include "detail/axes.hpp"
 #include "detail/compensated.hpp"
+#include "detail/contact_start.hpp"
 #include "detail/instantiate.hpp"
 #include "detail/reduce.hpp"
 #include "detail/scale.hpp"
@@ -346,11 +347,6 @@ Hit<S, N> earliest_hit(const Vertices<S, N>& u, const Point<S, N>& w) noexcept {
   return best;
 }
 
-template <class T, int N>
-Vec<T, N> nan_vec() noexcept {
-  return Vec<T, N>::Constant(std::numeric_limits<T>::quiet_NaN());
-}
-
 }  // namespace
 
 template <class T, int N>
@@ -368,10 +364,8 @@ bool overlap(const Ellipsoid<T, N>& a, const Triangle<T, N>& b, const Options& o
 template <class T, int N>
 Contact<T, N> first_contact(const Ellipsoid<T, N>& a, const VecArg<T, N>& velocity_a, const Triangle<T, N>& b,
                             const VecArg<T, N>& velocity_b, T t_max, const Options& options) noexcept {
-  Contact<T, N> out;
-  out.time = std::numeric_limits<T>::quiet_NaN();
-  out.point = out.normal = nan_vec<T, N>();
-  if (!velocity_a.allFinite() || !velocity_b.allFinite() || !(t_max >= T(0))) return out;
+  Contact<T, N> out = detail::unanswered_contact<T, N>();
+  if (!detail::valid_motion<T, N>(velocity_a, velocity_b, t_max)) return out;
   return with_pair(a, b, options, [&](const auto& p) {
     using F = typename std::decay_t<decltype(p.center)>::Scalar;
     if (p.relation != Decision::separated) {
