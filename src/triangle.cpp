@@ -214,9 +214,16 @@ struct Pair {
   Vertices<F, N> u;
   Vertices<Double<F>, N> u2;
   bool double_length = false;  // u2 computed and used
+  F size;                      // max |u_k| + 1
   Bracket<F, N> bracket;
   Decision relation;
 };
+
+template <class F, int N>
+void with_double_length(Pair<F, N>& p) noexcept {
+  for (int k = 0; k < 3; ++k) p.u2[k] = to_ball<Double<F>, F, N>(p.axes, p.radii, p.vertices[k], p.center);
+  p.double_length = true;
+}
 
 template <class F, class T, int N>
 Pair<F, N> pair_in(const Ellipsoid<T, N>& a, const Triangle<T, N>& b, const Options& options) noexcept {
@@ -225,24 +232,22 @@ Pair<F, N> pair_in(const Ellipsoid<T, N>& a, const Triangle<T, N>& b, const Opti
   p.center = a.center().template cast<F>();
   p.radii = a.radii().template cast<F>();
   for (int k = 0; k < 3; ++k) p.vertices[k] = b.vertex(k).template cast<F>();
-  F extent = 0, size = 1;  // max |v_k - c| / r_min and max |u_k| + 1
+  F extent = 0;  // max |v_k - c| / r_min
+  p.size = 1;
   for (int k = 0; k < 3; ++k) {
     p.u[k] = to_ball<F, F, N>(p.axes, p.radii, p.vertices[k], p.center);
     extent = std::max(extent, detail::max_abs(Vec<F, N>(p.vertices[k] - p.center)) / p.radii.minCoeff());
-    size = std::max(size, std::sqrt(dot<F, N>(p.u[k], p.u[k])) + 1);
+    p.size = std::max(p.size, std::sqrt(dot<F, N>(p.u[k], p.u[k])) + 1);
   }
   extent *= std::sqrt(F(N));
   constexpr F eps = std::numeric_limits<F>::epsilon();
   const F band = F(options.tolerance);
-  p.bracket = bracket<F, F, N>(p.u, 2 * eps * (F((N + 2) * N) * extent + F(4 * (N + 4)) * size));
+  p.bracket = bracket<F, F, N>(p.u, 2 * eps * (F((N + 2) * N) * extent + F(4 * (N + 4)) * p.size));
   p.relation = decide(p.bracket, band);
-  if (p.relation != Decision::undecided && size <= F(1024)) return p;
-  // Double length: near a band edge, or a triangle far larger than the body in its frame
-  // (whose contact times cancel in plain arithmetic).
-  for (int k = 0; k < 3; ++k) p.u2[k] = to_ball<Double<F>, F, N>(p.axes, p.radii, p.vertices[k], p.center);
-  p.double_length = true;
   if (p.relation != Decision::undecided) return p;
-  p.bracket = bracket<F, Double<F>, N>(p.u2, 2 * eps * eps * (F(8 * N * N) * extent + F(64 * (N + 4)) * size));
+  // Double length near a band edge.
+  with_double_length(p);
+  p.bracket = bracket<F, Double<F>, N>(p.u2, 2 * eps * eps * (F(8 * N * N) * extent + F(64 * (N + 4)) * p.size));
   p.relation = decide(p.bracket, band);
   if (p.relation == Decision::undecided) p.relation = decide_by_midpoint(p.bracket, band);
   return p;
@@ -395,13 +400,13 @@ Contact<T, N> first_contact(const Ellipsoid<T, N>& a, const VecArg<T, N>& veloci
       time = value(hit.time);
       for (int i = 0; i < N; ++i) x[i] = value(hit.point[i]);
     };
-    // The entering roots cancel in |u|^2 - 1 as the gap closes: within a gap of 1/4, double length.
-    if (p.double_length) {
-      solve(p.u2, Double<F>{});
-    } else if (p.bracket.gap_lo < F(0.25)) {
-      Vertices<Double<F>, N> u2;
-      for (int k = 0; k < 3; ++k) u2[k] = to_ball<Double<F>, F, N>(p.axes, p.radii, p.vertices[k], p.center);
-      solve(u2, Double<F>{});
+    // The entering roots cancel in |u|^2 - 1 as the gap closes, and across a triangle far
+    // larger than the body in its frame: within a gap of 1/4 or beyond 1024 radii, double
+    // length.
+    if (p.double_length || p.bracket.gap_lo < F(0.25) || p.size > F(1024)) {
+      Pair<F, N> q = p;
+      if (!q.double_length) with_double_length(q);
+      solve(q.u2, Double<F>{});
     } else {
       solve(p.u, F(0));
     }
