@@ -153,8 +153,8 @@ struct Bracket {
   Vec<F, N> nearest;
 };
 
-// hi = |x| for x the weighted vertices; lo = min_k (x / |x|) . u_k, since every point y of the
-// triangle has |y| >= (x / |x|) . y >= that minimum. `slack` bounds the rounding of u and of
+// hi = |x| for x the weighted vertices; lo = min_k w . u_k for a unit w, since every point y of
+// the triangle has |y| >= w . y >= that minimum (w along x, below). `slack` bounds the rounding of u and of
 // these evaluations.
 template <class F, class S, int N>
 Bracket<F, N> bracket(const Vertices<S, N>& u, F slack) noexcept {
@@ -162,13 +162,34 @@ Bracket<F, N> bracket(const Vertices<S, N>& u, F slack) noexcept {
   Point<S, N> x;
   for (int i = 0; i < N; ++i) x[i] = weights[0] * u[0][i] + weights[1] * u[1][i] + weights[2] * u[2][i];
   using std::sqrt;
-  const S one = lit<S>(1), n = sqrt(dot<S, N>(x, x));
+  const S zero{}, one = lit<S>(1), n = sqrt(dot<S, N>(x, x));
   Bracket<F, N> b;
   b.gap_hi = value(n - one) + slack;
-  if (n > S{}) {
-    S m = dot<S, N>(x, u[0]);
-    for (int k = 1; k < 3; ++k) m = std::min(m, dot<S, N>(x, u[k]));
-    b.gap_lo = value(m / n - one) - slack;
+  // The lower bound's direction: x itself at a vertex; on an edge x made exactly normal to it,
+  // on the face (3D) the face's normal towards it: the vertices far along the feature would
+  // otherwise turn the rounding of x's direction into an error times their distance.
+  Point<S, N> w = x;
+  int first = -1, second = -1, count = 0;
+  for (int k = 0; k < 3; ++k)
+    if (weights[k] > zero) (count++ == 0 ? first : second) = k;
+  if (count == 2) {
+    const Point<S, N> f = minus<S, N>(u[second], u[first]);
+    const S ff = dot<S, N>(f, f);
+    if (ff > zero) w = plus_times<S, N>(x, -dot<S, N>(x, f) / ff, f);
+  } else if constexpr (N == 3) {
+    if (count == 3) {
+      const Point<S, N> f1 = minus<S, N>(u[1], u[0]), f2 = minus<S, N>(u[2], u[0]);
+      Point<S, N> normal{f1[1] * f2[2] - f1[2] * f2[1], f1[2] * f2[0] - f1[0] * f2[2], f1[0] * f2[1] - f1[1] * f2[0]};
+      if (dot<S, N>(normal, u[0]) < zero)
+        for (S& c : normal) c = -c;
+      w = normal;
+    }
+  }
+  const S wn = sqrt(dot<S, N>(w, w));
+  if (wn > zero && n > zero) {
+    S m = dot<S, N>(w, u[0]);
+    for (int k = 1; k < 3; ++k) m = std::min(m, dot<S, N>(w, u[k]));
+    b.gap_lo = value(m / wn - one) - slack;
   } else {
     b.gap_lo = F(-1) - slack;
   }
@@ -219,10 +240,44 @@ struct Pair {
   Decision relation;
 };
 
+// The bracket of the triangle v (world coordinates) in the tier S (F plain, Double<F> double
+// length), its ball-frame vertices in u and max |u_k| + 1 in size. The slack bounds the
+// rounding: of u (from max |v_k - c| / r_min, times sqrt N) and of the bracket's sums.
+template <class S, class F, int N>
+Bracket<F, N> bracket_of(const Pair<F, N>& p, const std::array<Vec<F, N>, 3>& v, Vertices<S, N>& u, F& size) noexcept {
+  F extent = 0;
+  size = 1;
+  for (int k = 0; k < 3; ++k) {
+    u[k] = to_ball<S, F, N>(p.axes, p.radii, v[k], p.center);
+    extent = std::max(extent, detail::max_abs(Vec<F, N>(v[k] - p.center)) / p.radii.minCoeff());
+    size = std::max(size, std::sqrt(value(dot<S, N>(u[k], u[k]))) + 1);
+  }
+  extent *= std::sqrt(F(N));
+  constexpr F eps = std::numeric_limits<F>::epsilon();
+  const F slack = std::is_same_v<S, F> ? 2 * eps * (F((N + 2) * N) * extent + F(4 * (N + 4)) * size)
+                                       : 2 * eps * eps * (F(8 * N * N) * extent + F(64 * (N + 4)) * size);
+  return bracket<F, S, N>(u, slack);
+}
+
+// The body's axis-aligned half-extents sqrt(sum_k (A_ik r_k)^2), grown by the band and 1e-9.
 template <class F, int N>
-void with_double_length(Pair<F, N>& p) noexcept {
-  for (int k = 0; k < 3; ++k) p.u2[k] = to_ball<Double<F>, F, N>(p.axes, p.radii, p.vertices[k], p.center);
-  p.double_length = true;
+Vec<F, N> box_half_extents(const Pair<F, N>& p, F band) noexcept {
+  Vec<F, N> h;
+  for (int i = 0; i < N; ++i) h[i] = p.axes.row(i).cwiseProduct(p.radii.transpose()).norm() * (1 + 2 * band + F(1e-9));
+  return h;
+}
+
+// Whether the triangle's bounding box misses the body's (grown by the band): then they are
+// separated, whatever the triangle's size (a certificate that needs no cancellation).
+template <class F, int N>
+bool boxes_apart(const Pair<F, N>& p, F band) noexcept {
+  const Vec<F, N> h = box_half_extents(p, band);
+  for (int i = 0; i < N; ++i) {
+    const F lo = std::min({p.vertices[0][i], p.vertices[1][i], p.vertices[2][i]});
+    const F hi = std::max({p.vertices[0][i], p.vertices[1][i], p.vertices[2][i]});
+    if (lo > p.center[i] + h[i] || hi < p.center[i] - h[i]) return true;
+  }
+  return false;
 }
 
 template <class F, class T, int N>
@@ -232,22 +287,19 @@ Pair<F, N> pair_in(const Ellipsoid<T, N>& a, const Triangle<T, N>& b, const Opti
   p.center = a.center().template cast<F>();
   p.radii = a.radii().template cast<F>();
   for (int k = 0; k < 3; ++k) p.vertices[k] = b.vertex(k).template cast<F>();
-  F extent = 0;  // max |v_k - c| / r_min
-  p.size = 1;
-  for (int k = 0; k < 3; ++k) {
-    p.u[k] = to_ball<F, F, N>(p.axes, p.radii, p.vertices[k], p.center);
-    extent = std::max(extent, detail::max_abs(Vec<F, N>(p.vertices[k] - p.center)) / p.radii.minCoeff());
-    p.size = std::max(p.size, std::sqrt(dot<F, N>(p.u[k], p.u[k])) + 1);
-  }
-  extent *= std::sqrt(F(N));
-  constexpr F eps = std::numeric_limits<F>::epsilon();
   const F band = F(options.tolerance);
-  p.bracket = bracket<F, F, N>(p.u, 2 * eps * (F((N + 2) * N) * extent + F(4 * (N + 4)) * p.size));
+  p.bracket = bracket_of<F, F, N>(p, p.vertices, p.u, p.size);
   p.relation = decide(p.bracket, band);
   if (p.relation != Decision::undecided) return p;
+  if (boxes_apart(p, band)) {
+    p.relation = Decision::separated;
+    p.bracket.gap_lo = p.bracket.gap_hi = std::numeric_limits<F>::infinity();
+    return p;
+  }
   // Double length near a band edge.
-  with_double_length(p);
-  p.bracket = bracket<F, Double<F>, N>(p.u2, 2 * eps * eps * (F(8 * N * N) * extent + F(64 * (N + 4)) * p.size));
+  F size;
+  p.bracket = bracket_of<Double<F>, F, N>(p, p.vertices, p.u2, size);
+  p.double_length = true;
   p.relation = decide(p.bracket, band);
   if (p.relation == Decision::undecided) p.relation = decide_by_midpoint(p.bracket, band);
   return p;
@@ -392,21 +444,24 @@ Contact<T, N> first_contact(const Ellipsoid<T, N>& a, const VecArg<T, N>& veloci
       va[i] = std::ldexp(F(velocity_a[i]), -v);
       vb[i] = std::ldexp(F(velocity_b[i]), -v);
     }
-    F time;
+    F time = -1;
     Vec<F, N> x;
     const auto solve = [&](const auto& u, auto zero) {
       using S = decltype(zero);
       const Hit<S, N> hit = earliest_hit<S, N>(u, to_ball<S, F, N>(p.axes, p.radii, vb, va));
-      time = value(hit.time);
+      const F t = value(hit.time);
+      if (!(t >= F(0)) || (time >= F(0) && t >= time)) return;
+      time = t;
       for (int i = 0; i < N; ++i) x[i] = value(hit.point[i]);
     };
-    // The entering roots cancel in |u|^2 - 1 as the gap closes, and across a triangle far
-    // larger than the body in its frame: within a gap of 1/4 or beyond 1024 radii, double
-    // length.
     if (p.double_length || p.bracket.gap_lo < F(0.25) || p.size > F(1024)) {
-      Pair<F, N> q = p;
-      if (!q.double_length) with_double_length(q);
-      solve(q.u2, Double<F>{});
+      // The entering roots cancel in |u|^2 - 1 as the gap closes, and across a triangle far
+      // larger than the body in its frame: within a gap of 1/4 or beyond 1024 radii, double
+      // length.
+      Vertices<Double<F>, N> u2 = p.u2;
+      if (!p.double_length)
+        for (int k = 0; k < 3; ++k) u2[k] = to_ball<Double<F>, F, N>(p.axes, p.radii, p.vertices[k], p.center);
+      solve(u2, Double<F>{});
     } else {
       solve(p.u, F(0));
     }

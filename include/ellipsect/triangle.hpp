@@ -27,13 +27,15 @@
 // rounding-error bound of its evaluation. A bracket that decides the relation is the answer;
 // otherwise the pair is computed again in double length (vertices less center split exactly,
 // compensated dot products: errors of order 1e-32 U, U the triangle's extent in the ball
-// frame), and a bracket that still straddles a band edge is decided by its midpoint. So the
-// relation is exact outside the tangency band widened by about 1e-30 U (tested with a margin
-// of 1e-14 for triangles to 1e12 radii across), whatever the aspect ratio, and for needles,
-// segments and points. Contact times are computed in double length too where the gap is
-// below 1/4 or U above 1024 (the entering roots cancel there). Pairs beyond the native range
-// (shapes.hpp, "Range") run in long double. float bodies and triangles are computed in
-// double, the axes orthonormalized.
+// frame), and a bracket that still straddles a band edge is decided by its midpoint; a
+// triangle whose bounding box misses the body's is separated without further arithmetic. So
+// the relation is exact outside the tangency band widened by about 1e-30 U: by 1e-14 (the
+// tests' margin) for triangles to 1e15 radii across and more (tested to 1e12 on random
+// cases, at 1e20 on a floor), whatever the aspect ratio, and for needles, segments and
+// points; a triangle apart from the body's box always exactly. Contact times are computed in
+// double length where the gap is below 1/4 or U above 1024 (the entering roots cancel
+// there). Pairs beyond the native range (shapes.hpp, "Range") run in long double. float
+// bodies and triangles are computed in double, the axes orthonormalized.
 //
 // Accuracy (tests/property/triangle_property_test.cpp, against a 50-digit reference that
 // minimizes (x - c)^T M (x - c) over the triangle in world coordinates, M = A diag(r)^-2 A^T,

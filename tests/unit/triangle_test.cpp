@@ -177,6 +177,32 @@ TEST(Triangle, LargeTrianglesNearTangency) {
   EXPECT_NEAR((hit.point - V3(0.3, -0.2, -1.5)).norm(), 0.0, 1e-15);
 }
 
+// A triangle reaching 2^465 radii away, apart from the body; a floor 1e20 across under it.
+TEST(Triangle, VastTriangles) {
+  // Found by the queries fuzz target: a vertex 2^465 away, the triangle clearly apart.
+  Mat2<double> axes;
+  axes << 0x1.c1528065b7d5p-1, -0x1.eaee8744b05fp-2, 0x1.eaee8744b05fp-2, 0x1.c1528065b7d5p-1;
+  const auto e = Ellipsoid<double, 2>::from_axes(V2(0, 0), axes, V2(3, 1));
+  const auto t = make_triangle<double, 2>(V2(5, 0.5), V2(5, 0.5 + 0x1p465), V2(3, 0.5));
+  EXPECT_EQ(classify(e, t), Relation::separated);
+  EXPECT_EQ(first_contact(e, V2(0, 0), t, V2(0.1, 0), inf).status, ContactStatus::no_contact_in_window);
+  // A floor 1e20 across under a unit ball, 1e-13 and 1e-11 away, and swept onto it.
+  const auto ball = make_ball<double, 3>(V3(0.3, -0.2, 0), 1);
+  const auto floor = [](double z) {
+    return make_triangle<double, 3>(V3(-1e20, -1e20, z), V3(2e20, -1e20, z), V3(-1e20, 2e20, z));
+  };
+  EXPECT_EQ(classify(ball, floor(-1 - 1e-13)), Relation::touching);
+  EXPECT_EQ(classify(ball, floor(-1 - 1e-11)), Relation::separated);
+  EXPECT_EQ(classify(ball, floor(-1 + 1e-11)), Relation::overlapping);
+  const auto hit = first_contact(ball, V3(0, 0, -1), floor(-1.5), V3(0, 0, 0), inf);
+  EXPECT_EQ(hit.status, ContactStatus::hit);
+  EXPECT_NEAR(hit.time, 0.5, 1e-15);
+  EXPECT_NEAR((hit.point - V3(0.3, -0.2, -1.5)).norm(), 0.0, 1e-15);
+  EXPECT_EQ(first_contact(ball, V3(0, 0, 1), floor(-1.5), V3(0, 0, 0), inf).status, ContactStatus::no_contact_in_window);
+  EXPECT_EQ(first_contact(ball, V3(0, 0, -1), floor(-1.5), V3(0, 0, 0), 0.49).status,
+            ContactStatus::no_contact_in_window);
+}
+
 TEST(Triangle, FloatAgreesWithDouble) {
   const auto ball = make_ball<float, 3>(Vec3<float>(0, 0, 0), 1);
   const auto t = make_triangle<float, 3>(Vec3<float>(-1, -1, 3), Vec3<float>(2, -1, 3), Vec3<float>(-1, 2, 3));
