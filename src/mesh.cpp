@@ -124,9 +124,10 @@ MeshRelation classify(const Ellipsoid<T, N>& a, const TriangleMesh<T, N>& b, con
   MeshRelation out;
   const std::size_t count = b.triangle_count();
   if (count == 0) return out;
-  const Vec<T, N> h = detail::half_extents(a, options.tolerance);
+  using W = detail::Wide<T>;
   std::size_t contained = 0;
-  detail::for_each_near<T, N>(b, Vec<T, N>(a.center()), h, [&](std::uint32_t k) {
+  detail::for_each_near<T, N>(b, a.center().template cast<W>(), detail::half_extents(a, options.tolerance),
+                              [&](std::uint32_t k) {
     Relation r = classify(a, b.triangle(k), options);
     if (r == Relation::a_contains_b) {
       ++contained;
@@ -159,17 +160,18 @@ MeshContact<T, N> first_contact(const Ellipsoid<T, N>& a, const VecArg<T, N>& ve
     return out;
   }
   out.contact.status = ContactStatus::no_contact_in_window;
-  const Vec<T, N> d = velocity_a - velocity_b;
-  if (d == Vec<T, N>::Zero()) return out;
-  const Vec<T, N> h = detail::half_extents(a, options.tolerance);
-  detail::for_each_swept<T, N>(b, Vec<T, N>(a.center()), d, h, t_max, [&](std::uint32_t k, T t_end) {
-    const Contact<T, N> c = first_contact(a, velocity_a, b.triangle(k), velocity_b, t_end, options);
+  using W = detail::Wide<T>;
+  const Vec<W, N> d = velocity_a.template cast<W>() - velocity_b.template cast<W>();
+  if (d == Vec<W, N>::Zero()) return out;
+  detail::for_each_swept<T, N>(b, a.center().template cast<W>(), d, detail::half_extents(a, options.tolerance), W(t_max),
+                               [&](std::uint32_t k, W t_end) {
+    const Contact<T, N> c = first_contact(a, velocity_a, b.triangle(k), velocity_b, T(t_end), options);
     if (c.status != ContactStatus::hit) return t_end;
     if (out.triangle < 0 || c.time < out.contact.time || (c.time == out.contact.time && k < out.triangle)) {
       out.contact = c;
       out.triangle = k;
     }
-    return out.contact.time;
+    return W(out.contact.time);
   });
   return out;
 }

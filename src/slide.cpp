@@ -51,13 +51,15 @@ struct Mesh {
   double tolerance;
   template <class Visit>
   void near(const Ellipsoid<T, N>& body, Visit&& visit) const {
-    detail::for_each_near<T, N>(mesh, Vec<T, N>(body.center()), detail::half_extents(body, tolerance),
+    detail::for_each_near<T, N>(mesh, body.center().template cast<detail::Wide<T>>(),
+                                detail::half_extents(body, tolerance),
                                 [&](std::uint32_t k) { visit(k, mesh.triangle(k)); });
   }
   template <class Visit>
   void swept(const Ellipsoid<T, N>& body, const Vec<T, N>& r, Visit&& visit) const {
-    detail::for_each_swept<T, N>(mesh, Vec<T, N>(body.center()), r, detail::half_extents(body, tolerance), T(1),
-                                 [&](std::uint32_t k, T t_end) {
+    using W = detail::Wide<T>;
+    detail::for_each_swept<T, N>(mesh, body.center().template cast<W>(), r.template cast<W>(),
+                                 detail::half_extents(body, tolerance), W(1), [&](std::uint32_t k, W t_end) {
                                    visit(k, mesh.triangle(k));
                                    return t_end;
                                  });

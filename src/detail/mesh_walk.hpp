@@ -9,38 +9,51 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <type_traits>
 #include <utility>
 
 namespace ellipsect::detail {
 
+// The walks compute in double (long double for long double): float boxes and bodies are
+// widened there, where the margins below are far above the rounding.
+template <class T>
+using Wide = std::conditional_t<(sizeof(T) < sizeof(double)), double, T>;
+
 // The body's axis-aligned half-extents, sqrt(sum_k (A_ik r_k)^2), grown by 1e-9 and by the
-// tangency band (options.hpp), so that a touching triangle's box is reached.
+// tangency band (options.hpp), so that a touching triangle's box is reached; and by 1e-6 for
+// float bodies (their axes are orthonormal only to float's rounding).
 template <class T, int N>
-Vec<T, N> half_extents(const Ellipsoid<T, N>& a, double tolerance) noexcept {
-  Vec<T, N> h;
+Vec<Wide<T>, N> half_extents(const Ellipsoid<T, N>& a, double tolerance) noexcept {
+  using W = Wide<T>;
+  const W grow = W(1 + 2 * tolerance + 1e-9) + (sizeof(T) < sizeof(double) ? W(1e-6) : W(0));
+  Vec<W, N> h;
   for (int i = 0; i < N; ++i) {
-    T s = 0;
-    for (int k = 0; k < N; ++k) s = std::max(s, std::abs(a.axes()(i, k)) * a.radii()[k]);
-    T sum = 0;
+    W s = 0;
+    for (int k = 0; k < N; ++k) s = std::max(s, std::abs(W(a.axes()(i, k))) * W(a.radii()[k]));
+    W sum = 0;
     for (int k = 0; k < N; ++k) {
-      const T x = a.axes()(i, k) * a.radii()[k] / s;
+      const W x = W(a.axes()(i, k)) * W(a.radii()[k]) / s;
       sum += x * x;
     }
-    h[i] = s * std::sqrt(sum) * T(1 + 2 * tolerance + 1e-9);
+    h[i] = s * std::sqrt(sum) * grow;
   }
   return h;
 }
 
 // The node's box grown by h and by 1e-9 of the box's and h's size, on axis i.
 template <class T, int N>
-std::pair<T, T> grown(const typename TriangleMesh<T, N>::Node& node, const Vec<T, N>& h, int i) noexcept {
-  const T margin = T(1e-9) * (std::abs(node.lo[i]) + std::abs(node.hi[i]) + h[i]) + std::numeric_limits<T>::denorm_min();
-  return {node.lo[i] - h[i] - margin, node.hi[i] + h[i] + margin};
+std::pair<Wide<T>, Wide<T>> grown(const typename TriangleMesh<T, N>::Node& node, const Vec<Wide<T>, N>& h,
+                                  int i) noexcept {
+  using W = Wide<T>;
+  const W lo = W(node.lo[i]), hi = W(node.hi[i]);
+  const W margin = W(1e-9) * (std::abs(lo) + std::abs(hi) + h[i]) + std::numeric_limits<W>::denorm_min();
+  return {lo - h[i] - margin, hi + h[i] + margin};
 }
 
 // Calls visit(k) for each triangle k whose box, grown by h, contains the point c.
 template <class T, int N, class Visit>
-void for_each_near(const TriangleMesh<T, N>& mesh, const Vec<T, N>& c, const Vec<T, N>& h, Visit&& visit) {
+void for_each_near(const TriangleMesh<T, N>& mesh, const Vec<Wide<T>, N>& c, const Vec<Wide<T>, N>& h,
+                   Visit&& visit) {
   const auto nodes = mesh.nodes();
   if (nodes.empty()) return;
   std::array<std::uint32_t, 64> stack;
@@ -67,22 +80,23 @@ void for_each_near(const TriangleMesh<T, N>& mesh, const Vec<T, N>& c, const Vec
 // The interval of t in [0, t_end] at which c + t d lies in the node's box grown by h:
 // {entry, exit}, empty when entry > exit.
 template <class T, int N>
-std::pair<T, T> slab(const typename TriangleMesh<T, N>::Node& node, const Vec<T, N>& c, const Vec<T, N>& d,
-                     const Vec<T, N>& h, T t_end) noexcept {
-  T entry = 0, exit = t_end;
+std::pair<Wide<T>, Wide<T>> slab(const typename TriangleMesh<T, N>::Node& node, const Vec<Wide<T>, N>& c,
+                                 const Vec<Wide<T>, N>& d, const Vec<Wide<T>, N>& h, Wide<T> t_end) noexcept {
+  using W = Wide<T>;
+  W entry = 0, exit = t_end;
   for (int i = 0; i < N; ++i) {
     const auto [lo, hi] = grown<T, N>(node, h, i);
-    if (d[i] == T(0)) {
-      if (c[i] < lo || c[i] > hi) return {T(1), T(0)};
+    if (d[i] == W(0)) {
+      if (c[i] < lo || c[i] > hi) return {W(1), W(0)};
       continue;
     }
-    T t1 = (lo - c[i]) / d[i], t2 = (hi - c[i]) / d[i];
+    W t1 = (lo - c[i]) / d[i], t2 = (hi - c[i]) / d[i];
     if (t1 > t2) std::swap(t1, t2);
     entry = std::max(entry, t1);
     exit = std::min(exit, t2);
   }
   // The quotients are rounded: widen the interval by 1e-9 of itself.
-  const T slack = T(1e-9) * (std::abs(entry) + std::abs(exit));
+  const W slack = W(1e-9) * (std::abs(entry) + std::abs(exit));
   return {entry - slack, exit + slack};
 }
 
@@ -90,11 +104,11 @@ std::pair<T, T> slab(const typename TriangleMesh<T, N>::Node& node, const Vec<T,
 // meets, nearest entry first; visit returns the new t_end (the earliest contact so far), and
 // subtrees entered after it are skipped. t_end may be +infinity.
 template <class T, int N, class Visit>
-void for_each_swept(const TriangleMesh<T, N>& mesh, const Vec<T, N>& c, const Vec<T, N>& d, const Vec<T, N>& h, T t_end,
-                    Visit&& visit) {
+void for_each_swept(const TriangleMesh<T, N>& mesh, const Vec<Wide<T>, N>& c, const Vec<Wide<T>, N>& d,
+                    const Vec<Wide<T>, N>& h, Wide<T> t_end, Visit&& visit) {
   const auto nodes = mesh.nodes();
   if (nodes.empty()) return;
-  std::array<std::pair<T, std::uint32_t>, 64> stack;  // (entry time, node)
+  std::array<std::pair<Wide<T>, std::uint32_t>, 64> stack;  // (entry time, node)
   int top = 0;
   const auto [entry0, exit0] = slab<T, N>(nodes[0], c, d, h, t_end);
   if (entry0 > exit0) return;
@@ -107,7 +121,7 @@ void for_each_swept(const TriangleMesh<T, N>& mesh, const Vec<T, N>& c, const Ve
       for (std::uint32_t j = 0; j < node.count; ++j) t_end = visit(mesh.order()[node.first + j], t_end);
       continue;
     }
-    std::array<std::pair<T, std::uint32_t>, 2> children;
+    std::array<std::pair<Wide<T>, std::uint32_t>, 2> children;
     int n = 0;
     for (const std::uint32_t child : {at + 1, node.first}) {
       const auto [e, x] = slab<T, N>(nodes[child], c, d, h, t_end);

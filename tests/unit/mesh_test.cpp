@@ -122,6 +122,24 @@ void matches_every_triangle() {
 TEST(TriangleMesh, HierarchyMatchesEveryTriangle2D) { matches_every_triangle<2>(); }
 TEST(TriangleMesh, HierarchyMatchesEveryTriangle3D) { matches_every_triangle<3>(); }
 
+// Found by the queries fuzz target: a float circle whose box edge lies exactly on the
+// triangle's box edge (y = 0); its float axes are unit only to float's rounding, so a box
+// from them fell short by an ulp and the walk dropped the triangle.
+TEST(TriangleMesh, FloatBodyOnTheEdgeOfATrianglesBox) {
+  Mat2<float> axes;
+  axes << -0x1.aa2266p-2f, -0x1.d18f6ep-1f, 0x1.d18f6ep-1f, -0x1.aa2266p-2f;
+  const auto a = Ellipsoid<float, 2>::from_axes(Vec2<float>(0, -8), axes, Vec2<float>(8, 8));
+  const std::vector<float> v{10, 0, 10.5f, 1, 14, 0};
+  const auto mesh = make_triangle_mesh<float, 2>(v, std::vector<std::int64_t>{0, 1, 2});
+  const float never = std::numeric_limits<float>::infinity();
+  const auto alone = first_contact(a, Vec2<float>(4, 0), mesh.triangle(0), Vec2<float>(0, 0), never);
+  const auto walked = first_contact(a, Vec2<float>(4, 0), mesh, Vec2<float>(0, 0), never);
+  EXPECT_EQ(alone.status, ContactStatus::hit);
+  EXPECT_EQ(walked.contact.status, ContactStatus::hit);
+  EXPECT_EQ(walked.contact.time, alone.time);
+  EXPECT_EQ(walked.triangle, 0);
+}
+
 // An n x n grid of unit squares at height z(x) over [0, n]^2, two triangles each.
 template <class Height>
 TriangleMesh<double, 3> terrain(int n, Height&& z) {
