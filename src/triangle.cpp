@@ -444,6 +444,24 @@ Contact<T, N> first_contact(const Ellipsoid<T, N>& a, const VecArg<T, N>& veloci
       va[i] = std::ldexp(F(velocity_a[i]), -v);
       vb[i] = std::ldexp(F(velocity_b[i]), -v);
     }
+    // The body's box swept relative to the triangle's box over [0, t_max] (times here in units
+    // of 2^v): where they never meet, no contact, whatever the triangle's size.
+    {
+      const Vec<F, N> h = box_half_extents(p, F(options.tolerance)), d = va - vb;
+      F entry = 0, exit = std::ldexp(F(t_max), v);
+      for (int i = 0; i < N; ++i) {
+        const F lo = std::min({p.vertices[0][i], p.vertices[1][i], p.vertices[2][i]}) - h[i] - p.center[i];
+        const F hi = std::max({p.vertices[0][i], p.vertices[1][i], p.vertices[2][i]}) + h[i] - p.center[i];
+        if (d[i] == F(0)) {
+          if (lo > F(0) || hi < F(0)) return out;
+          continue;
+        }
+        const F t1 = lo / d[i], t2 = hi / d[i];
+        entry = std::max(entry, std::min(t1, t2));
+        exit = std::min(exit, std::max(t1, t2));
+      }
+      if (entry > exit) return out;
+    }
     F time = -1;
     Vec<F, N> x;
     const auto solve = [&](const auto& u, auto zero) {

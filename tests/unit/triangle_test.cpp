@@ -186,6 +186,10 @@ TEST(Triangle, VastTriangles) {
   const auto t = make_triangle<double, 2>(V2(5, 0.5), V2(5, 0.5 + 0x1p465), V2(3, 0.5));
   EXPECT_EQ(classify(e, t), Relation::separated);
   EXPECT_EQ(first_contact(e, V2(0, 0), t, V2(0.1, 0), inf).status, ContactStatus::no_contact_in_window);
+  // Found by the same target: the body sliding at a speed of 1e106 along a segment 1e106 long,
+  // 2 radii beside it (their boxes never meet).
+  const auto along = make_triangle<double, 2>(V2(5, 0.5), V2(5, 0.5), V2(3, -0x1.023p+353));
+  EXPECT_EQ(first_contact(e, V2(-2, -0x1.023p+353), along, V2(0, 0), inf).status, ContactStatus::no_contact_in_window);
   // A floor 1e20 across under a unit ball, 1e-13 and 1e-11 away, and swept onto it.
   const auto ball = make_ball<double, 3>(V3(0.3, -0.2, 0), 1);
   const auto floor = [](double z) {
