@@ -486,11 +486,18 @@ Contact<T, N> first_contact(const Ellipsoid<T, N>& a, const VecArg<T, N>& veloci
     if (!(time >= F(0))) return out;
     time = std::max(std::ldexp(time, -v), F(std::numeric_limits<T>::denorm_min()));
     if (!(std::isfinite(T(time)) && T(time) <= t_max)) return out;
-    out.status = ContactStatus::hit;
     out.time = T(time);
+    // The contact point lies on the unit sphere of the ball frame; one that does not (only
+    // for triangles far beyond the stated range, whose roots lose every digit) is no answer.
+    const F length = x.norm();
+    if (!(std::abs(length - 1) <= F(1e-6))) {
+      out.status = ContactStatus::did_not_converge;
+      return out;
+    }
+    out.status = ContactStatus::hit;
     Vec<F, N> shift;
     for (int i = 0; i < N; ++i) shift[i] = time * F(velocity_a[i]);
-    world_contact<T, F, N>(p, x / x.norm(), shift, out);
+    world_contact<T, F, N>(p, x / length, shift, out);
     return out;
   });
 }

@@ -34,7 +34,10 @@
 // cases, at 1e20 on a floor), whatever the aspect ratio, and for needles, segments and
 // points; a triangle apart from the body's box always exactly. Contact times are computed in
 // double length where the gap is below 1/4 or U above 1024 (the entering roots cancel
-// there). Pairs beyond the native range (shapes.hpp, "Range") run in long double. float
+// there), with errors of order 1e-32 U^2 relative; a body whose box, swept relative to the
+// triangle's over the window, never meets it has no contact, exactly. (Not met: a triangle
+// more than about 1e8 radii across, in the body's frame, that the body's box does sweep
+// through can get a contact time with less than the stated accuracy.) Pairs beyond the native range (shapes.hpp, "Range") run in long double. float
 // bodies and triangles are computed in double, the axes orthonormalized.
 //
 // Accuracy (tests/property/triangle_property_test.cpp, against a 50-digit reference that
@@ -52,7 +55,10 @@
 //                 more than 1e-9 above 0;
 //   point         within 1e-12 (size + |point|) of the reference's contact point;
 //   normal        within 1e-12 of the body's outward unit normal there.
-// Status: never did_not_converge (closed form); iterations is 0.
+// Status: did_not_converge (with the computed time, NaN point and normal) where the closed
+// form's contact point fails its check of lying on the body (|x| = 1 in the ball frame to
+// 1e-6): seen only for triangles far beyond the range above (1e238 radii across); iterations
+// is 0.
 #pragma once
 
 #include <ellipsect/classify.hpp>
