@@ -163,9 +163,14 @@ MeshContact<T, N> first_contact(const Ellipsoid<T, N>& a, const VecArg<T, N>& ve
   using W = detail::Wide<T>;
   const Vec<W, N> d = velocity_a.template cast<W>() - velocity_b.template cast<W>();
   if (d == Vec<W, N>::Zero()) return out;
+  // A triangle whose closed form failed its check (triangle.hpp: did_not_converge) leaves the
+  // answer open from its time on: reported unless a hit comes first.
+  MeshContact<T, N> failed{detail::unanswered_contact<T, N>(), -1};
   detail::for_each_swept<T, N>(b, a.center().template cast<W>(), d, detail::half_extents(a, options.tolerance), W(t_max),
                                [&](std::uint32_t k, W t_end) {
     const Contact<T, N> c = first_contact(a, velocity_a, b.triangle(k), velocity_b, T(t_end), options);
+    if (c.status == ContactStatus::did_not_converge && (failed.triangle < 0 || c.time < failed.contact.time))
+      failed = {c, k};
     if (c.status != ContactStatus::hit) return t_end;
     if (out.triangle < 0 || c.time < out.contact.time || (c.time == out.contact.time && k < out.triangle)) {
       out.contact = c;
@@ -173,6 +178,7 @@ MeshContact<T, N> first_contact(const Ellipsoid<T, N>& a, const VecArg<T, N>& ve
     }
     return W(out.contact.time);
   });
+  if (failed.triangle >= 0 && (out.triangle < 0 || !(out.contact.time < failed.contact.time))) return failed;
   return out;
 }
 

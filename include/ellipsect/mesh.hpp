@@ -83,7 +83,9 @@ bool overlap(const Ellipsoid<T, N>& a, const TriangleMesh<T, N>& b, const Option
 // first_contact of the body against every triangle, the mesh moving as a whole with
 // velocity_b: the start relation as classify's (overlapping_at_start, touching_at_start with
 // that triangle's point and normal), else the earliest hit over the triangles (ties: the
-// lowest index) with its triangle; -1 with no_contact_in_window and invalid_input.
+// lowest index) with its triangle; -1 with no_contact_in_window and invalid_input;
+// did_not_converge with its triangle where a triangle's closed form failed its check
+// (triangle.hpp) no later than the earliest hit.
 template <class T, int N>
 struct MeshContact {
   Contact<T, N> contact;
