@@ -35,7 +35,9 @@ Vec<T, N> Box<T, N>::corner(int k) const noexcept {
 
 template <class T, int N>
 std::array<Triangle<T, N>, N == 2 ? 2 : 12> Box<T, N>::triangles() const noexcept {
-  const auto tri = [&](int p, int q, int r) { return make_triangle<T, N>(corner(p), corner(q), corner(r)); };
+  std::array<Vec<T, N>, 1 << N> corners;  // each computed once, shared by its triangles
+  for (int k = 0; k < (1 << N); ++k) corners[k] = corner(k);
+  const auto tri = [&](int p, int q, int r) { return make_triangle<T, N>(corners[p], corners[q], corners[r]); };
   if constexpr (N == 2) {
     return {tri(0, 1, 3), tri(0, 3, 2)};
   } else {
@@ -64,9 +66,9 @@ namespace {
 
 // The relation from the triangles' (box.hpp, "Math"), and the index of the triangle that
 // decides touching or overlapping (-1 when none does: containment or the center inside).
-template <class T, int N>
-std::pair<Relation, int> relation_of(const Ellipsoid<T, N>& a, const Box<T, N>& b, const Options& options) {
-  const auto triangles = b.triangles();
+template <class T, int N, class Triangles>
+std::pair<Relation, int> relation_of(const Ellipsoid<T, N>& a, const Box<T, N>& b, const Triangles& triangles,
+                                     const Options& options) {
   int contained = 0, overlapping = -1, touching = -1;
   for (int k = 0; k < int(triangles.size()); ++k) {
     const Relation r = classify(a, triangles[std::size_t(k)], options);
@@ -94,7 +96,7 @@ std::pair<Relation, int> relation_of(const Ellipsoid<T, N>& a, const Box<T, N>& 
 
 template <class T, int N>
 Relation classify(const Ellipsoid<T, N>& a, const Box<T, N>& b, const Options& options) noexcept {
-  return relation_of(a, b, options).first;
+  return relation_of(a, b, b.triangles(), options).first;
 }
 
 template <class T, int N>
@@ -108,7 +110,7 @@ Contact<T, N> first_contact(const Ellipsoid<T, N>& a, const VecArg<T, N>& veloci
   Contact<T, N> out = detail::unanswered_contact<T, N>();
   if (!detail::valid_motion<T, N>(velocity_a, velocity_b, t_max)) return out;
   const auto triangles = b.triangles();
-  const auto [relation, triangle] = relation_of(a, b, options);
+  const auto [relation, triangle] = relation_of(a, b, triangles, options);
   if (relation == Relation::touching)
     return first_contact(a, velocity_a, triangles[std::size_t(triangle)], velocity_b, t_max, options);
   if (relation != Relation::separated) {

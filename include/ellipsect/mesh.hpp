@@ -73,6 +73,7 @@ struct MeshRelation {
   Relation relation = Relation::separated;
   std::int64_t triangle = -1;
 };
+static_assert(detail::has_plain_layout<MeshRelation, Relation, std::int64_t>);
 
 template <class T, int N>
 MeshRelation classify(const Ellipsoid<T, N>& a, const TriangleMesh<T, N>& b, const Options& options = {}) noexcept;
@@ -91,6 +92,8 @@ struct MeshContact {
   Contact<T, N> contact;
   std::int64_t triangle = -1;
 };
+static_assert(detail::has_plain_layout<MeshContact<float, 2>, Contact<float, 2>, std::int64_t> &&
+              detail::has_plain_layout<MeshContact<double, 3>, Contact<double, 3>, std::int64_t>);
 
 template <class T, int N>
 MeshContact<T, N> first_contact(const Ellipsoid<T, N>& a, const VecArg<T, N>& velocity_a, const TriangleMesh<T, N>& b,

@@ -42,6 +42,7 @@ TEST(Box, FactoryChecksAndCorners) {
   expect_field([] { make_box<double, 2>(V2(0, 0), Mat2<double>::Constant(1), V2(1, 1)); }, "axes");
   try {
     make_box<double, 3>(V3(0, 0, 0), Mat3<double>::Identity(), V3(1, 0, 1));
+    ADD_FAILURE() << "a zero half extent accepted";
   } catch (const InputError& e) {
     EXPECT_EQ(std::string(e.what()).find("ellipsect: half_extents[1]: "), 0u) << e.what();
   }
