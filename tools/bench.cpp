@@ -38,6 +38,8 @@ int bench(const Input& in, const BenchOptions& opt) {
 
   const auto t_load = Clock::now();
   PairSet<N> set = load_pair_set<N>(in, opt.common, w, in.has_velocity, opt.limit, 1);
+  // Only body pairs are timed: a scene's obstacle pairs are left out.
+  std::erase_if(set.pairs, [&](const IndexPair& p) { return p.second >= set.bodies.size(); });
   const double load_s = std::chrono::duration<double>(Clock::now() - t_load).count();
   double broad_s = -1;
   if (set.pairs_from_broad_phase) {
@@ -160,7 +162,8 @@ int bench(const Input& in, const BenchOptions& opt) {
 int run_bench(const BenchOptions& opt) {
   if (!(opt.min_time >= 0)) throw UsageError("--min-time: must be >= 0");
   if (opt.limit == 0) throw UsageError("--limit: must be > 0");
-  const Input in = open_input(opt.common.scene);
+  Input in = open_input(opt.common.scene);
+  in.read_mesh_files = opt.common.read_mesh_files;
   return in.dim == 2 ? bench<2>(in, opt) : bench<3>(in, opt);
 }
 

@@ -11,6 +11,8 @@
 #include <cstdio>
 #include <future>
 #include <limits>
+#include <type_traits>
+#include <variant>
 
 namespace ellipsect::cli {
 
@@ -86,8 +88,8 @@ void append_record(std::string& out, Format format, std::uint64_t index, std::ui
   // Only read when the contact / distance was computed (the fields are set then).
   const bool has_point = q.contact && std::isfinite(c.point[0]);
   const bool has_time = q.contact && std::isfinite(c.time);
-  const bool has_distance = q.distance && std::isfinite(d.distance);
-  const bool has_witness = q.distance && std::isfinite(d.point_a[0]);
+  const bool has_distance = q.distance && r.has_distance && std::isfinite(d.distance);
+  const bool has_witness = q.distance && r.has_distance && std::isfinite(d.point_a[0]);
   if (format == Format::json) {
     out += "    {\"index\": ";
     out += std::to_string(index);
@@ -103,6 +105,10 @@ void append_record(std::string& out, Format format, std::uint64_t index, std::ui
       out += ", \"relation\": \"";
       out += to_string(r.relation);
       out += '"';
+      if (r.mesh) {
+        out += ", \"relation_triangle\": ";
+        out += r.relation_triangle >= 0 ? std::to_string(r.relation_triangle) : "null";
+      }
     }
     if (q.contact) {
       open_object(out, "contact", to_string(c.status));
@@ -111,9 +117,15 @@ void append_record(std::string& out, Format format, std::uint64_t index, std::ui
       append_field(out, "normal", has_point, c.normal.data(), N);
       out += ", \"iterations\": ";
       out += std::to_string(c.iterations);
+      if (r.mesh) {
+        out += ", \"triangle\": ";
+        out += r.contact_triangle >= 0 ? std::to_string(r.contact_triangle) : "null";
+      }
       out += '}';
     }
-    if (q.distance) {
+    if (q.distance && !r.has_distance) {
+      out += ", \"distance\": null";
+    } else if (q.distance) {
       open_object(out, "distance", to_string(d.status));
       append_field(out, "distance", has_distance, &d.distance, 1);
       append_field(out, "point_a", has_witness, d.point_a.data(), N);
@@ -157,7 +169,7 @@ void append_record(std::string& out, Format format, std::uint64_t index, std::ui
   }
   if (q.distance) {
     out += ',';
-    out += to_string(d.status);
+    if (r.has_distance) out += to_string(d.status);
     out += ',';
     if (has_distance) append_number(out, d.distance);
     for (const Vec<double, N>* v : {&d.point_a, &d.point_b, &d.normal})
@@ -166,7 +178,15 @@ void append_record(std::string& out, Format format, std::uint64_t index, std::ui
         if (has_witness) append_number(out, (*v)[i]);
       }
     out += ',';
-    out += std::to_string(d.iterations);
+    if (r.has_distance) out += std::to_string(d.iterations);
+  }
+  if (q.triangles) {
+    // relation_triangle, contact_triangle: empty unless b is a mesh and a triangle decides.
+    for (const auto& [on, k] : {std::pair{q.relation, r.relation_triangle}, std::pair{q.contact, r.contact_triangle}}) {
+      if (!on) continue;
+      out += ',';
+      if (k >= 0) out += std::to_string(k);
+    }
   }
   out += '\n';
 }
@@ -190,6 +210,8 @@ std::string csv_header(int dim, bool line_column, const Queries& q) {
       for (int i = 0; i < dim; ++i) h += std::string(",") + v + axes[i];
     h += ",distance_iterations";
   }
+  if (q.triangles && q.relation) h += ",relation_triangle";
+  if (q.triangles && q.contact) h += ",contact_triangle";
   h += '\n';
   return h;
 }
@@ -251,7 +273,7 @@ void count(Counters& c, const PairResult<N>& r, const Queries& q) {
   ++c.pairs;
   if (q.relation) ++c.relation[static_cast<std::size_t>(r.relation)];
   if (q.contact) ++c.contact[static_cast<std::size_t>(r.contact.status)];
-  if (q.distance) ++c.distance[static_cast<std::size_t>(r.distance.status)];
+  if (q.distance && r.has_distance) ++c.distance[static_cast<std::size_t>(r.distance.status)];
 }
 
 Queries resolve_queries(const std::vector<std::string>& names, bool has_velocity) {
@@ -442,6 +464,9 @@ int check_bodies(const Input& in, const CheckOptions& opt, const Window& w, cons
   const auto& bodies = scene.bodies;
   const std::uint64_t n = bodies.size();
   const std::uint64_t all_pairs = n * (n - 1) / 2;
+  std::vector<Obstacle<N>> obstacles;  // at the window start
+  for (const auto& o : scene.obstacles) obstacles.push_back(obstacle_at<N>(o, w.t0));
+  const std::uint64_t obstacle_pairs = n * obstacles.size();
 
   // The pair source: fill(jobs, max) appends up to max jobs, returns how many; fraction()
   // tells how far it has got. Both run on the reading stage only.
@@ -457,9 +482,10 @@ int check_bodies(const Input& in, const CheckOptions& opt, const Window& w, cons
   std::vector<IndexPair> tmp;
   std::size_t pos = 0;
   std::uint32_t ci = 0, cj = 1;
+  std::uint64_t next_obstacle_pair = 0;
   if (!opt.common.pairs_file.empty()) {
-    ids = id_index<N>(bodies);
-    pairs_file.emplace(opt.common.pairs_file, ids);
+    ids = id_index<N>(bodies, scene.obstacles);
+    pairs_file.emplace(opt.common.pairs_file, ids, static_cast<std::uint32_t>(n));
     pair_mode = "pairs file";
     fill = [&](std::vector<Job>& jobs, std::size_t max) {
       tmp.clear();
@@ -479,7 +505,7 @@ int check_bodies(const Input& in, const CheckOptions& opt, const Window& w, cons
     };
     fraction = [&] { return scene.pairs.empty() ? 1.0 : static_cast<double>(pos) / static_cast<double>(scene.pairs.size()); };
   } else {
-    total_pairs = all_pairs;
+    total_pairs = all_pairs + obstacle_pairs;
     std::string report = opt.report;
     if (report == "auto") report = n <= report_all_limit ? "all" : "candidates";
     if (!opt.broad_phase) report = "all";
@@ -521,11 +547,27 @@ int check_bodies(const Input& in, const CheckOptions& opt, const Window& w, cons
         return all_pairs == 0 ? 1.0 : (i * dn - i * (i + 1) / 2) / static_cast<double>(all_pairs);
       };
     }
+    if (obstacle_pairs > 0) {
+      // After the body pairs, every body against every obstacle: (0, n), (0, n + 1), ...
+      fill = [&, body_fill = std::move(fill)](std::vector<Job>& jobs, std::size_t max) {
+        std::size_t k = body_fill(jobs, max);
+        for (; k < max && next_obstacle_pair < obstacle_pairs; ++k, ++next_obstacle_pair)
+          jobs.push_back({static_cast<std::uint32_t>(next_obstacle_pair / obstacles.size()),
+                          static_cast<std::uint32_t>(n + next_obstacle_pair % obstacles.size()), false});
+        return k;
+      };
+      fraction = [&, body_fraction = std::move(fraction)] {
+        return next_obstacle_pair == 0 ? body_fraction()
+                                       : static_cast<double>(next_obstacle_pair) / static_cast<double>(obstacle_pairs);
+      };
+    }
   }
 
   Output out(opt.output);
   Progress progress(opt.common.progress, "pairs");
-  std::string extra = "  \"bodies\": " + std::to_string(n) + ",\n  \"pair_source\": ";
+  std::string extra = "  \"bodies\": " + std::to_string(n) + ",\n";
+  if (!obstacles.empty()) extra += "  \"obstacles\": " + std::to_string(obstacles.size()) + ",\n";
+  extra += "  \"pair_source\": ";
   append_json_string(extra, pair_mode);
   extra += ",\n";
   RecordWriter writer(out, format, format == Format::json ? json_header(in, w, q, extra) : csv_header(in.dim, false, q));
@@ -549,6 +591,11 @@ int check_bodies(const Input& in, const CheckOptions& opt, const Window& w, cons
     return process_blocks(ch.n, threads, blocks, [&](std::size_t k, BlockOut& o, RowScratch&) {
       const Job& jb = ch.jobs[k];
       const Body<N>& a = bodies[jb.i];
+      if (jb.j >= n) {
+        const Obstacle<N>& ob = obstacles[jb.j - n];
+        add_record<N>(o, format, ch.first + k, 0, &a.id, &ob.id, evaluate<N>(a, ob, w, q), q);
+        return;
+      }
       const Body<N>& b = bodies[jb.j];
       PairResult<N> r = jb.deduced ? sep : evaluate<N>(a, b, w, q);
       if (jb.deduced && q.distance) r.distance = evaluate<N>(a, b, w, distance_only).distance;
@@ -604,6 +651,45 @@ PairResult<N> evaluate(const Body<N>& a, const Body<N>& b, const Window& window,
 }
 
 template <int N>
+PairResult<N> evaluate(const Body<N>& a, const Obstacle<N>& b, const Window& window, const Queries& queries) {
+  Ellipsoid<double, N> a0 = a.shape;
+  if (window.t0 != 0.0) {
+    try {
+      a0 = a.shape.translated(a.velocity * window.t0);
+    } catch (const InputError& e) {
+      throw BadInput("body " + a.id + " at the window start t0 = " + number_string(window.t0) + ": " + e.what());
+    }
+  }
+  PairResult<N> r;
+  r.has_distance = std::holds_alternative<HalfSpace<double, N>>(b.shape);
+  std::visit(
+      [&](const auto& shape) {
+        using S = std::decay_t<decltype(shape)>;
+        if constexpr (std::is_same_v<S, TriangleMesh<double, N>>) {
+          r.mesh = true;
+          if (queries.relation) {
+            const MeshRelation m = classify(a0, shape);
+            r.relation = m.relation;
+            r.relation_triangle = m.triangle;
+          }
+          if (queries.contact) {
+            const MeshContact<double, N> m = first_contact(a0, a.velocity, shape, b.velocity, window.t1 - window.t0);
+            r.contact = m.contact;
+            r.contact_triangle = m.triangle;
+          }
+        } else {
+          if (queries.relation) r.relation = classify(a0, shape);
+          if (queries.contact) r.contact = first_contact(a0, a.velocity, shape, b.velocity, window.t1 - window.t0);
+          if constexpr (std::is_same_v<S, HalfSpace<double, N>>)
+            if (queries.distance) r.distance = signed_distance(a0, shape);
+        }
+      },
+      b.shape);
+  if (queries.contact) r.contact.time += window.t0;
+  return r;
+}
+
+template <int N>
 PairResult<N> separated_result() {
   PairResult<N> r;
   r.relation = Relation::separated;
@@ -631,26 +717,32 @@ PairSet<N> load_pair_set(const Input& in, const Common& common, const Window& wi
   }
   BodyScene<N> scene = load_bodies<N>(in);
   set.bodies = std::move(scene.bodies);
+  set.obstacles = std::move(scene.obstacles);
+  const auto n = static_cast<std::uint32_t>(set.bodies.size());
   if (!common.pairs_file.empty()) {
-    const auto ids = id_index<N>(set.bodies);
-    PairsFile pf(common.pairs_file, ids);
+    const auto ids = id_index<N>(set.bodies, set.obstacles);
+    PairsFile pf(common.pairs_file, ids, n);
     while (set.pairs.size() < limit && pf.read(set.pairs, limit - set.pairs.size()) > 0) {
     }
   } else if (scene.pairs_listed) {
     set.pairs = std::move(scene.pairs);
-    if (set.pairs.size() > limit) set.pairs.resize(limit);
   } else {
     set.pairs = broad_phase<N>(set.bodies, window, swept);
     set.pairs_from_broad_phase = true;
-    if (set.pairs.size() > limit) set.pairs.resize(limit);
+    for (std::uint32_t i = 0; i < n; ++i)
+      for (std::size_t k = 0; k < set.obstacles.size(); ++k)
+        set.pairs.emplace_back(i, n + static_cast<std::uint32_t>(k));
   }
+  if (set.pairs.size() > limit) set.pairs.resize(limit);
   return set;
 }
 
 int run_check(const CheckOptions& opt) {
-  const Input in = open_input(opt.common.scene);
+  Input in = open_input(opt.common.scene);
+  in.read_mesh_files = opt.common.read_mesh_files;
   const Window w = effective_window(in, opt.common);
-  const Queries q = resolve_queries(opt.queries, in.has_velocity);
+  Queries q = resolve_queries(opt.queries, in.has_velocity);
+  q.triangles = in.has_mesh;
   const Format format = opt.format == "csv" ? Format::csv : Format::json;
   const int threads = resolve_threads(opt.common.threads);
   if (in.kind == InputKind::pairs_csv) {
@@ -663,6 +755,8 @@ int run_check(const CheckOptions& opt) {
 
 template PairResult<2> evaluate<2>(const Body<2>&, const Body<2>&, const Window&, const Queries&);
 template PairResult<3> evaluate<3>(const Body<3>&, const Body<3>&, const Window&, const Queries&);
+template PairResult<2> evaluate<2>(const Body<2>&, const Obstacle<2>&, const Window&, const Queries&);
+template PairResult<3> evaluate<3>(const Body<3>&, const Obstacle<3>&, const Window&, const Queries&);
 template PairResult<2> separated_result<2>();
 template PairResult<3> separated_result<3>();
 template PairSet<2> load_pair_set<2>(const Input&, const Common&, const Window&, bool, std::size_t, std::uint64_t);

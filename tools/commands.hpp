@@ -20,6 +20,7 @@ struct Queries {
   bool relation = true;
   bool contact = false;
   bool distance = false;  // signed distance: separation, or minus the penetration depth
+  bool triangles = false;  // the scene has meshes: CSV records end with the deciding triangles
 };
 
 template <int N>
@@ -27,6 +28,10 @@ struct PairResult {
   Relation relation = Relation::separated;
   Contact<double, N> contact;
   Distance<double, N> distance;
+  bool has_distance = true;  // false: b is an obstacle the library has no distance for
+  bool mesh = false;         // b is a mesh: the triangles below are its answer
+  std::int64_t relation_triangle = -1;  // the triangle deciding the relation (-1: none)
+  std::int64_t contact_triangle = -1;   // the triangle of the contact (-1: none)
 };
 
 // Evaluates one pair over the window: the relation and the signed distance at t0, and the
@@ -40,6 +45,13 @@ PairResult<N> evaluate(const Body<N>& a, const Body<N>& b, const Window& window,
 template <int N>
 PairResult<N> separated_result();
 
+// Evaluates a body against an obstacle as `evaluate` does two bodies, `b` given as at the
+// window start (obstacle_at(b, t0)): the relation (library classify, with the deciding
+// triangle for meshes) and, for half-spaces, the signed distance at t0; the first contact
+// in [t0, t1] (absolute time; the normal from the body towards the obstacle).
+template <int N>
+PairResult<N> evaluate(const Body<N>& a, const Obstacle<N>& b_at_t0, const Window& window, const Queries& queries);
+
 // Settings common to the commands.
 struct Common {
   std::string scene;
@@ -47,6 +59,7 @@ struct Common {
   std::optional<Window> window;      // --window overrides the scene's
   int threads = 0;                   // 0: all hardware threads
   Progress::Mode progress = Progress::Mode::automatic;
+  bool read_mesh_files = true;       // false: a scene naming a mesh file is bad input (fuzzing)
 };
 
 struct CheckOptions {
@@ -89,8 +102,9 @@ Window effective_window(const Input& in, const Common& common);
 template <int N>
 struct PairSet {
   std::vector<Body<N>> bodies;
-  std::vector<IndexPair> pairs;
-  bool pairs_from_broad_phase = false;
+  std::vector<Obstacle<N>> obstacles;
+  std::vector<IndexPair> pairs;        // (i, j): an obstacle when j >= bodies.size(), as in BodyScene
+  bool pairs_from_broad_phase = false;  // the body pairs; then every body-obstacle pair follows
 };
 
 template <int N>

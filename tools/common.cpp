@@ -2,9 +2,13 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <exception>
+#include <fstream>
 #include <mutex>
+#include <sstream>
 #include <thread>
 #include <vector>
 
@@ -117,6 +121,15 @@ bool parse_double(std::string_view s, double& out) {
     return r.ptr == s.data() + s.size();
   }
   return r.ec == std::errc() && r.ptr == s.data() + s.size();
+}
+
+std::string read_file(const std::string& path) {
+  std::ifstream f(path, std::ios::binary);
+  if (!f) throw IoError(path + ": cannot open: " + std::strerror(errno));
+  std::ostringstream ss;
+  ss << f.rdbuf();
+  if (f.bad()) throw IoError(path + ": read error");
+  return std::move(ss).str();
 }
 
 void parallel_for(std::size_t blocks, int threads, const std::function<void(std::size_t)>& body) {

@@ -79,6 +79,9 @@ void append_csv_field(std::string& out, std::string_view s);
 // "inf" are parsed, callers reject them). False when the field is not a number.
 bool parse_double(std::string_view s, double& out);
 
+// The whole file; IoError naming it when it cannot be opened or read.
+std::string read_file(const std::string& path);
+
 // Runs body(block) for block in [0, blocks) on up to `threads` threads (the caller's
 // thread included); blocks are handed out dynamically.
 void parallel_for(std::size_t blocks, int threads, const std::function<void(std::size_t)>& body);

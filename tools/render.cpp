@@ -16,6 +16,9 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <type_traits>
+#include <variant>
+#include <vector>
 
 extern char** environ;
 
@@ -28,6 +31,7 @@ const char* const palette[] = {"#1f77b4", "#2ca02c", "#9467bd", "#8c564b", "#e37
                                "#7f7f7f", "#bcbd22", "#17becf", "#ff7f0e", "#393b79"};
 constexpr int palette_size = 10;
 const char* const overlap_color = "#d62728";
+const char* const obstacle_color = "#555555";
 const char* const contact_color = "#000000";
 constexpr std::size_t max_legend_bodies = 12;
 constexpr std::size_t max_labels = 40;
@@ -106,6 +110,83 @@ struct Bounds {
   }
 };
 
+using Point2 = Eigen::Vector2d;
+
+// The part of `polygon` where n . (x - p) <= 0 (Sutherland-Hodgman against one line).
+std::vector<Point2> clip(const std::vector<Point2>& polygon, const Point2& n, const Point2& p) {
+  std::vector<Point2> out;
+  for (std::size_t i = 0; i < polygon.size(); ++i) {
+    const Point2& a = polygon[i];
+    const Point2& b = polygon[(i + 1) % polygon.size()];
+    const double fa = n.dot(a - p), fb = n.dot(b - p);
+    if (fa <= 0) out.push_back(a);
+    if ((fa < 0 && fb > 0) || (fa > 0 && fb < 0)) out.push_back(a + (b - a) * (fa / (fa - fb)));
+  }
+  return out;
+}
+
+// The convex hull of `points`, counter-clockwise (Andrew's monotone chain).
+std::vector<Point2> convex_hull(std::vector<Point2> points) {
+  std::sort(points.begin(), points.end(), [](const Point2& a, const Point2& b) {
+    return a[0] < b[0] || (a[0] == b[0] && a[1] < b[1]);
+  });
+  if (points.size() < 3) return points;
+  std::vector<Point2> hull(2 * points.size());
+  std::size_t k = 0;
+  const auto cross = [](const Point2& o, const Point2& a, const Point2& b) {
+    return (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0]);
+  };
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    while (k >= 2 && cross(hull[k - 2], hull[k - 1], points[i]) <= 0) --k;
+    hull[k++] = points[i];
+  }
+  for (std::size_t i = points.size() - 1, lower = k + 1; i-- > 0;) {
+    while (k >= lower && cross(hull[k - 2], hull[k - 1], points[i]) <= 0) --k;
+    hull[k++] = points[i];
+  }
+  hull.resize(k - 1);
+  return hull;
+}
+
+// An obstacle in the drawing plane: polygons (a triangle, a box's outline, a mesh's
+// triangles), or for a half-space the region its projection covers within the view.
+struct Shadow {
+  std::vector<std::vector<Point2>> polygons;
+  bool half_space = false;
+  Point2 normal, point;  // half_space: the region normal . (x - point) <= 0 ...
+  bool everywhere = false;  // ... or, in 3D with a normal off the plane, the whole view
+};
+
+template <int N>
+Shadow shadow(const Obstacle<N>& o, const Plane& p) {
+  Shadow s;
+  const auto project = [&](const Vec<double, N>& x) { return Point2(x[p.u], x[p.v]); };
+  std::visit(
+      [&](const auto& shape) {
+        using S = std::decay_t<decltype(shape)>;
+        if constexpr (std::is_same_v<S, HalfSpace<double, N>>) {
+          s.half_space = true;
+          s.normal = project(shape.normal());
+          s.point = project(shape.point());
+          // The projection of { n . x <= n . p } is all of the plane unless n lies in it.
+          if constexpr (N == 3) s.everywhere = shape.normal()[3 - p.u - p.v] != 0.0;
+        } else if constexpr (std::is_same_v<S, Triangle<double, N>>) {
+          s.polygons.push_back({project(shape.vertex(0)), project(shape.vertex(1)), project(shape.vertex(2))});
+        } else if constexpr (std::is_same_v<S, Box<double, N>>) {
+          std::vector<Point2> corners;
+          for (int k = 0; k < (1 << N); ++k) corners.push_back(project(shape.corner(k)));
+          s.polygons.push_back(convex_hull(std::move(corners)));
+        } else {
+          for (std::size_t k = 0; k < shape.triangle_count(); ++k) {
+            const Triangle<double, N> t = shape.triangle(k);
+            s.polygons.push_back({project(t.vertex(0)), project(t.vertex(1)), project(t.vertex(2))});
+          }
+        }
+      },
+      o.shape);
+  return s;
+}
+
 // Runs rsvg-convert with the SVG on its standard input, writing PNG to `png_path`.
 void svg_to_png(const std::string& svg, const std::string& png_path, const std::string& final_path) {
   int pipefd[2];
@@ -169,6 +250,13 @@ int render(const Input& in, const RenderOptions& opt, const Plane& plane) {
   PairSet<N> set = load_pair_set<N>(in, opt.common, w, contact, limit, opt.row);
   const auto& bodies = set.bodies;
   const std::size_t n = bodies.size();
+  const std::size_t m = set.obstacles.size();
+  std::vector<Obstacle<N>> obstacles_t0;
+  for (const auto& o : set.obstacles) obstacles_t0.push_back(obstacle_at<N>(o, w.t0));
+  // The id of pair member j: a body, or an obstacle from n on.
+  const auto id_of = [&](std::uint32_t j) -> const std::string& {
+    return j < n ? bodies[j].id : set.obstacles[j - n].id;
+  };
 
   // First contacts over the window.
   Queries cq;
@@ -181,7 +269,9 @@ int render(const Input& in, const RenderOptions& opt, const Plane& plane) {
     parallel_for((set.pairs.size() + block - 1) / block, threads, [&](std::size_t b) {
       const std::size_t end = std::min(set.pairs.size(), (b + 1) * block);
       for (std::size_t k = b * block; k < end; ++k)
-        contacts[k] = evaluate<N>(bodies[set.pairs[k].first], bodies[set.pairs[k].second], w, cq);
+        contacts[k] = set.pairs[k].second < n
+                          ? evaluate<N>(bodies[set.pairs[k].first], bodies[set.pairs[k].second], w, cq)
+                          : evaluate<N>(bodies[set.pairs[k].first], obstacles_t0[set.pairs[k].second - n], w, cq);
     });
   }
   double first = std::numeric_limits<double>::infinity();
@@ -198,8 +288,7 @@ int render(const Input& in, const RenderOptions& opt, const Plane& plane) {
     time_note = "--time";
   } else if (std::isfinite(first)) {
     T = first;
-    time_note = "first contact: " + bodies[set.pairs[first_pair].first].id + " and " +
-                bodies[set.pairs[first_pair].second].id;
+    time_note = "first contact: " + id_of(set.pairs[first_pair].first) + " and " + id_of(set.pairs[first_pair].second);
     if (in.kind == InputKind::pairs_csv) time_note = "first contact";
   }
   if (!std::isfinite(T)) throw UsageError("--time: must be finite");
@@ -214,9 +303,16 @@ int render(const Input& in, const RenderOptions& opt, const Plane& plane) {
       throw BadInput(in.path + ": body " + b.id + " at t = " + number_string(T) + ": " + e.what());
     }
   }
-  const std::vector<IndexPair> rel_pairs =
-      set.pairs_from_broad_phase ? broad_phase<N>(at_t, Window{0.0, 0.0}, false) : set.pairs;
-  std::vector<char> red(n, 0);
+  std::vector<Obstacle<N>> obstacles_at_t;
+  for (const auto& o : set.obstacles) obstacles_at_t.push_back(obstacle_at<N>(o, T));
+  std::vector<IndexPair> rel_pairs = set.pairs;
+  if (set.pairs_from_broad_phase) {
+    // The body pairs from the broad phase at T; the obstacle pairs as listed.
+    std::erase_if(rel_pairs, [&](const IndexPair& p) { return p.second < n; });
+    const std::vector<IndexPair> near = broad_phase<N>(at_t, Window{0.0, 0.0}, false);
+    rel_pairs.insert(rel_pairs.begin(), near.begin(), near.end());
+  }
+  std::vector<char> red(n + m, 0);  // bodies, then obstacles
   {
     Queries rq;
     rq.relation = true;
@@ -226,13 +322,17 @@ int render(const Input& in, const RenderOptions& opt, const Plane& plane) {
     parallel_for((rel_pairs.size() + block - 1) / block, threads, [&](std::size_t b) {
       const std::size_t end = std::min(rel_pairs.size(), (b + 1) * block);
       for (std::size_t k = b * block; k < end; ++k)
-        over[k] = is_overlap(evaluate<N>(at_t[rel_pairs[k].first], at_t[rel_pairs[k].second], Window{0.0, 0.0}, rq).relation);
+        over[k] = is_overlap(
+            (rel_pairs[k].second < n
+                 ? evaluate<N>(at_t[rel_pairs[k].first], at_t[rel_pairs[k].second], Window{0.0, 0.0}, rq)
+                 : evaluate<N>(at_t[rel_pairs[k].first], obstacles_at_t[rel_pairs[k].second - n], Window{0.0, 0.0}, rq))
+                .relation);
     });
     for (std::size_t k = 0; k < rel_pairs.size(); ++k)
       if (over[k]) red[rel_pairs[k].first] = red[rel_pairs[k].second] = 1;
   }
-  std::size_t n_red = 0;
-  for (const char r : red) n_red += r != 0;
+  std::size_t n_red = 0, n_red_obstacles = 0;
+  for (std::size_t i = 0; i < n + m; ++i) (i < n ? n_red : n_red_obstacles) += red[i] != 0;
 
   // Geometry in the drawing plane.
   bool any_moving = false;
@@ -260,6 +360,20 @@ int render(const Input& in, const RenderOptions& opt, const Plane& plane) {
   }
   for (const auto& r : contacts)
     if (has_contact_point(r.contact.status)) bounds.add(r.contact.point[plane.u], r.contact.point[plane.v]);
+  std::vector<Shadow> shadows;
+  for (const auto& o : obstacles_at_t) {
+    shadows.push_back(shadow<N>(o, plane));
+    const Shadow& s = shadows.back();
+    for (const auto& polygon : s.polygons)
+      for (const Point2& x : polygon) bounds.add(x[0], x[1]);
+    // A half-plane: the feet of the bodies' centers on its line.
+    if (s.half_space && !s.everywhere && s.normal.squaredNorm() > 0)
+      for (const Outline& b : shapes) {
+        const Point2 c(b.cu, b.cv);
+        const Point2 foot = c - s.normal * (s.normal.dot(c - s.point) / s.normal.squaredNorm());
+        bounds.add(foot[0], foot[1]);
+      }
+  }
   double span_u = bounds.umax - bounds.umin, span_v = bounds.vmax - bounds.vmin;
   double span = std::max(span_u, span_v);
   if (!(span > 0) || !std::isfinite(span)) span = 1.0;
@@ -275,8 +389,8 @@ int render(const Input& in, const RenderOptions& opt, const Plane& plane) {
   const double plot_w = span_u * scale, plot_h = span_v * scale;
   constexpr double title_h = 48, legend_w = 240, pad = 10, row_h = 18;
   const bool list_bodies = n <= max_legend_bodies;
-  const double legend_rows = (list_bodies ? static_cast<double>(n) : 1.0) + 1.0 + (any_moving ? 2.0 : 0.0) +
-                             (contact ? 2.0 : 0.0);
+  const double legend_rows = (list_bodies ? static_cast<double>(n) : 1.0) + 1.0 + (m > 0 ? 1.0 : 0.0) +
+                             (any_moving ? 2.0 : 0.0) + (contact ? 2.0 : 0.0);
   const double legend_h = 8 + 22 + 6 + legend_rows * row_h + pad;
   const double width = pad + plot_w + pad + legend_w;
   const double height = std::max(title_h + plot_h + pad, title_h + legend_h);
@@ -291,7 +405,8 @@ int render(const Input& in, const RenderOptions& opt, const Plane& plane) {
          fmt(height) + "\" viewBox=\"0 0 " + fmt(width) + " " + fmt(height) + "\" class=\"ellipsect-scene\"" +
          " data-dimension=\"" + std::to_string(N) + "\" data-plane=\"" + plane.name + "\" data-time=\"" +
          number_string(T) + "\" data-bodies=\"" + std::to_string(n) + "\" data-overlapping=\"" +
-         std::to_string(n_red) + "\">\n";
+         std::to_string(n_red) + "\" data-obstacles=\"" + std::to_string(m) + "\" data-obstacles-overlapping=\"" +
+         std::to_string(n_red_obstacles) + "\">\n";
   svg += "<defs><marker id=\"arrow\" viewBox=\"0 0 10 10\" refX=\"9\" refY=\"5\" markerWidth=\"7\" "
          "markerHeight=\"7\" orient=\"auto-start-reverse\"><path d=\"M 0 0 L 10 5 L 0 10 z\" fill=\"context-stroke\"/>"
          "</marker><marker id=\"arrow-black\" viewBox=\"0 0 10 10\" refX=\"9\" refY=\"5\" markerWidth=\"7\" "
@@ -326,6 +441,30 @@ int render(const Input& in, const RenderOptions& opt, const Plane& plane) {
     e += "/>\n";
     return e;
   };
+
+  // Obstacles at T, under everything else: polygons, half-planes clipped to the view.
+  if (m > 0) {
+    svg += "<g id=\"obstacles\">\n";
+    const std::vector<Point2> view = {Point2(bounds.umin, bounds.vmin), Point2(bounds.umax, bounds.vmin),
+                                      Point2(bounds.umax, bounds.vmax), Point2(bounds.umin, bounds.vmax)};
+    for (std::size_t k = 0; k < m; ++k) {
+      const Shadow& s = shadows[k];
+      std::vector<std::vector<Point2>> polygons = s.polygons;
+      if (s.half_space) polygons.push_back(s.everywhere ? view : clip(view, s.normal, s.point));
+      std::string d;
+      for (const auto& polygon : polygons) {
+        for (std::size_t i = 0; i < polygon.size(); ++i)
+          d += (i == 0 ? "M " : " L ") + fmt(sx(polygon[i][0])) + " " + fmt(sy(polygon[i][1]));
+        if (!polygon.empty()) d += " Z ";
+      }
+      const char* color = red[n + k] ? overlap_color : obstacle_color;
+      svg += "<path class=\"" + std::string(red[n + k] ? "obstacle overlapping" : "obstacle") + "\" data-id=\"" +
+             xml_escape(set.obstacles[k].id) + "\" data-type=\"" + obstacle_type<N>(set.obstacles[k]) + "\" d=\"" + d +
+             "\" fill=\"" + color + "\" fill-opacity=\"0.2\" fill-rule=\"nonzero\" stroke=\"" + color +
+             "\" stroke-width=\"1\" stroke-linejoin=\"round\"/>\n";
+    }
+    svg += "</g>\n";
+  }
 
   // Start positions and paths.
   svg += "<g id=\"paths\">\n";
@@ -366,8 +505,8 @@ int render(const Input& in, const RenderOptions& opt, const Plane& plane) {
     const double px = sx(c.point[plane.u]), py = sy(c.point[plane.v]);
     const double nu = c.normal[plane.u], nv = c.normal[plane.v];
     const double len = 36.0;
-    svg += "<g class=\"contact\" data-a=\"" + xml_escape(bodies[set.pairs[k].first].id) + "\" data-b=\"" +
-           xml_escape(bodies[set.pairs[k].second].id) + "\" data-time=\"" + number_string(c.time) + "\">";
+    svg += "<g class=\"contact\" data-a=\"" + xml_escape(id_of(set.pairs[k].first)) + "\" data-b=\"" +
+           xml_escape(id_of(set.pairs[k].second)) + "\" data-time=\"" + number_string(c.time) + "\">";
     if (std::hypot(nu, nv) > 1e-3)
       svg += "<line class=\"contact-normal\" x1=\"" + fmt(px) + "\" y1=\"" + fmt(py) + "\" x2=\"" +
              fmt(px + len * nu) + "\" y2=\"" + fmt(py - len * nv) + "\" stroke=\"" + contact_color +
@@ -407,6 +546,13 @@ int render(const Input& in, const RenderOptions& opt, const Plane& plane) {
          "\" fill-opacity=\"0.25\" stroke=\"" + overlap_color + "\"/>\n";
   legend_text(lx + 26, "overlapping at t (" + std::to_string(n_red) + " bodies)");
   ly += row_h;
+  if (m > 0) {
+    svg += "<rect x=\"" + fmt(lx) + "\" y=\"" + fmt(ly - 6) + "\" width=\"18\" height=\"12\" fill=\"" + obstacle_color +
+           "\" fill-opacity=\"0.2\" stroke=\"" + obstacle_color + "\"/>\n";
+    legend_text(lx + 26, "obstacles (" + std::to_string(m) + "; " + std::to_string(n_red_obstacles) +
+                             " overlapped, red)");
+    ly += row_h;
+  }
   if (any_moving) {
     svg += "<ellipse cx=\"" + fmt(lx + 9) + "\" cy=\"" + fmt(ly) + "\" rx=\"9\" ry=\"5\" fill=\"none\" stroke=\"#555\" "
            "stroke-dasharray=\"4 3\"/>\n";
@@ -447,7 +593,8 @@ int run_render(const RenderOptions& opt) {
     throw UsageError("render: -o OUT.svg (or OUT.png) is required");
   if (!ends_with(opt.output, ".svg") && !ends_with(opt.output, ".png"))
     throw UsageError("render: the output must end in .svg or .png, got " + opt.output);
-  const Input in = open_input(opt.common.scene);
+  Input in = open_input(opt.common.scene);
+  in.read_mesh_files = opt.common.read_mesh_files;
   Plane plane;
   plane.name = opt.plane;
   if (opt.plane == "xy") {

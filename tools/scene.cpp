@@ -1,6 +1,7 @@
 #include "scene.hpp"
 
 #include "common.hpp"
+#include "mesh_file.hpp"
 
 #include <Eigen/SVD>
 
@@ -12,7 +13,6 @@
 #include <fstream>
 #include <functional>
 #include <set>
-#include <sstream>
 
 namespace ellipsect::cli {
 
@@ -54,15 +54,6 @@ bool ends_with(const std::string& s, std::string_view suffix) {
   for (std::size_t i = 0; i < suffix.size(); ++i)
     if (std::tolower(static_cast<unsigned char>(s[s.size() - suffix.size() + i])) != suffix[i]) return false;
   return true;
-}
-
-std::string read_file(const std::string& path) {
-  std::ifstream f(path, std::ios::binary);
-  if (!f) throw IoError(path + ": cannot open: " + std::strerror(errno));
-  std::ostringstream ss;
-  ss << f.rdbuf();
-  if (f.bad()) throw IoError(path + ": read error");
-  return std::move(ss).str();
 }
 
 // Line and column (1-based) of byte offset `pos` in `text`.
@@ -249,31 +240,10 @@ std::string json_id(const JsonCtx& c, const json& j, const std::string& path) {
   fail(c.at(path), "expected a string (or an integer), got " + describe_type(j));
 }
 
+// The orientation keys of a body or box at `path` (at most one of angle, direction,
+// quaternion, rotation); none: the coordinate axes.
 template <int N>
-Body<N> json_body(const JsonCtx& c, const json& jb, std::size_t index, const std::string& dim_from) {
-  const std::string path = "$.bodies[" + std::to_string(index) + "]";
-  if (!jb.is_object()) fail(c.at(path), "expected an object, got " + describe_type(jb));
-  check_keys(c, jb, path,
-             {"id", "center", "radii", "radius", "angle", "direction", "quaternion", "rotation", "velocity", "comment"});
-  if (!jb.contains("id")) fail(c.at(path + ".id"), "missing (every body needs an id)");
-  std::string id = json_id(c, jb["id"], path + ".id");
-  if (!jb.contains("center")) fail(c.at(path + ".center"), "missing");
-  const Vec<double, N> center = json_vector<N>(c, jb["center"], path + ".center", dim_from.c_str());
-  Vec<double, N> radii;
-  if (jb.contains("radii") && jb.contains("radius"))
-    fail(c.at(path + ".radius"), "give either radii or radius, not both");
-  if (jb.contains("radii")) {
-    radii = json_vector<N>(c, jb["radii"], path + ".radii", dim_from.c_str());
-    for (int i = 0; i < N; ++i)
-      if (!(radii[i] > 0))
-        fail(c.at(path + ".radii[" + std::to_string(i) + "]"), "must be > 0, got " + number_string(radii[i]));
-  } else if (jb.contains("radius")) {
-    const double r = json_number(c, jb["radius"], path + ".radius");
-    if (!(r > 0)) fail(c.at(path + ".radius"), "must be > 0, got " + number_string(r));
-    radii.setConstant(r);
-  } else {
-    fail(c.at(path + ".radii"), "missing (give radii, or radius for a circle or sphere)");
-  }
+Orientation json_orientation(const JsonCtx& c, const json& jb, const std::string& path, const std::string& dim_from) {
   Orientation o;
   int orientations = 0;
   for (const char* key : {"angle", "direction", "quaternion", "rotation"}) {
@@ -315,9 +285,169 @@ Body<N> json_body(const JsonCtx& c, const json& jb, std::size_t index, const std
       }
     }
   }
+  return o;
+}
+
+template <int N>
+Body<N> json_body(const JsonCtx& c, const json& jb, std::size_t index, const std::string& dim_from) {
+  const std::string path = "$.bodies[" + std::to_string(index) + "]";
+  if (!jb.is_object()) fail(c.at(path), "expected an object, got " + describe_type(jb));
+  check_keys(c, jb, path,
+             {"id", "center", "radii", "radius", "angle", "direction", "quaternion", "rotation", "velocity", "comment"});
+  if (!jb.contains("id")) fail(c.at(path + ".id"), "missing (every body needs an id)");
+  std::string id = json_id(c, jb["id"], path + ".id");
+  if (!jb.contains("center")) fail(c.at(path + ".center"), "missing");
+  const Vec<double, N> center = json_vector<N>(c, jb["center"], path + ".center", dim_from.c_str());
+  Vec<double, N> radii;
+  if (jb.contains("radii") && jb.contains("radius"))
+    fail(c.at(path + ".radius"), "give either radii or radius, not both");
+  if (jb.contains("radii")) {
+    radii = json_vector<N>(c, jb["radii"], path + ".radii", dim_from.c_str());
+    for (int i = 0; i < N; ++i)
+      if (!(radii[i] > 0))
+        fail(c.at(path + ".radii[" + std::to_string(i) + "]"), "must be > 0, got " + number_string(radii[i]));
+  } else if (jb.contains("radius")) {
+    const double r = json_number(c, jb["radius"], path + ".radius");
+    if (!(r > 0)) fail(c.at(path + ".radius"), "must be > 0, got " + number_string(r));
+    radii.setConstant(r);
+  } else {
+    fail(c.at(path + ".radii"), "missing (give radii, or radius for a circle or sphere)");
+  }
+  const Orientation o = json_orientation<N>(c, jb, path, dim_from);
   Vec<double, N> velocity = Vec<double, N>::Zero();
   if (jb.contains("velocity")) velocity = json_vector<N>(c, jb["velocity"], path + ".velocity", dim_from.c_str());
   return Body<N>{std::move(id), build_shape<N>(center, radii, o, [w = c.at(path)] { return w; }), velocity};
+}
+
+// What an InputError says of its field, without the "ellipsect: <field>: " prefix.
+std::string input_error_detail(const InputError& e) {
+  const std::string prefix = "ellipsect: " + e.field() + ": ";
+  const std::string what = e.what();
+  return what.starts_with(prefix) ? what.substr(prefix.size()) : what;
+}
+
+const json& required(const JsonCtx& c, const json& j, const std::string& path, const char* key) {
+  if (!j.contains(key)) fail(c.at(path + "." + key), "missing");
+  return j[key];
+}
+
+// The `index` of a mesh's triangle array at `path`: an integer (its range is from_arrays'
+// to check).
+std::int64_t json_index(const JsonCtx& c, const json& j, const std::string& path) {
+  if (!j.is_number_integer()) fail(c.at(path), "expected a vertex index (an integer), got " + describe_type(j));
+  if (j.is_number_unsigned() && j.get<std::uint64_t>() > static_cast<std::uint64_t>(INT64_MAX))
+    fail(c.at(path), "vertex index " + j.dump() + " is out of range");
+  return j.get<std::int64_t>();
+}
+
+// The mesh file an obstacle names, read relative to the scene's directory.
+template <int N>
+TriangleMesh<double, N> json_mesh_file(const JsonCtx& c, const json& jf, const std::string& path, const Input& in) {
+  if (!jf.is_string()) fail(c.at(path), "expected a file name, got " + describe_type(jf));
+  if constexpr (N == 2) {
+    fail(c.at(path), "mesh files (OBJ, STL) are 3D and this scene is 2D; give a 2D mesh inline (vertices, triangles)");
+  } else {
+    if (!in.read_mesh_files) fail(c.at(path), "mesh files are not read here");
+    std::string file = jf.get<std::string>();
+    const auto slash = in.path.find_last_of('/');
+    if (!file.starts_with('/') && slash != std::string::npos) file = in.path.substr(0, slash + 1) + file;
+    try {
+      const MeshArrays m = read_mesh_file(file);
+      return TriangleMesh<double, 3>::from_arrays(m.vertices, m.triangles);
+    } catch (const IoError& e) {
+      throw IoError(c.at(path) + ": " + e.what());
+    } catch (const BadInput& e) {
+      fail(c.at(path), e.what());
+    } catch (const InputError& e) {
+      fail(c.at(path), file + ": " + e.field() + ": " + input_error_detail(e));
+    }
+  }
+}
+
+template <int N>
+Obstacle<N> json_obstacle(const JsonCtx& c, const json& jo, std::size_t index, const std::string& dim_from,
+                          const Input& in) {
+  const std::string path = "$.obstacles[" + std::to_string(index) + "]";
+  const char* dim = dim_from.c_str();
+  if (!jo.is_object()) fail(c.at(path), "expected an object, got " + describe_type(jo));
+  Obstacle<N> o{json_id(c, required(c, jo, path, "id"), path + ".id"), {}, Vec<double, N>::Zero()};
+  const json& jt = required(c, jo, path, "type");
+  const std::string type = jt.is_string() ? jt.get<std::string>() : std::string();
+  if (jo.contains("velocity")) o.velocity = json_vector<N>(c, jo["velocity"], path + ".velocity", dim);
+  // The library's InputErrors name its fields as this format does ("normal", "vertices[1][0]",
+  // "half_extents[2]", "triangles[4][1]"): they are reported under the obstacle's path.
+  try {
+    if (type == "half_space") {
+      check_keys(c, jo, path, {"id", "type", "point", "normal", "velocity", "comment"});
+      o.shape = make_half_space<double, N>(json_vector<N>(c, required(c, jo, path, "point"), path + ".point", dim),
+                                           json_vector<N>(c, required(c, jo, path, "normal"), path + ".normal", dim));
+    } else if (type == "triangle") {
+      check_keys(c, jo, path, {"id", "type", "vertices", "velocity", "comment"});
+      const json& jv = required(c, jo, path, "vertices");
+      if (!jv.is_array() || jv.size() != 3)
+        fail(c.at(path + ".vertices"), "expected 3 vertices, got " +
+                                           (jv.is_array() ? std::to_string(jv.size()) : describe_type(jv)));
+      std::array<Vec<double, N>, 3> v;
+      for (std::size_t k = 0; k < 3; ++k)
+        v[k] = json_vector<N>(c, jv[k], path + ".vertices[" + std::to_string(k) + "]", dim);
+      o.shape = make_triangle<double, N>(v[0], v[1], v[2]);
+    } else if (type == "box") {
+      check_keys(c, jo, path,
+                 {"id", "type", "center", "half_extents", "angle", "direction", "quaternion", "rotation", "velocity",
+                  "comment"});
+      const Vec<double, N> center = json_vector<N>(c, required(c, jo, path, "center"), path + ".center", dim);
+      const Vec<double, N> half =
+          json_vector<N>(c, required(c, jo, path, "half_extents"), path + ".half_extents", dim);
+      // The axes exactly as a body with this orientation has them.
+      const Mat<double, N> axes =
+          build_shape<N>(center, Vec<double, N>::Ones(), json_orientation<N>(c, jo, path, dim_from),
+                         [w = c.at(path)] { return w; })
+              .axes();
+      o.shape = make_box<double, N>(center, axes, half);
+    } else if (type == "mesh") {
+      check_keys(c, jo, path, {"id", "type", "vertices", "triangles", "file", "velocity", "comment"});
+      if (jo.contains("file")) {
+        if (jo.contains("vertices") || jo.contains("triangles"))
+          fail(c.at(path + ".file"), "give either a file or vertices and triangles, not both");
+        o.shape = json_mesh_file<N>(c, jo["file"], path + ".file", in);
+      } else {
+        const json& jv = required(c, jo, path, "vertices");
+        const json& jt3 = required(c, jo, path, "triangles");
+        if (!jv.is_array()) fail(c.at(path + ".vertices"), "expected an array of vertices, got " + describe_type(jv));
+        if (!jt3.is_array())
+          fail(c.at(path + ".triangles"), "expected an array of [i, j, k] index triples, got " + describe_type(jt3));
+        std::vector<double> vertices;
+        vertices.reserve(jv.size() * N);
+        for (std::size_t k = 0; k < jv.size(); ++k) {
+          const Vec<double, N> v = json_vector<N>(c, jv[k], path + ".vertices[" + std::to_string(k) + "]", dim);
+          vertices.insert(vertices.end(), v.data(), v.data() + N);
+        }
+        std::vector<std::int64_t> triangles;
+        triangles.reserve(jt3.size() * 3);
+        for (std::size_t k = 0; k < jt3.size(); ++k) {
+          const std::string tpath = path + ".triangles[" + std::to_string(k) + "]";
+          if (!jt3[k].is_array() || jt3[k].size() != 3)
+            fail(c.at(tpath), "expected 3 vertex indices [i, j, k], got " + excerpt(jt3[k]));
+          for (std::size_t j = 0; j < 3; ++j)
+            triangles.push_back(json_index(c, jt3[k][j], tpath + "[" + std::to_string(j) + "]"));
+        }
+        o.shape = TriangleMesh<double, N>::from_arrays(vertices, triangles);
+      }
+    } else {
+      fail(c.at(path + ".type"), "unknown obstacle type " + excerpt(jt) + " (half_space, triangle, box or mesh)");
+    }
+  } catch (const InputError& e) {
+    fail(c.at(path + "." + e.field()), input_error_detail(e));
+  }
+  return o;
+}
+
+// The pair (i, j) of ids, checked: not one body twice, an obstacle only second.
+void check_pair(const std::string& where, std::uint32_t i, std::uint32_t j, std::uint32_t bodies,
+                const std::string& first_id) {
+  if (i >= bodies)
+    fail(where, "\"" + first_id + "\" is an obstacle: a pair is two bodies or a body and an obstacle, the obstacle second");
+  if (i == j) fail(where, "pairs a body with itself");
 }
 
 Input open_json(const std::string& path) {
@@ -359,7 +489,7 @@ Input open_json(const std::string& path) {
   const JsonCtx c{path};
   const json& j = in.json;
   if (!j.is_object()) fail(c.at("$"), "expected a JSON object with a \"bodies\" array, got " + describe_type(j));
-  check_keys(c, j, "$", {"dimension", "bodies", "pairs", "time_window", "title", "comment"});
+  check_keys(c, j, "$", {"dimension", "bodies", "obstacles", "pairs", "time_window", "title", "comment"});
   if (!j.contains("bodies")) fail(c.at("$.bodies"), "missing");
   const json& bodies = j["bodies"];
   if (!bodies.is_array()) fail(c.at("$.bodies"), "expected an array of bodies, got " + describe_type(bodies));
@@ -380,6 +510,16 @@ Input open_json(const std::string& path) {
   }
   for (std::size_t i = 0; i < bodies.size(); ++i)
     if (bodies[i].is_object() && bodies[i].contains("velocity")) in.has_velocity = true;
+  if (j.contains("obstacles")) {
+    const json& obstacles = j["obstacles"];
+    if (!obstacles.is_array()) fail(c.at("$.obstacles"), "expected an array of obstacles, got " + describe_type(obstacles));
+    for (const json& o : obstacles) {
+      in.has_obstacles = true;
+      if (!o.is_object()) continue;  // load_bodies names it
+      in.has_velocity = in.has_velocity || o.contains("velocity");
+      in.has_mesh = in.has_mesh || (o.contains("type") && o["type"] == "mesh");
+    }
+  }
   if (j.contains("time_window")) {
     const json& w = j["time_window"];
     if (!w.is_array() || w.size() != 2)
@@ -613,11 +753,53 @@ Input open_input(const std::string& path) {
 }
 
 template <int N>
-std::unordered_map<std::string, std::uint32_t> id_index(const std::vector<Body<N>>& bodies) {
+std::unordered_map<std::string, std::uint32_t> id_index(const std::vector<Body<N>>& bodies,
+                                                        const std::vector<Obstacle<N>>& obstacles) {
   std::unordered_map<std::string, std::uint32_t> ids;
-  ids.reserve(bodies.size() * 2);
+  ids.reserve((bodies.size() + obstacles.size()) * 2);
   for (std::size_t i = 0; i < bodies.size(); ++i) ids.emplace(bodies[i].id, static_cast<std::uint32_t>(i));
+  for (std::size_t k = 0; k < obstacles.size(); ++k)
+    ids.emplace(obstacles[k].id, static_cast<std::uint32_t>(bodies.size() + k));
   return ids;
+}
+
+template <int N>
+const char* obstacle_type(const Obstacle<N>& o) {
+  static const char* const names[] = {"half_space", "triangle", "box", "mesh"};
+  return names[o.shape.index()];
+}
+
+template <int N>
+Obstacle<N> obstacle_at(const Obstacle<N>& o, double t) {
+  if (t == 0.0 || o.velocity.isZero()) return o;
+  const Vec<double, N> offset = o.velocity * t;
+  Obstacle<N> moved{o.id, {}, o.velocity};
+  try {
+    std::visit(
+        [&](const auto& shape) {
+          using S = std::decay_t<decltype(shape)>;
+          if constexpr (std::is_same_v<S, TriangleMesh<double, N>>) {
+            std::vector<double> vertices;
+            std::vector<std::int64_t> triangles;
+            vertices.reserve(shape.triangle_count() * 3 * N);
+            for (std::size_t k = 0; k < shape.triangle_count(); ++k) {
+              const Triangle<double, N> tri = shape.triangle(k);
+              for (int j = 0; j < 3; ++j) {
+                const Vec<double, N> v = tri.vertex(j) + offset;
+                vertices.insert(vertices.end(), v.data(), v.data() + N);
+                triangles.push_back(static_cast<std::int64_t>(3 * k) + j);
+              }
+            }
+            moved.shape = TriangleMesh<double, N>::from_arrays(vertices, triangles);
+          } else {
+            moved.shape = shape.translated(offset);
+          }
+        },
+        o.shape);
+  } catch (const InputError& e) {
+    throw BadInput("obstacle " + o.id + " at t = " + number_string(t) + ": " + e.what());
+  }
+  return moved;
 }
 
 template <int N>
@@ -628,33 +810,45 @@ BodyScene<N> load_bodies(const Input& in) {
     const json& bodies = in.json["bodies"];
     const std::string dim_from =
         in.json.contains("dimension") ? "from $.dimension" : "from $.bodies[0].center";
-    std::unordered_map<std::string, std::size_t> seen;
+    std::unordered_map<std::string, std::string> seen;  // id -> its JSON path
+    const auto unique = [&](const std::string& id, const std::string& path) {
+      const auto [it, fresh] = seen.emplace(id, path);
+      if (!fresh) fail(c.at(path + ".id"), "duplicate id \"" + id + "\" (also " + it->second + ")");
+    };
     for (std::size_t i = 0; i < bodies.size(); ++i) {
       Body<N> b = json_body<N>(c, bodies[i], i, dim_from);
-      const auto [it, fresh] = seen.emplace(b.id, i);
-      if (!fresh)
-        fail(c.at("$.bodies[" + std::to_string(i) + "].id"),
-             "duplicate id \"" + b.id + "\" (also $.bodies[" + std::to_string(it->second) + "])");
+      unique(b.id, "$.bodies[" + std::to_string(i) + "]");
       scene.bodies.push_back(std::move(b));
+    }
+    if (in.has_obstacles) {
+      const json& obstacles = in.json["obstacles"];
+      for (std::size_t k = 0; k < obstacles.size(); ++k) {
+        Obstacle<N> o = json_obstacle<N>(c, obstacles[k], k, dim_from, in);
+        unique(o.id, "$.obstacles[" + std::to_string(k) + "]");
+        scene.obstacles.push_back(std::move(o));
+      }
     }
     if (in.json.contains("pairs")) {
       const json& pairs = in.json["pairs"];
       if (!pairs.is_array()) fail(c.at("$.pairs"), "expected an array of [id, id] pairs, got " + describe_type(pairs));
       scene.pairs_listed = true;
-      const auto ids = id_index<N>(scene.bodies);
+      const auto ids = id_index<N>(scene.bodies, scene.obstacles);
+      const auto n_bodies = static_cast<std::uint32_t>(scene.bodies.size());
       for (std::size_t k = 0; k < pairs.size(); ++k) {
         const std::string path = "$.pairs[" + std::to_string(k) + "]";
         const json& p = pairs[k];
         if (!p.is_array() || p.size() != 2) fail(c.at(path), "expected [id, id], got " + excerpt(p));
         std::uint32_t ij[2];
+        std::string first_id;
         for (std::size_t s = 0; s < 2; ++s) {
           const std::string spath = path + "[" + std::to_string(s) + "]";
           const std::string id = json_id(c, p[s], spath);
           const auto it = ids.find(id);
-          if (it == ids.end()) fail(c.at(spath), "unknown body id \"" + id + "\"");
+          if (it == ids.end()) fail(c.at(spath), "unknown id \"" + id + "\" (no body or obstacle has it)");
           ij[s] = it->second;
+          if (s == 0) first_id = id;
         }
-        if (ij[0] == ij[1]) fail(c.at(path), "pairs a body with itself");
+        check_pair(c.at(path), ij[0], ij[1], n_bodies, first_id);
         scene.pairs.emplace_back(ij[0], ij[1]);
       }
     }
@@ -686,8 +880,9 @@ BodyScene<N> load_bodies(const Input& in) {
   return scene;
 }
 
-PairsFile::PairsFile(const std::string& path, const std::unordered_map<std::string, std::uint32_t>& ids)
-    : reader_(path), ids_(ids) {
+PairsFile::PairsFile(const std::string& path, const std::unordered_map<std::string, std::uint32_t>& ids,
+                     std::uint32_t bodies)
+    : reader_(path), ids_(ids), bodies_(bodies) {
   std::uint64_t line_number = 0;
   if (!reader_.next(line_, line_number)) fail(path, "empty file (expected a CSV header line a,b)");
   const std::string err = split_csv(line_, fields_, scratch_);
@@ -723,10 +918,10 @@ std::size_t PairsFile::read(std::vector<IndexPair>& out, std::size_t max) {
       if (id.empty()) fail(where + ": column " + name, "missing value");
       check_utf8(where + ": column " + name, id);
       const auto it = ids_.find(std::string(id));
-      if (it == ids_.end()) fail(where + ": column " + name, "unknown body id \"" + std::string(id) + "\"");
+      if (it == ids_.end()) fail(where + ": column " + name, "unknown id \"" + std::string(id) + "\" (no body or obstacle has it)");
       ij[s] = it->second;
     }
-    if (ij[0] == ij[1]) fail(where, "pairs a body with itself");
+    check_pair(where, ij[0], ij[1], bodies_, std::string(trim(fields_[static_cast<std::size_t>(col_a_)])));
     out.emplace_back(ij[0], ij[1]);
     ++n;
     ++rows_;
@@ -782,7 +977,10 @@ void load_pair_rows(const Input& in, std::size_t limit, std::vector<Body<N>>& bo
 
 #define ELLIPSECT_CLI_INSTANTIATE(N)                                                                        \
   template BodyScene<N> load_bodies<N>(const Input&);                                                        \
-  template std::unordered_map<std::string, std::uint32_t> id_index<N>(const std::vector<Body<N>>&);          \
+  template std::unordered_map<std::string, std::uint32_t> id_index<N>(const std::vector<Body<N>>&,            \
+                                                                      const std::vector<Obstacle<N>>&);     \
+  template const char* obstacle_type<N>(const Obstacle<N>&);                                                 \
+  template Obstacle<N> obstacle_at<N>(const Obstacle<N>&, double);                                           \
   template PairColumns<N> pair_columns<N>(const Input&);                                                     \
   template std::pair<Body<N>, Body<N>> parse_pair_row<N>(std::string_view, std::uint64_t, const PairColumns<N>&, \
                                                          const std::string&, RowScratch&);                    \

@@ -7,8 +7,12 @@
 
 #include "csv.hpp"
 
+#include <ellipsect/box.hpp>
 #include <ellipsect/broad_phase.hpp>
+#include <ellipsect/half_space.hpp>
+#include <ellipsect/mesh.hpp>
 #include <ellipsect/shapes.hpp>
+#include <ellipsect/triangle.hpp>
 
 #include <nlohmann/json.hpp>
 
@@ -18,6 +22,7 @@
 #include <string>
 #include <unordered_map>
 #include <utility>
+#include <variant>
 #include <vector>
 
 namespace ellipsect::cli {
@@ -31,6 +36,24 @@ struct Body {
   Ellipsoid<double, N> shape;
   Vec<double, N> velocity;
 };
+
+// An obstacle of a JSON scene: a half-space (half-plane), a triangle, an oriented box or a
+// triangle mesh, moving as a whole at a constant velocity (`shape` is its place at time 0).
+template <int N>
+struct Obstacle {
+  std::string id;
+  std::variant<HalfSpace<double, N>, Triangle<double, N>, Box<double, N>, TriangleMesh<double, N>> shape;
+  Vec<double, N> velocity;
+};
+
+// "half_space", "triangle", "box" or "mesh": the obstacle's `type` in the scene.
+template <int N>
+const char* obstacle_type(const Obstacle<N>& o);
+
+// The obstacle at time t: shape moved by t * velocity (a mesh rebuilt, its triangles keeping
+// their indices). Throws BadInput naming the obstacle where that leaves the range of double.
+template <int N>
+Obstacle<N> obstacle_at(const Obstacle<N>& o, double t);
 
 // The time window [t0, t1] (t1 may be +infinity) in which first contact is searched; the
 // relation is reported at t0.
@@ -55,31 +78,40 @@ struct Input {
   nlohmann::json json;               // kind json
   std::vector<std::string> columns;  // kind *_csv: header fields
   std::uint64_t header_line = 0;     // kind *_csv: line number of the header
+  bool has_obstacles = false;        // kind json: an "obstacles" array with at least one
+  bool has_mesh = false;             // kind json: some obstacle is a mesh
+  bool read_mesh_files = true;       // false: a mesh "file" is bad input (the scene fuzz target)
 };
 
 // Opens a scene: JSON when the name ends in .json (or, with another ending, the first
 // character is '{'), else CSV; a CSV header with a_x is a pairs CSV, with x a bodies CSV.
 Input open_input(const std::string& path);
 
+// Pair (i, j) of a scene with n bodies: bodies i and j when j < n, else body i and obstacle
+// j - n (an obstacle is always second).
 template <int N>
 struct BodyScene {
   std::vector<Body<N>> bodies;
+  std::vector<Obstacle<N>> obstacles;  // JSON only
   bool pairs_listed = false;     // JSON "pairs" present
-  std::vector<IndexPair> pairs;  // indices into bodies, file order
+  std::vector<IndexPair> pairs;  // file order
 };
 
-// Bodies (and listed pairs) of a JSON scene or a bodies CSV.
+// Bodies, obstacles (and listed pairs) of a JSON scene, or the bodies of a bodies CSV. Mesh
+// files are read relative to the scene's directory.
 template <int N>
 BodyScene<N> load_bodies(const Input& in);
 
-// Map from body id to index.
+// Map from id to index: bodies 0..n-1, then obstacles n, n + 1, ...
 template <int N>
-std::unordered_map<std::string, std::uint32_t> id_index(const std::vector<Body<N>>& bodies);
+std::unordered_map<std::string, std::uint32_t> id_index(const std::vector<Body<N>>& bodies,
+                                                        const std::vector<Obstacle<N>>& obstacles = {});
 
-// A pairs file: CSV with columns a,b (body ids), one pair per row, streamed.
+// A pairs file: CSV with columns a,b (ids), one pair per row, streamed. `bodies`: the
+// number of bodies; ids at or after it (id_index) are obstacles, allowed in column b only.
 class PairsFile {
 public:
-  PairsFile(const std::string& path, const std::unordered_map<std::string, std::uint32_t>& ids);
+  PairsFile(const std::string& path, const std::unordered_map<std::string, std::uint32_t>& ids, std::uint32_t bodies);
   // Appends up to `max` pairs to `out`; returns how many (0 at the end).
   std::size_t read(std::vector<IndexPair>& out, std::size_t max);
   double progress() const;
@@ -88,6 +120,7 @@ public:
 private:
   LineReader reader_;
   const std::unordered_map<std::string, std::uint32_t>& ids_;
+  std::uint32_t bodies_;
   int col_a_ = -1, col_b_ = -1;
   std::size_t n_columns_ = 0;
   std::uint64_t rows_ = 0;

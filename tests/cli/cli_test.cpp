@@ -1014,13 +1014,13 @@ TEST(CliBadInput, UnknownPairIds) {
   expect_bad_input({"unknown.json",
                     R"({"bodies": [{"id": "a", "center": [0, 0], "radius": 1}, {"id": "b", "center": [3, 0], "radius": 1}],
                         "pairs": [["a", "b"], ["a", "c"]]})",
-                    {"$.pairs[1][1]: unknown body id \"c\""}}, dir);
+                    {"$.pairs[1][1]: unknown id \"c\" (no body or obstacle has it)"}}, dir);
   expect_bad_input({"dup.json",
                     R"({"bodies": [{"id": "a", "center": [0, 0], "radius": 1}, {"id": "a", "center": [3, 0], "radius": 1}]})",
                     {"$.bodies[1].id: duplicate id \"a\""}}, dir);
   write_file(dir / "pairs.csv", "a,b\na,b\nb,zz\n");
   expect_bad_input({"bodies.csv", "id,x,y,rx,ry\na,0,0,1,1\nb,3,0,1,1\n",
-                    {"pairs.csv:3: column b: unknown body id \"zz\""},
+                    {"pairs.csv:3: column b: unknown id \"zz\""},
                     {"--pairs", (dir / "pairs.csv").string()},
                     "pairs.csv"}, dir);
 }
