@@ -63,7 +63,7 @@ class View {
     c.arc(x, y, radius, 0, 2 * Math.PI);
     if (ring) { c.strokeStyle = color; c.lineWidth = 2; c.stroke(); } else { c.fillStyle = color; c.fill(); }
   }
-  polygon(flat, color, width = 1) {  // flat: x0, y0, x1, y1, ... (closed)
+  polygon(flat, color, width = 1, fill = null) {  // flat: x0, y0, x1, y1, ... (closed)
     const c = this.ctx;
     c.beginPath();
     for (let i = 0; i < flat.length; i += 2) {
@@ -71,8 +71,10 @@ class View {
       if (i === 0) c.moveTo(x, y); else c.lineTo(x, y);
     }
     c.closePath();
+    if (fill) { c.fillStyle = fill; c.fill(); }
     c.strokeStyle = color;
     c.lineWidth = width;
+    c.lineJoin = 'round';
     c.stroke();
   }
   arrow(from, to, color) {
@@ -87,9 +89,9 @@ class View {
     c.fillStyle = color;
     c.fill();
   }
-  label(text, color = '#222', [x, y] = [10, 20]) {
+  label(text, color = '#222', [x, y] = [10, 20], size = 15) {
     this.ctx.fillStyle = color;
-    this.ctx.font = 'bold 15px system-ui, sans-serif';
+    this.ctx.font = `bold ${size}px system-ui, sans-serif`;
     this.ctx.fillText(text, x, y);
   }
 }
@@ -476,6 +478,76 @@ function slideDemo() {
   });
 }
 
+// A small level of triangles (segments where an index repeats): a floor with a ramp and a
+// step, a slope, two blocks with a narrow gap between them, a triangular block, a post and a
+// slanted ceiling. The library moves the ellipse through it towards the target, sliding
+// along what it meets (slide.hpp, mesh.hpp).
+function levelMesh() {
+  const vertices = [], triangles = [];
+  const piece = (points, tris) => {
+    tris.forEach((t) => triangles.push(t.map((i) => vertices.length + i)));
+    vertices.push(...points);
+  };
+  const quad = (...points) => piece(points, [[0, 1, 2], [0, 2, 3]]);
+  quad([-7, -5], [-1, -5], [-1, -4], [-7, -4]);                // floor
+  quad([-1, -5], [2, -5], [2, -3.25], [-1, -3.25]);            // a step up
+  quad([2, -5], [7, -5], [7, -1.5], [2, -3.25]);               // slope
+  piece([[-6, -4], [-3.5, -4], [-3.5, -3.25]], [[0, 1, 2]]);   // ramp
+  quad([-5, 0.5], [-1.5, 0.5], [-1.5, 1.25], [-5, 1.25]);      // blocks with a gap
+  quad([-0.25, 0.5], [3, 0.5], [3, 1.25], [-0.25, 1.25]);
+  piece([[3.5, 1.75], [6, 1.75], [4.75, 3]], [[0, 1, 2]]);     // triangular block
+  piece([[5.5, -0.5], [5.5, 1]], [[0, 1, 1]]);                 // post
+  piece([[-6.5, 3], [-3, 4.25]], [[0, 1, 1]]);                 // ceiling
+  return {vertices, triangles};
+}
+
+function meshSlideDemo() {
+  const e = {cx: 4.5, cy: -1, angle: 0.3, r0: 1, r1: 0.5}, target = {x: 0, y: -4.5};
+  const level = levelMesh();
+  const corners = (k) => level.triangles[k].flatMap((i) => level.vertices[i]);
+  const params = () => {
+    const out = {...flatten('e', e), tx: target.x, ty: target.y,
+                 vertices: level.vertices.length, triangles: level.triangles.length};
+    level.vertices.forEach(([x, y], k) => Object.assign(out, {[`v${k}.x`]: x, [`v${k}.y`]: y}));
+    level.triangles.forEach(([a, b, c], k) => Object.assign(out, {[`t${k}.a`]: a, [`t${k}.b`]: b, [`t${k}.c`]: c}));
+    return out;
+  };
+  return new Demo('mesh_slide', {
+    params,
+    handles: () => [...ellipseHandles('e', e), handle('target', () => [target.x, target.y], ([x, y]) => { target.x = x; target.y = y; })],
+    draw(v, a) {
+      const indices = (list) => new Set(list ? list.split(',').map(Number) : []);
+      const touched = indices(a.touched), hit = indices(a.hits), inside = !['separated', 'touching'].includes(a.relation);
+      level.triangles.forEach((_, k) => {
+        const red = touched.has(k) || (inside && k === a['relation.triangle']);
+        v.polygon(corners(k), red || hit.has(k) ? RED : '#777', hit.has(k) ? 3 : 2, red ? 'rgba(220,0,0,0.3)' : 'rgba(0,0,0,0.15)');
+      });
+      level.triangles.forEach((t, k) => {  // the index, at the centroid
+        const [x, y] = v.px([0, 1].map((j) => t.reduce((sum, i) => sum + level.vertices[i][j], 0) / 3));
+        v.label(String(k), '#555', [x - 4, y + 4], 11);
+      });
+      const end = pt(a.end), stopped = a.status !== 'moved';
+      v.ellipse(e, GREY, {dash: [5, 4]});
+      v.ellipse({...e, cx: target.x, cy: target.y}, '#ccc', {dash: [2, 4]});
+      v.segment([e.cx, e.cy], [target.x, target.y], '#ccc', 1);
+      for (let i = 2; i < a.path.length; i += 2) {
+        v.segment(pt(a.path, i - 2), pt(a.path, i), ORANGE, 2);
+        v.dot(pt(a.path, i), ORANGE, {radius: 3});
+      }
+      v.ellipse({...e, cx: end[0], cy: end[1]}, stopped ? RED : GREEN, {width: 3});
+      for (let i = 0; i < a['hits.points'].length; i += 2) v.dot(pt(a['hits.points'], i), RED, {ring: true});
+      for (let i = 0; i < a['touched.points'].length; i += 2) v.dot(pt(a['touched.points'], i), RED);
+      this.drawHandles();
+    },
+    headline(a) {
+      if (a.status === 'overlapping_at_start') return [`The ellipse starts inside triangle ${a['relation.triangle']}: not moved.`, 'failed'];
+      if (a.status === 'moved') return ['Moved the whole way in 1 round: nothing in between.', 'no_collision'];
+      return [`${a.status === 'slid' ? 'Slid' : 'Blocked'} in ${a.rounds} round(s), ${a.contacts} ending at a contact` +
+              `${a.hits ? ` (triangles ${a.hits})` : ''}; moved ${format(a.moved)}.`, 'collision'];
+    },
+  });
+}
+
 // ---- start --------------------------------------------------------------------------
 
 const demos = {};
@@ -498,7 +570,8 @@ window.ellipsectDemo = {
 
 createEllipsect().then((m) => {
   Module = m;
-  for (const make of [ellipseCircleDemo, segmentCircleDemo, polygonalDemo, sweptDemo, relationDemo, slideDemo]) {
+  for (const make of [ellipseCircleDemo, segmentCircleDemo, polygonalDemo, sweptDemo, relationDemo, slideDemo,
+                      meshSlideDemo]) {
     const d = make();
     demos[d.id] = d;
     d.update();

@@ -3,6 +3,8 @@
 #include <ellipsect/ellipsect.hpp>
 
 #include <algorithm>
+#include <cmath>
+#include <cstdint>
 #include <stdexcept>
 
 namespace ellipsect::web {
@@ -35,6 +37,13 @@ std::vector<double> list(const std::vector<Vec2<double>>& vs) {
 }
 
 std::string label(std::string_view s) { return std::string(s); }
+
+// Indices as a label: "3,0,12".
+std::string indices(const std::vector<int>& ks) {
+  std::string out;
+  for (const int k : ks) out += (out.empty() ? "" : ",") + std::to_string(k);
+  return out;
+}
 
 // The seed's demo 1: the closed form's foot of the normal from the circle's center; the
 // circle collides when the center is inside (the early out) or the foot within its radius.
@@ -183,6 +192,78 @@ Answer slide(const Params& p) {
           {"moved", list(s.moved)}};
 }
 
+// Where the body touches the triangle (NaN when it does not).
+Vec2<double> touching_point(const Ellipse2<double>& body, const Triangle<double, 2>& triangle) {
+  const Vec2<double> still = Vec2<double>::Zero();
+  const Contact<double, 2> c = first_contact(body, still, triangle, still, 0.0);
+  return c.status == ContactStatus::touching_at_start ? c.point : Vec2<double>::Constant(std::nan(""));
+}
+
+// Collide and slide through the triangle mesh of the vertices v0 ... v(vertices - 1) (vK.x,
+// vK.y) and the triangles t0 ... t(triangles - 1) (tK.a, tK.b, tK.c: vertex indices; a
+// repeated index makes a segment) towards the target (tx, ty): the slide, its path round by
+// round with the triangle hit and the contact point of each round that ended at a contact,
+// and at the end the mesh's relation and each triangle touched with its contact point.
+// Slide holds no per-round record, so the rounds are replayed: with Options::max_iterations
+// = k the slide makes its first k rounds (slide.hpp), those of the uncapped call (the
+// triangle queries are closed forms, untouched by the cap: triangle.hpp); k runs to the
+// first cap at which the slide is not blocked, which is the number of rounds.
+Answer mesh_slide(const Params& p) {
+  const auto e = ellipse(p, "e");
+  std::vector<double> vertices;
+  for (int k = 0; k < static_cast<int>(get(p, "vertices")); ++k) {
+    const std::string v = "v" + std::to_string(k);
+    vertices.insert(vertices.end(), {get(p, v + ".x"), get(p, v + ".y")});
+  }
+  std::vector<std::int64_t> triangles;
+  for (int k = 0; k < static_cast<int>(get(p, "triangles")); ++k)
+    for (const char* corner : {".a", ".b", ".c"})
+      triangles.push_back(static_cast<std::int64_t>(get(p, "t" + std::to_string(k) + corner)));
+  const auto mesh = TriangleMesh<double, 2>::from_arrays(vertices, triangles);
+  const Vec2<double> displacement = point(p, "tx", "ty") - e.center();
+  const Slide<double, 2> s = collide_and_slide(e, displacement, mesh);
+
+  int rounds = 0;
+  std::vector<double> path = list(e.center()), hit_points;
+  std::vector<int> hits;
+  if (s.status == SlideStatus::moved || s.status == SlideStatus::slid || s.status == SlideStatus::blocked) {
+    for (Options cap; rounds < Options{}.max_iterations;) {
+      cap.max_iterations = ++rounds;
+      const Slide<double, 2> r = collide_and_slide(e, displacement, mesh, cap);
+      path.insert(path.end(), {r.body.center().x(), r.body.center().y()});
+      if (r.contacts > static_cast<int>(hits.size())) {
+        hits.push_back(r.last_contact);
+        const Vec2<double> at = touching_point(r.body, mesh.triangle(r.last_contact));
+        hit_points.insert(hit_points.end(), {at.x(), at.y()});
+      }
+      if (r.status != SlideStatus::blocked) break;
+    }
+  }
+
+  const MeshRelation end = classify(s.body, mesh);
+  std::vector<int> touched;
+  std::vector<double> touched_points;
+  for (std::size_t k = 0; k < mesh.triangle_count(); ++k) {
+    const Vec2<double> at = touching_point(s.body, mesh.triangle(k));
+    if (std::isnan(at.x())) continue;
+    touched.push_back(static_cast<int>(k));
+    touched_points.insert(touched_points.end(), {at.x(), at.y()});
+  }
+  return {{"status", label(to_string(s.status))},
+          {"contacts", double(s.contacts)},
+          {"last_contact", double(s.last_contact)},
+          {"end", list(s.body.center())},
+          {"moved", list(s.moved)},
+          {"rounds", double(rounds)},
+          {"path", path},
+          {"hits", indices(hits)},
+          {"hits.points", hit_points},
+          {"relation", label(to_string(end.relation))},
+          {"relation.triangle", double(end.triangle)},
+          {"touched", indices(touched)},
+          {"touched.points", touched_points}};
+}
+
 }  // namespace
 
 Answer answer(std::string_view demo, const Params& params) {
@@ -193,6 +274,7 @@ Answer answer(std::string_view demo, const Params& params) {
     if (demo == "swept") return swept(params);
     if (demo == "relation") return relation(params);
     if (demo == "slide") return slide(params);
+    if (demo == "mesh_slide") return mesh_slide(params);
   } catch (const InputError& e) {
     return {{"error", e.field()}, {"message", std::string(e.what())}};
   }
