@@ -1,18 +1,24 @@
 // Fuzz target `scene`: the `ellipsect` program's scene readers and its check and render
 // commands on arbitrary files. The first byte picks the file's kind (JSON, or CSV: its
 // header says bodies or pairs), the output format, the queries and a time window; the rest
-// is the file. What docs/cli.md promises for every input:
+// is the file. Scenes are read with read_mesh_files off, so a mesh "file" key reads nothing
+// (it is bad input here); with bit 128 of the first byte set, the rest is instead a mesh file
+// given to the in-memory readers, parse_obj or (bit 1) parse_stl. What docs/cli.md promises
+// for every input:
 //   - the command succeeds, or fails with BadInput (exit status 2) whose message starts with
 //     the file's name; any other exception (exit status 3 or 4), a crash, a hang or a stack
 //     overflow is a failure;
 //   - on success the output is valid UTF-8; JSON output parses as JSON with one record per
 //     pair; CSV output has the header's number of fields on every line; an SVG picture is
-//     valid UTF-8.
+//     valid UTF-8;
+//   - a mesh file parses to arrays TriangleMesh::from_arrays accepts, or fails with BadInput
+//     whose message starts with the file's name.
 #include "fuzz_support.hpp"
 
 #include "commands.hpp"
 #include "common.hpp"
 #include "csv.hpp"
+#include "mesh_file.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -78,12 +84,34 @@ void check_csv(const std::string& text) {
   }
 }
 
+void check_mesh_file(const std::string& content, bool stl) {
+  const std::string name = stl ? "mesh.stl" : "mesh.obj";
+  MeshArrays m;
+  try {
+    m = stl ? parse_stl(content, name) : parse_obj(content, name);
+  } catch (const BadInput& e) {
+    const std::string what = e.what();
+    FUZZ_CHECK(what.rfind(name, 0) == 0, << "the message does not start with the file: " << what);
+    return;
+  }
+  try {
+    (void)TriangleMesh<double, 3>::from_arrays(m.vertices, m.triangles);
+  } catch (const InputError& e) {
+    FUZZ_CHECK(false, << "parsed, but from_arrays rejects it: " << e.what());
+  }
+}
+
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   if (size == 0) return 0;
   const std::uint8_t mode = data[0];
   const std::string content(reinterpret_cast<const char*>(data + 1), size - 1);
+  if (mode & 128) {
+    fuzz::trace() = "mode " + std::to_string(mode) + ", mesh file (" + std::to_string(content.size()) + " bytes)";
+    check_mesh_file(content, (mode & 1) != 0);
+    return 0;
+  }
   fuzz::trace() = "mode " + std::to_string(mode) + ", file (" + std::to_string(content.size()) + " bytes) as given";
   const fs::path scene = work_dir() / ((mode & 1) ? "scene.csv" : "scene.json");
   std::ofstream(scene, std::ios::binary) << content;
@@ -92,6 +120,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   check.common.scene = scene.string();
   check.common.threads = 1;
   check.common.progress = Progress::Mode::never;
+  check.common.read_mesh_files = false;
   check.format = (mode & 2) ? "csv" : "json";
   check.output = (work_dir() / "out").string();
   static const std::vector<std::vector<std::string>> queries = {

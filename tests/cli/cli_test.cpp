@@ -32,12 +32,14 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <functional>
 #include <set>
 #include <sstream>
 #include <string>
+#include <tuple>
 #include <vector>
 
 extern char** environ;
@@ -1164,6 +1166,7 @@ namespace pt = boost::property_tree;
 struct SvgSummary {
   pt::ptree root;
   int bodies = 0, overlapping = 0, contacts = 0, contact_points = 0, normals = 0, starts = 0, paths = 0;
+  int obstacles = 0, obstacles_overlapping = 0;
   bool legend = false;
   std::string attr(const char* name) const { return root.get<std::string>(std::string("svg.<xmlattr>.") + name, ""); }
 };
@@ -1175,6 +1178,8 @@ void walk(const pt::ptree& node, const std::string& tag, SvgSummary& s) {
   if (tag == "ellipse" && cls == "body overlapping") ++s.overlapping;
   if (tag == "ellipse" && cls == "start") ++s.starts;
   if (tag == "line" && cls == "path") ++s.paths;
+  if (tag == "path" && (cls == "obstacle" || cls == "obstacle overlapping")) ++s.obstacles;
+  if (tag == "path" && cls == "obstacle overlapping") ++s.obstacles_overlapping;
   if (tag == "g" && cls == "contact") ++s.contacts;
   if (tag == "circle" && cls == "contact-point") ++s.contact_points;
   if (tag == "line" && cls == "contact-normal") ++s.normals;
@@ -1293,6 +1298,405 @@ TEST(CliRender, PngThroughRsvgConvert) {
   // No temporary file is left.
   for (const auto& e : fs::directory_iterator(dir))
     EXPECT_EQ(e.path().filename().string().find(".tmp"), std::string::npos) << e.path();
+}
+
+// ------------------------------------------------------------------------------------------
+// Obstacles: half-spaces, triangles, boxes and meshes (inline, OBJ, STL)
+// ------------------------------------------------------------------------------------------
+
+void expect_hit(const json& contact, double time, const std::vector<double>& point, const std::vector<double>& normal) {
+  SCOPED_TRACE(contact.dump());
+  EXPECT_EQ(contact["status"], "hit");
+  EXPECT_NEAR(contact["time"].get<double>(), time, 1e-12 * std::max(1.0, time));
+  for (std::size_t i = 0; i < point.size(); ++i) {
+    EXPECT_NEAR(contact["point"][i].get<double>(), point[i], 1e-12);
+    EXPECT_NEAR(contact["normal"][i].get<double>(), normal[i], 1e-12);
+  }
+}
+
+// A unit circle falling at speed 2 from (0, 5), and obstacles with closed-form contacts:
+// - tilted: the half-plane 0.6 x + 0.8 y <= 0: the center's height above its line is 4 - 1.6 t,
+//   1 at t = 1.875, the contact point c(t) - n = (-0.6, 0.45), the normal -n;
+// - floor: a triangle with its top edge on y = 0: center height 1 at t = 2, point (0, 0);
+// - diamond: a square of half side 1 turned by pi/4 with its top corner at (0, 0): t = 2 (not
+//   the 2.207 of an unturned square, whose top is at y = 1 - sqrt(2));
+// - mesh: two triangles, the second with its top edge on y = 0: t = 2 on triangle 1; the
+//   circle "sitter" at (-15, -1.5) overlaps triangle 0 at the start;
+// - wedge: the triangle (0, 0), (3, 2), (3, -2) that the circle "side", moving right along
+//   y = 0.5, meets at its vertex (0, 0): center at (-sqrt(3)/2, 0.5), t = 5 - sqrt(3)/2,
+//   normal (sqrt(3)/2, -0.5).
+const char* obstacles_2d_scene = R"({
+  "time_window": [0, 10],
+  "bodies": [
+    {"id": "ball", "center": [0, 5], "radius": 1, "velocity": [0, -2]},
+    {"id": "sitter", "center": [-15, -1.5], "radius": 1},
+    {"id": "side", "center": [-5, 0.5], "radius": 1, "velocity": [1, 0]}
+  ],
+  "obstacles": [
+    {"id": "tilted", "type": "half_space", "point": [0, 0], "normal": [3, 4]},
+    {"id": "floor", "type": "triangle", "vertices": [[-10, 0], [10, 0], [0, -5]]},
+    {"id": "diamond", "type": "box", "center": [0, -1.4142135623730951], "half_extents": [1, 1], "angle": 0.7853981633974483},
+    {"id": "mesh", "type": "mesh", "vertices": [[-20, -1], [-10, -1], [-15, -3], [-4, 0], [4, 0], [0, -2]],
+     "triangles": [[0, 1, 2], [3, 4, 5]]},
+    {"id": "wedge", "type": "triangle", "vertices": [[0, 0], [3, 2], [3, -2]]}
+  ],
+  "pairs": [["ball", "tilted"], ["ball", "floor"], ["ball", "diamond"], ["ball", "mesh"], ["sitter", "mesh"],
+            ["side", "wedge"], ["ball", "sitter"]]
+})";
+
+TEST(CliObstacles, FallingCircleMatchesClosedFormsForEveryObstacleType) {
+  const auto dir = work_dir();
+  write_file(dir / "obstacles.json", obstacles_2d_scene);
+  const Outcome r = run_cli({"check", (dir / "obstacles.json").string()}, dir);
+  ASSERT_EQ(r.code, 0) << describe(r);
+  const json out = parse_json(r.out);
+  EXPECT_EQ(out["obstacles"], 5);
+  const json& res = out["results"];
+  ASSERT_EQ(res.size(), 7u);
+  for (std::size_t k = 0; k < 7; ++k)
+    if (k != 4) {
+      EXPECT_EQ(res[k]["relation"], "separated") << k;
+    }
+  expect_hit(res[0]["contact"], 1.875, {-0.6, 0.45}, {-0.6, -0.8});
+  expect_hit(res[1]["contact"], 2.0, {0, 0}, {0, -1});
+  expect_hit(res[2]["contact"], 2.0, {0, 0}, {0, -1});
+  expect_hit(res[3]["contact"], 2.0, {0, 0}, {0, -1});
+  EXPECT_EQ(res[3]["contact"]["triangle"], 1);
+  EXPECT_TRUE(res[3]["relation_triangle"].is_null());
+  EXPECT_EQ(res[4]["relation"], "overlapping");
+  EXPECT_EQ(res[4]["relation_triangle"], 0);
+  EXPECT_EQ(res[4]["contact"]["status"], "overlapping_at_start");
+  EXPECT_EQ(res[4]["contact"]["triangle"], 0);
+  expect_hit(res[5]["contact"], 5 - std::sqrt(3.0) / 2, {0, 0}, {std::sqrt(3.0) / 2, -0.5});
+  // Only mesh records carry triangles.
+  EXPECT_FALSE(res[1].contains("relation_triangle"));
+  EXPECT_FALSE(res[1]["contact"].contains("triangle"));
+  EXPECT_FALSE(res[6].contains("relation_triangle"));
+  EXPECT_EQ(out["summary"]["contact"]["hit"], 5);
+
+  // CSV: the same numbers, the triangles in the last columns.
+  const Outcome c = run_cli({"check", (dir / "obstacles.json").string(), "-f", "csv"}, dir);
+  ASSERT_EQ(c.code, 0) << describe(c);
+  const auto lines = split_lines(c.out);
+  ASSERT_EQ(lines.size(), 8u);
+  EXPECT_EQ(lines[0], "index,a,b,relation,contact_status,contact_time,contact_x,contact_y,normal_x,normal_y,"
+                      "contact_iterations,relation_triangle,contact_triangle");
+  const auto mesh_row = split_csv_line(lines[4]);
+  EXPECT_EQ(mesh_row[2], "mesh");
+  EXPECT_EQ(std::stod(mesh_row[5]), res[3]["contact"]["time"].get<double>());
+  EXPECT_EQ(mesh_row[11], "");
+  EXPECT_EQ(mesh_row[12], "1");
+  const auto sitter_row = split_csv_line(lines[5]);
+  EXPECT_EQ(sitter_row[11], "0");
+  EXPECT_EQ(sitter_row[12], "0");
+  const auto floor_row = split_csv_line(lines[2]);
+  EXPECT_EQ(floor_row.size(), 13u);
+  EXPECT_EQ(floor_row[11], "");
+  EXPECT_EQ(floor_row[12], "");
+}
+
+TEST(CliObstacles, EveryBodyAgainstEveryObstacleWithoutListedPairs) {
+  const auto dir = work_dir();
+  json scene = json::parse(obstacles_2d_scene);
+  scene.erase("pairs");
+  write_file(dir / "all.json", scene.dump());
+  const Outcome r = run_cli({"check", (dir / "all.json").string(), "--query", "relation,distance"}, dir);
+  ASSERT_EQ(r.code, 0) << describe(r);
+  const json out = parse_json(r.out);
+  const json& res = out["results"];
+  // 3 body pairs, then each of the 3 bodies against each of the 5 obstacles.
+  ASSERT_EQ(res.size(), 3u + 15u);
+  EXPECT_EQ(out["summary"]["pairs"], 18);
+  EXPECT_EQ(res[3]["a"], "ball");
+  EXPECT_EQ(res[3]["b"], "tilted");
+  EXPECT_EQ(res[17]["a"], "side");
+  EXPECT_EQ(res[17]["b"], "wedge");
+  // Signed distance for half-spaces only: the ball's center is 4 above the tilted line.
+  EXPECT_EQ(res[3]["distance"]["status"], "separated");
+  EXPECT_NEAR(res[3]["distance"]["distance"].get<double>(), 3.0, 1e-14);
+  EXPECT_TRUE(res[4]["distance"].is_null());
+  // The body pairs are apart; of the bodies, only the ball is above the tilted line.
+  EXPECT_EQ(out["summary"]["distance"]["separated"], 3 + 1);
+  EXPECT_EQ(out["summary"]["distance"]["overlapping"], 2);
+}
+
+// The floor y <= 0 rising at speed 1 and the ball falling at 2 from height 5 close their gap of
+// 4 at t = 4/3; the same with the window starting at t0 = 1 (the obstacle moved there first),
+// for the floor as a half-plane and as a moving mesh.
+TEST(CliObstacles, MovingObstaclesAndWindowsThatStartLater) {
+  const auto dir = work_dir();
+  write_file(dir / "rising.json", R"({
+    "bodies": [{"id": "ball", "center": [0, 5], "radius": 1, "velocity": [0, -2]}],
+    "obstacles": [
+      {"id": "plane", "type": "half_space", "point": [0, 0], "normal": [0, 1], "velocity": [0, 1]},
+      {"id": "mesh", "type": "mesh", "vertices": [[-5, 0], [5, 0], [0, -3]], "triangles": [[0, 1, 2]], "velocity": [0, 1]}
+    ]})");
+  for (const std::vector<std::string>& window : {std::vector<std::string>{}, {"--window", "1", "10"}}) {
+    std::vector<std::string> args = {"check", (dir / "rising.json").string()};
+    args.insert(args.end(), window.begin(), window.end());
+    const Outcome r = run_cli(args, dir);
+    ASSERT_EQ(r.code, 0) << describe(r);
+    const json out = parse_json(r.out);
+    ASSERT_EQ(out["results"].size(), 2u);
+    for (const auto& rec : out["results"]) expect_hit(rec["contact"], 4.0 / 3, {0, 4.0 / 3}, {0, -1});
+  }
+}
+
+// The cube [-1, 1]^3 as a box, as an OBJ (quads, every index form, negative indices, lines
+// to ignore, CRLF) and as ASCII and binary STL, all with the same 12 triangles in the same
+// order: two per face, the faces -x, +x, -y, +y, -z, +z.
+const int cube_quads[6][4] = {{0, 2, 6, 4}, {1, 3, 7, 5}, {0, 1, 5, 4}, {2, 3, 7, 6}, {0, 1, 3, 2}, {4, 5, 7, 6}};
+
+Eigen::Vector3f cube_corner(int k) {
+  return Eigen::Vector3f(k & 1 ? 1.f : -1.f, k & 2 ? 1.f : -1.f, k & 4 ? 1.f : -1.f);
+}
+
+// The triangles (0, 1, 2) and (0, 2, 3) of each quad.
+std::vector<std::array<Eigen::Vector3f, 3>> cube_triangles() {
+  std::vector<std::array<Eigen::Vector3f, 3>> t;
+  for (const auto& q : cube_quads)
+    for (int j = 1; j <= 2; ++j) t.push_back({cube_corner(q[0]), cube_corner(q[j]), cube_corner(q[j + 1])});
+  return t;
+}
+
+const char* cube_obj =
+    "# the cube [-1, 1]^3\r\nmtllib cube.mtl\no cube\n"
+    "v -1 -1 -1\nv 1 -1 -1\nv -1 1 -1\nv 1 1 -1\nv -1 -1 1\nv 1 -1 1\nv -1 1 1\nv 1 1 1 1.0\n"
+    "vt 0 0\nvn 1 0 0\ng faces\nusemtl grey\ns off\n\n"
+    "f 1 3 7 5\n"
+    "f 2/1 4/1 8/1 6/1\n"
+    "f 1//1 2//1 6//1 5//1  # a comment\n"
+    "f 3/1/1 4/1/1 8/1/1 7/1/1\r\n"
+    "f -8 -7 -5 -6\n"
+    "f 5 6 8 7\n";
+
+std::string cube_ascii_stl() {
+  std::string s = "solid cube\n";
+  for (const auto& t : cube_triangles()) {
+    s += "  facet normal 0 0 0\n    outer loop\n";
+    for (const auto& v : t)
+      s += "      vertex " + std::to_string(v[0]) + " " + std::to_string(v[1]) + " " + std::to_string(v[2]) + "\n";
+    s += "    endloop\n  endfacet\n";
+  }
+  return s + "endsolid cube\n";
+}
+
+// Binary STL: an 80-byte header, the triangle count, then per triangle a normal, three
+// vertices (little-endian floats) and two attribute bytes. This machine is little-endian
+// (checked by the test).
+std::string stl_binary(const std::vector<std::array<Eigen::Vector3f, 3>>& triangles) {
+  std::string s = "binary cube";
+  s.resize(80, ' ');
+  const auto count = static_cast<std::uint32_t>(triangles.size());
+  s.append(reinterpret_cast<const char*>(&count), 4);
+  for (const auto& t : triangles) {
+    const float normal[3] = {0, 0, 0};
+    s.append(reinterpret_cast<const char*>(normal), 12);
+    for (const auto& v : t) s.append(reinterpret_cast<const char*>(v.data()), 12);
+    s.append(2, '\0');
+  }
+  return s;
+}
+
+// Spheres against the cube, closed forms:
+//   s1 (r 0.5) from (5, 0.2, 0.3) at (-1, 0, 0): meets the face x = 1 at t = 3.5 at
+//      (1, 0.2, 0.3), inside the face's second triangle (z > y): triangle 3;
+//   s2 (r 1) from (3, 3, 0) at (-1, -1, 0): meets the edge x = y = 1 when sqrt(2) (2 - t) = 1,
+//      at (1, 1, 0), normal (-1, -1, 0) / sqrt(2);
+//   s3 (r 0.2) at the center: inside the solid box, apart from the surface meshes;
+//   s4 (r 0.5) at (1.2, 0, 0): overlaps the face x = 1, first on triangle 2 (the point (1, 0, 0)
+//      lies on the face's diagonal, shared by triangles 2 and 3).
+TEST(CliObstacles, SphereAgainstObjAndStlCubesAnswersAsTheBox) {
+  const std::uint32_t one = 1;
+  ASSERT_EQ(*reinterpret_cast<const unsigned char*>(&one), 1) << "the binary STL writer assumes little-endian";
+  const auto dir = work_dir();
+  fs::create_directories(dir / "meshes");
+  write_file(dir / "meshes" / "cube.obj", cube_obj);
+  write_file(dir / "meshes" / "cube.stl", cube_ascii_stl());
+  write_file(dir / "meshes" / "cube_binary.STL", stl_binary(cube_triangles()));
+  write_file(dir / "cubes.json", R"({
+    "time_window": [0, 10],
+    "bodies": [
+      {"id": "s1", "center": [5, 0.2, 0.3], "radius": 0.5, "velocity": [-1, 0, 0]},
+      {"id": "s2", "center": [3, 3, 0], "radius": 1, "velocity": [-1, -1, 0]},
+      {"id": "s3", "center": [0, 0, 0], "radius": 0.2},
+      {"id": "s4", "center": [1.2, 0, 0], "radius": 0.5}
+    ],
+    "obstacles": [
+      {"id": "box", "type": "box", "center": [0, 0, 0], "half_extents": [1, 1, 1]},
+      {"id": "obj", "type": "mesh", "file": "meshes/cube.obj"},
+      {"id": "ascii", "type": "mesh", "file": "meshes/cube.stl"},
+      {"id": "binary", "type": "mesh", "file": "meshes/cube_binary.STL"}
+    ]})");
+  const Outcome r = run_cli({"check", (dir / "cubes.json").string()}, dir);
+  ASSERT_EQ(r.code, 0) << describe(r);
+  const json out = parse_json(r.out);
+  const json& res = out["results"];
+  ASSERT_EQ(res.size(), 6u + 16u);
+  const double h = 1 / std::sqrt(2.0);
+  for (int body = 0; body < 4; ++body)
+    for (int o = 0; o < 4; ++o) {
+      const json& rec = res[static_cast<std::size_t>(6 + 4 * body + o)];
+      SCOPED_TRACE(rec.dump());
+      static const char* const ids[] = {"s1", "s2", "s3", "s4"};
+      EXPECT_EQ(rec["a"], ids[body]);
+      const bool mesh = o > 0;
+      EXPECT_EQ(rec.contains("relation_triangle"), mesh);
+      if (body == 0) {
+        EXPECT_EQ(rec["relation"], "separated");
+        expect_hit(rec["contact"], 3.5, {1, 0.2, 0.3}, {-1, 0, 0});
+        if (mesh) {
+          EXPECT_EQ(rec["contact"]["triangle"], 3);
+        }
+      } else if (body == 1) {
+        EXPECT_EQ(rec["relation"], "separated");
+        expect_hit(rec["contact"], 2 - h, {1, 1, 0}, {-h, -h, 0});
+        // The edge's triangles: 2 (+x face) and 6 (+y face).
+        if (mesh) {
+          EXPECT_TRUE(rec["contact"]["triangle"] == 2 || rec["contact"]["triangle"] == 6);
+        }
+      } else if (body == 2) {
+        EXPECT_EQ(rec["relation"], mesh ? "separated" : "b_contains_a");
+        EXPECT_EQ(rec["contact"]["status"], mesh ? "no_contact_in_window" : "overlapping_at_start");
+      } else {
+        EXPECT_EQ(rec["relation"], "overlapping");
+        EXPECT_EQ(rec["contact"]["status"], "overlapping_at_start");
+        if (mesh) {
+          EXPECT_EQ(rec["relation_triangle"], 2);
+        }
+      }
+    }
+  // The pictures: every obstacle drawn, the box and the meshes red where s4 overlaps them.
+  for (const std::string plane : {"xy", "xz"}) {
+    const fs::path svg = dir / ("cubes_" + plane + ".svg");
+    const Outcome rr = run_cli({"render", (dir / "cubes.json").string(), "--time", "0", "--plane", plane, "-o",
+                               svg.string()}, dir);
+    ASSERT_EQ(rr.code, 0) << describe(rr);
+    const SvgSummary s = read_svg(svg);
+    EXPECT_EQ(s.obstacles, 4);
+    EXPECT_EQ(s.obstacles_overlapping, 4);
+    EXPECT_EQ(s.attr("data-obstacles"), "4");
+  }
+}
+
+TEST(CliObstacles, RenderDrawsObstaclesRedWhenABodyOverlapsThem) {
+  const auto dir = work_dir();
+  write_file(dir / "obstacles.json", obstacles_2d_scene);
+  // At the first contact (the tilted half-plane, t = 1.875) only the sitter overlaps: the mesh.
+  const Outcome r = run_cli({"render", (dir / "obstacles.json").string(), "-o", (dir / "first.svg").string()}, dir);
+  ASSERT_EQ(r.code, 0) << describe(r);
+  const SvgSummary s = read_svg(dir / "first.svg");
+  EXPECT_NEAR(std::stod(s.attr("data-time")), 1.875, 1e-14);
+  EXPECT_EQ(s.obstacles, 5);
+  EXPECT_EQ(s.obstacles_overlapping, 1);
+  EXPECT_EQ(s.overlapping, 1);  // the sitter
+  EXPECT_EQ(s.contact_points, 5);
+  // At t = 3 the ball is below y = 0: inside the tilted half-plane, the floor, the diamond
+  // and the mesh; the side circle (center (-2, 0.5)) is still apart from the wedge.
+  const Outcome r3 = run_cli({"render", (dir / "obstacles.json").string(), "--time", "3", "-o", (dir / "t3.svg").string()}, dir);
+  ASSERT_EQ(r3.code, 0) << describe(r3);
+  const SvgSummary s3 = read_svg(dir / "t3.svg");
+  EXPECT_EQ(s3.obstacles_overlapping, 4);
+  EXPECT_EQ(s3.attr("data-obstacles-overlapping"), "4");
+  EXPECT_EQ(s3.overlapping, 2);  // the ball and the sitter
+}
+
+TEST(CliObstacles, PairsFilesNameObstaclesInColumnB) {
+  const auto dir = work_dir();
+  json scene = json::parse(obstacles_2d_scene);
+  scene.erase("pairs");
+  write_file(dir / "scene.json", scene.dump());
+  write_file(dir / "pairs.csv", "a,b\nball,floor\nside,wedge\n");
+  const Outcome r = run_cli({"check", (dir / "scene.json").string(), "--pairs", (dir / "pairs.csv").string()}, dir);
+  ASSERT_EQ(r.code, 0) << describe(r);
+  const json out = parse_json(r.out);
+  ASSERT_EQ(out["results"].size(), 2u);
+  expect_hit(out["results"][0]["contact"], 2.0, {0, 0}, {0, -1});
+  write_file(dir / "bad_pairs.csv", "a,b\nball,floor\nfloor,ball\n");
+  expect_bad_input({"scene2.json", scene.dump(), {"bad_pairs.csv:3: \"floor\" is an obstacle"},
+                    {"--pairs", (dir / "bad_pairs.csv").string()}, "bad_pairs.csv"}, dir);
+}
+
+TEST(CliObstacles, MalformedObstaclesNameTheField) {
+  const auto dir = work_dir();
+  const std::string head2 = R"({"bodies": [{"id": "a", "center": [0, 0], "radius": 1}], "obstacles": [)";
+  const std::string head3 = R"({"bodies": [{"id": "a", "center": [0, 0, 0], "radius": 1}], "obstacles": [)";
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {head2 + R"({"id": "o", "type": "sphere"}]})", "$.obstacles[0].type: unknown obstacle type \"sphere\""},
+      {head2 + R"({"type": "triangle"}]})", "$.obstacles[0].id: missing"},
+      {head2 + R"({"id": "o", "type": "triangle", "vertices": [[0, 0], [1, 0]]}]})",
+       "$.obstacles[0].vertices: expected 3 vertices, got 2"},
+      {head2 + R"({"id": "o", "type": "triangle", "vertices": [[0, 0], [1, 0], [0, 1, 2]]}]})",
+       "$.obstacles[0].vertices[2]: has 3 components, but the scene is 2D"},
+      {head2 + R"({"id": "o", "type": "half_space", "point": [0, 0], "normal": [0, 0]}]})", "$.obstacles[0].normal: "},
+      {head2 + R"({"id": "o", "type": "half_space", "normal": [0, 1]}]})", "$.obstacles[0].point: missing"},
+      {head2 + R"({"id": "o", "type": "box", "center": [0, 0], "half_extents": [1, -1]}]})",
+       "$.obstacles[0].half_extents[1]: "},
+      {head3 + R"({"id": "o", "type": "box", "center": [0, 0, 0], "half_extents": [1, 1, 1], "quaternion": [1, 0.1, 0, 0]}]})",
+       "$.obstacles[0].quaternion: not a unit quaternion"},
+      {head2 + R"({"id": "o", "type": "mesh", "vertices": [[0, 0], [1, 0], [0, 1], [1, 1]], "triangles": [[0, 1, 2], [1, 3, 7]]}]})",
+       "$.obstacles[0].triangles[1][2]: vertex index 7 is not in [0, 4)"},
+      {head2 + R"({"id": "o", "type": "mesh", "vertices": [[0, 0], [1, 0], [0, 1]], "triangles": [[0, 1]]}]})",
+       "$.obstacles[0].triangles[0]: expected 3 vertex indices"},
+      {head2 + R"({"id": "o", "type": "mesh", "vertices": [[0, 0], [1, 0], [0, 1]], "triangles": [[0, 1, 1.5]]}]})",
+       "$.obstacles[0].triangles[0][2]: expected a vertex index (an integer), got a number"},
+      {head2 + R"({"id": "o", "type": "mesh", "file": "cube.obj"}]})", "$.obstacles[0].file: mesh files (OBJ, STL) are 3D"},
+      {head3 + R"({"id": "o", "type": "mesh", "file": "cube.obj", "vertices": []}]})",
+       "$.obstacles[0].file: give either a file or vertices and triangles"},
+      {head2 + R"({"id": "a", "type": "half_space", "point": [0, 0], "normal": [0, 1]}]})",
+       "$.obstacles[0].id: duplicate id \"a\" (also $.bodies[0])"},
+      {head2 + R"({"id": "o", "type": "half_space", "point": [0, 0], "normal": [0, 1], "colour": "red"}]})",
+       "$.obstacles[0].colour: unknown key"},
+      {head2 + R"({"id": "o", "type": "half_space", "point": [0, 0], "normal": [0, 1]}], "pairs": [["o", "a"]]})",
+       "$.pairs[0]: \"o\" is an obstacle"},
+      {R"({"bodies": [{"id": "a", "center": [0, 0], "radius": 1}], "obstacles": {}})",
+       "$.obstacles: expected an array of obstacles"},
+  };
+  for (std::size_t k = 0; k < cases.size(); ++k)
+    expect_bad_input({"bad" + std::to_string(k) + ".json", cases[k].first, {cases[k].second}}, dir);
+}
+
+TEST(CliObstacles, MalformedMeshFilesNameTheFileAndLine) {
+  const auto dir = work_dir();
+  const auto scene_with = [](const std::string& file) {
+    return R"({"bodies": [{"id": "a", "center": [0, 0, 5], "radius": 1}], "obstacles": [{"id": "m", "type": "mesh", "file": ")" +
+           file + R"("}]})";
+  };
+  const auto stl_triangle = cube_triangles()[0];
+  std::string nan_stl = stl_binary({stl_triangle});
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  std::memcpy(&nan_stl[84 + 12 + 12 + 8], &nan, 4);  // vertex 1, z
+  std::string short_stl = stl_binary(cube_triangles());
+  short_stl.resize(short_stl.size() - 7);
+  const std::vector<std::tuple<std::string, std::string, std::string>> cases = {
+      {"index.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n", "index.obj:4: f: vertex 3 of the face: index 9 refers to no vertex"},
+      {"zero.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n", "zero.obj:4: f: vertex 1 of the face: index 0"},
+      {"negative.obj", "v 0 0 0\nv 1 0 0\nf -1 -2 -3\n", "negative.obj:3: f: vertex 3 of the face: index -3 refers to no vertex"},
+      {"nan.obj", "v 0 0 0\nv 1 nan 0\n", "nan.obj:2: v: y: must be finite, got \"nan\""},
+      {"short_v.obj", "v 0 0\n", "short_v.obj:1: v: expected x y z, got 2 numbers"},
+      {"two.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2\n", "two.obj:4: f: a face needs at least 3 vertices, got 2"},
+      {"word.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 x/1\n", "word.obj:4: f: vertex 3 of the face: not a vertex index: \"x/1\""},
+      {"faceless.obj", "v 0 0 0\n", "faceless.obj: no faces"},
+      {"short.stl", short_stl, "short.stl: truncated binary STL: its header counts 12 triangles (84 + 50 * 12 = 684 bytes), the file has 677 bytes"},
+      {"tiny.stl", std::string("\x01\x02\x03", 3), "tiny.stl: truncated binary STL: 3 bytes"},
+      {"nan.stl", nan_stl, "nan.stl: triangle 0, vertex 1, coordinate 2: must be finite, got nan"},
+      {"loop.stl", "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nendloop\nendfacet\nendsolid x\n",
+       "loop.stl:6: endloop: a facet has 3 vertices, this one 2"},
+      {"open.stl", "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\n", "open.stl:4: the file ends inside a facet"},
+      {"word.stl", "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 zero\n", "word.stl:4: vertex: z: not a number: \"zero\""},
+      {"cube.ply", "ply\n", "cube.ply: unknown mesh file type"},
+  };
+  for (const auto& [file, content, message] : cases) {
+    write_file(dir / file, content);
+    expect_bad_input({"scene_" + file + ".json", scene_with(file),
+                      {"$.obstacles[0].file: " + (dir / file).string(), message}}, dir);
+  }
+  // A missing mesh file is an I/O error (exit status 3) naming the scene, the field and the file.
+  expect_bad_input({"missing.json", scene_with("nowhere.stl"), {"$.obstacles[0].file: ", "nowhere.stl: cannot open"}},
+                   dir, 3);
+  // So is a path that is not a regular file.
+  fs::create_directories(dir / "dir.obj");
+  expect_bad_input({"directory.json", scene_with("dir.obj"), {"dir.obj: not a regular file"}}, dir, 3);
 }
 
 // ------------------------------------------------------------------------------------------
