@@ -3,6 +3,7 @@
 
 #include "detail/contact_start.hpp"
 #include "detail/instantiate.hpp"
+#include "detail/polytope_distance.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -126,12 +127,42 @@ Contact<T, N> first_contact(const Ellipsoid<T, N>& a, const VecArg<T, N>& veloci
   return out;
 }
 
+template <class T, int N>
+Distance<T, N> signed_distance(const Ellipsoid<T, N>& a, const Box<T, N>& b, const Options& options) noexcept {
+  constexpr int count = 1 << N;
+  std::array<Vec<T, N>, count> corners;
+  for (int k = 0; k < count; ++k) corners[k] = b.corner(k);
+  // Edges: corners differing in one bit; faces (3D): three corners with bit i fixed.
+  std::array<std::array<int, 2>, N * count / 2> edges;
+  std::array<std::array<int, 3>, 2 * N> faces;
+  int e = 0;
+  for (int i = 0; i < N; ++i) {
+    for (int k = 0; k < count; ++k)
+      if (!((k >> i) & 1)) edges[e++] = {k, k | (1 << i)};
+    const int j = (i + 1) % N, l = (i + 2) % N;
+    for (int side = 0; side < 2; ++side) {
+      const int base = side << i;
+      faces[2 * i + side] = {base, base | (1 << j), base | (1 << l)};
+    }
+  }
+  return detail::polytope_signed_distance<T, N>(a, corners, edges,
+                                                std::span<const std::array<int, 3>>(faces.data(), N == 3 ? faces.size() : 0),
+                                                classify(a, b, options));
+}
+
+template <class T, int N>
+Distance<T, N> distance(const Ellipsoid<T, N>& a, const Box<T, N>& b, const Options& options) noexcept {
+  return detail::unsigned_distance(signed_distance(a, b, options));
+}
+
 #define ELLIPSECT_INSTANTIATE(T, N)                                                                                  \
   template class Box<T, N>;                                                                                         \
   template Relation classify<T, N>(const Ellipsoid<T, N>&, const Box<T, N>&, const Options&) noexcept;            \
   template bool overlap<T, N>(const Ellipsoid<T, N>&, const Box<T, N>&, const Options&) noexcept;                 \
   template Contact<T, N> first_contact<T, N>(const Ellipsoid<T, N>&, const VecArg<T, N>&, const Box<T, N>&,       \
-                                             const VecArg<T, N>&, T, const Options&) noexcept;
+                                             const VecArg<T, N>&, T, const Options&) noexcept;       \
+  template Distance<T, N> signed_distance<T, N>(const Ellipsoid<T, N>&, const Box<T, N>&, const Options&) noexcept; \
+  template Distance<T, N> distance<T, N>(const Ellipsoid<T, N>&, const Box<T, N>&, const Options&) noexcept;
 ELLIPSECT_FOR_EACH_TYPE_AND_DIM(ELLIPSECT_INSTANTIATE)
 #undef ELLIPSECT_INSTANTIATE
 

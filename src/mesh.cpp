@@ -3,6 +3,7 @@
 #include "detail/contact_start.hpp"
 #include "detail/instantiate.hpp"
 #include "detail/mesh_walk.hpp"
+#include "detail/polytope_distance.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -182,12 +183,48 @@ MeshContact<T, N> first_contact(const Ellipsoid<T, N>& a, const VecArg<T, N>& ve
   return out;
 }
 
+template <class T, int N>
+MeshDistance<T, N> signed_distance(const Ellipsoid<T, N>& a, const TriangleMesh<T, N>& b, const Options& options) noexcept {
+  MeshDistance<T, N> out;
+  out.distance.status = DistanceStatus::separated;
+  out.distance.distance = std::numeric_limits<T>::infinity();
+  out.distance.point_a = out.distance.point_b = out.distance.normal = detail::nan_vec<T, N>();
+  if (b.triangle_count() == 0) return out;
+  using W = detail::Wide<T>;
+  detail::for_each_nearest<T, N>(b, a.center().template cast<W>(), detail::half_extents(a, options.tolerance),
+                                 [&](std::uint32_t k) {
+    const Distance<T, N> d = signed_distance(a, b.triangle(k), options);
+    if (out.triangle < 0 || d.distance < out.distance.distance ||
+        (d.distance == out.distance.distance && k < out.triangle)) {
+      out.distance = d;
+      out.triangle = k;
+    }
+    return W(out.distance.distance);
+  });
+  // The status is the mesh's relation (classify); the fields those of the triangle found.
+  const Relation r = classify(a, b, options).relation;
+  out.distance.status = r == Relation::separated  ? DistanceStatus::separated
+                        : r == Relation::touching ? DistanceStatus::touching
+                                                  : DistanceStatus::overlapping;
+  return out;
+}
+
+template <class T, int N>
+MeshDistance<T, N> distance(const Ellipsoid<T, N>& a, const TriangleMesh<T, N>& b, const Options& options) noexcept {
+  MeshDistance<T, N> out = signed_distance(a, b, options);
+  out.distance = detail::unsigned_distance(out.distance);
+  return out;
+}
+
 #define ELLIPSECT_INSTANTIATE(T, N)                                                                                      \
   template class TriangleMesh<T, N>;                                                                                     \
   template MeshRelation classify<T, N>(const Ellipsoid<T, N>&, const TriangleMesh<T, N>&, const Options&) noexcept;    \
   template bool overlap<T, N>(const Ellipsoid<T, N>&, const TriangleMesh<T, N>&, const Options&) noexcept;             \
   template MeshContact<T, N> first_contact<T, N>(const Ellipsoid<T, N>&, const VecArg<T, N>&, const TriangleMesh<T, N>&, \
-                                                 const VecArg<T, N>&, T, const Options&) noexcept;
+                                                 const VecArg<T, N>&, T, const Options&) noexcept;          \
+  template MeshDistance<T, N> signed_distance<T, N>(const Ellipsoid<T, N>&, const TriangleMesh<T, N>&,                  \
+                                                    const Options&) noexcept;                                            \
+  template MeshDistance<T, N> distance<T, N>(const Ellipsoid<T, N>&, const TriangleMesh<T, N>&, const Options&) noexcept;
 ELLIPSECT_FOR_EACH_TYPE_AND_DIM(ELLIPSECT_INSTANTIATE)
 #undef ELLIPSECT_INSTANTIATE
 

@@ -4,6 +4,7 @@
 #include "detail/compensated.hpp"
 #include "detail/contact_start.hpp"
 #include "detail/instantiate.hpp"
+#include "detail/polytope_distance.hpp"
 #include "detail/reduce.hpp"
 #include "detail/scale.hpp"
 
@@ -502,11 +503,27 @@ Contact<T, N> first_contact(const Ellipsoid<T, N>& a, const VecArg<T, N>& veloci
   });
 }
 
+template <class T, int N>
+Distance<T, N> signed_distance(const Ellipsoid<T, N>& a, const Triangle<T, N>& b, const Options& options) noexcept {
+  static constexpr std::array<std::array<int, 2>, 3> edges{{{0, 1}, {1, 2}, {2, 0}}};
+  static constexpr std::array<std::array<int, 3>, 1> face{{{0, 1, 2}}};
+  const std::array<Vec<T, N>, 3> v{b.vertex(0), b.vertex(1), b.vertex(2)};
+  return detail::polytope_signed_distance<T, N>(a, v, edges, std::span<const std::array<int, 3>>(face.data(), N == 3 ? 1 : 0),
+                                                classify(a, b, options));
+}
+
+template <class T, int N>
+Distance<T, N> distance(const Ellipsoid<T, N>& a, const Triangle<T, N>& b, const Options& options) noexcept {
+  return detail::unsigned_distance(signed_distance(a, b, options));
+}
+
 #define ELLIPSECT_INSTANTIATE(T, N)                                                                                \
   template Relation classify<T, N>(const Ellipsoid<T, N>&, const Triangle<T, N>&, const Options&) noexcept;     \
   template bool overlap<T, N>(const Ellipsoid<T, N>&, const Triangle<T, N>&, const Options&) noexcept;          \
   template Contact<T, N> first_contact<T, N>(const Ellipsoid<T, N>&, const VecArg<T, N>&, const Triangle<T, N>&, \
-                                             const VecArg<T, N>&, T, const Options&) noexcept;
+                                             const VecArg<T, N>&, T, const Options&) noexcept;     \
+  template Distance<T, N> signed_distance<T, N>(const Ellipsoid<T, N>&, const Triangle<T, N>&, const Options&) noexcept; \
+  template Distance<T, N> distance<T, N>(const Ellipsoid<T, N>&, const Triangle<T, N>&, const Options&) noexcept;
 ELLIPSECT_FOR_EACH_TYPE_AND_DIM(ELLIPSECT_INSTANTIATE)
 #undef ELLIPSECT_INSTANTIATE
 

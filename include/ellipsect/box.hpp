@@ -69,6 +69,14 @@ Relation classify(const Ellipsoid<T, N>& a, const Box<T, N>& b, const Options& o
 template <class T, int N>
 bool overlap(const Ellipsoid<T, N>& a, const Box<T, N>& b, const Options& options = {}) noexcept;
 
+// Signed distance and distance as for a triangle (triangle.hpp), the solid box the polytope
+// of its 2^N corners: minus the penetration depth for a body inside the box or containing it.
+template <class T, int N>
+Distance<T, N> signed_distance(const Ellipsoid<T, N>& a, const Box<T, N>& b, const Options& options = {}) noexcept;
+
+template <class T, int N>
+Distance<T, N> distance(const Ellipsoid<T, N>& a, const Box<T, N>& b, const Options& options = {}) noexcept;
+
 // Statuses as for two bodies (contact.hpp); the box moves as center + t * velocity_b.
 template <class T, int N>
 Contact<T, N> first_contact(const Ellipsoid<T, N>& a, const VecArg<T, N>& velocity_a, const Box<T, N>& b,

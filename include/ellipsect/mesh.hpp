@@ -99,4 +99,28 @@ template <class T, int N>
 MeshContact<T, N> first_contact(const Ellipsoid<T, N>& a, const VecArg<T, N>& velocity_a, const TriangleMesh<T, N>& b,
                                 const VecArg<T, N>& velocity_b, T t_max, const Options& options = {}) noexcept;
 
+// The signed distance of the body and the mesh: the least over the triangles of their signed
+// distance (triangle.hpp), with its triangle (ties: the lowest index). Apart, the distance to
+// the mesh; overlapping, minus the largest penetration depth into one triangle (a mesh is a
+// set of triangles, not a solid: no depth through it as a whole is defined). The status is
+// classify's for the whole mesh. No triangles: separated, distance +infinity, NaN points and
+// normal, triangle -1. Triangles are visited nearest box first; those whose boxes lie
+// farther than the best so far are skipped.
+template <class T, int N>
+struct MeshDistance {
+  Distance<T, N> distance;
+  std::int64_t triangle = -1;
+};
+static_assert(detail::has_plain_layout<MeshDistance<float, 2>, Distance<float, 2>, std::int64_t> &&
+              detail::has_plain_layout<MeshDistance<double, 3>, Distance<double, 3>, std::int64_t>);
+
+template <class T, int N>
+MeshDistance<T, N> signed_distance(const Ellipsoid<T, N>& a, const TriangleMesh<T, N>& b,
+                                   const Options& options = {}) noexcept;
+
+// As signed_distance(), with distance 0 and NaN points and normal where the body overlaps the
+// mesh.
+template <class T, int N>
+MeshDistance<T, N> distance(const Ellipsoid<T, N>& a, const TriangleMesh<T, N>& b, const Options& options = {}) noexcept;
+
 }  // namespace ellipsect

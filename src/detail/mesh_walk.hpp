@@ -77,6 +77,43 @@ void for_each_near(const TriangleMesh<T, N>& mesh, const Vec<Wide<T>, N>& c, con
   }
 }
 
+// Calls visit(k) for the triangles, nearest box first, whose boxes grown by h lie at most
+// `bound` from the point c (bound: what visit returns, the least signed distance so far;
+// boxes that meet the point's are always visited, as a triangle there can be deeper).
+template <class T, int N, class Visit>
+void for_each_nearest(const TriangleMesh<T, N>& mesh, const Vec<Wide<T>, N>& c, const Vec<Wide<T>, N>& h,
+                      Visit&& visit) {
+  using W = Wide<T>;
+  const auto nodes = mesh.nodes();
+  if (nodes.empty()) return;
+  // The distance from c to the node's grown box, -infinity where it contains c.
+  const auto gap = [&](std::uint32_t at) {
+    W sum = 0;
+    for (int i = 0; i < N; ++i) {
+      const auto [lo, hi] = grown<T, N>(nodes[at], h, i);
+      const W out = std::max({lo - c[i], c[i] - hi, W(0)});
+      sum += out * out;
+    }
+    return sum > W(0) ? std::sqrt(sum) : -std::numeric_limits<W>::infinity();
+  };
+  W bound = std::numeric_limits<W>::infinity();
+  std::array<std::pair<W, std::uint32_t>, 64> stack;  // (gap, node)
+  int top = 0;
+  stack[top++] = {gap(0), 0};
+  while (top > 0) {
+    const auto [g, at] = stack[--top];
+    if (g > bound) continue;
+    const auto& node = nodes[at];
+    if (node.count > 0) {
+      for (std::uint32_t j = 0; j < node.count; ++j) bound = visit(mesh.order()[node.first + j]);
+      continue;
+    }
+    std::array<std::pair<W, std::uint32_t>, 2> children{{{gap(at + 1), at + 1}, {gap(node.first), node.first}}};
+    if (children[0].first < children[1].first) std::swap(children[0], children[1]);
+    for (const auto& child : children) stack[top++] = child;  // the nearer one on top
+  }
+}
+
 // The interval of t in [0, t_end] at which c + t d lies in the node's box grown by h:
 // {entry, exit}, empty when entry > exit.
 template <class T, int N>

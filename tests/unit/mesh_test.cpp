@@ -122,6 +122,47 @@ void matches_every_triangle() {
 TEST(TriangleMesh, HierarchyMatchesEveryTriangle2D) { matches_every_triangle<2>(); }
 TEST(TriangleMesh, HierarchyMatchesEveryTriangle3D) { matches_every_triangle<3>(); }
 
+// signed_distance through the hierarchy against the least over every triangle in turn: the
+// same distance and triangle, bit for bit (nearest boxes first, farther ones skipped).
+template <int N>
+void distance_matches_every_triangle() {
+  using namespace scenarios::detail;
+  Rng rng(11);
+  std::map<std::string, int> tally;
+  for (int m = 0; m < 6; ++m) {
+    const auto mesh = soup<N>(rng, N == 2 ? 40 : 120, log_uniform(rng, 0.1, 3));
+    for (int q = 0; q < 8; ++q) {
+      const Vec<double, N> c = Vec<double, N>::NullaryExpr([&](Eigen::Index) { return uniform(rng, -9, 9); });
+      const auto body = Ellipsoid<double, N>::from_axes(c, rotation<N>(rng), radii<N>(rng, 0.7, 20));
+      Distance<double, N> want;
+      std::int64_t want_k = -1;
+      for (std::size_t k = 0; k < mesh.triangle_count(); ++k) {
+        const Distance<double, N> d = signed_distance(body, mesh.triangle(k));
+        if (want_k < 0 || d.distance < want.distance) want = d, want_k = static_cast<std::int64_t>(k);
+      }
+      const MeshDistance<double, N> got = signed_distance(body, mesh);
+      ASSERT_EQ(got.triangle, want_k) << m << " " << q;
+      ASSERT_EQ(got.distance.distance, want.distance) << m << " " << q;
+      ASSERT_EQ(got.distance.point_a, want.point_a) << m << " " << q;
+      const Relation r = classify(body, mesh).relation;
+      ASSERT_EQ(got.distance.status, r == Relation::separated  ? DistanceStatus::separated
+                                     : r == Relation::touching ? DistanceStatus::touching
+                                                               : DistanceStatus::overlapping);
+      const MeshDistance<double, N> plain = distance(body, mesh);
+      ASSERT_EQ(plain.distance.distance, got.distance.status == DistanceStatus::overlapping ? 0.0 : got.distance.distance);
+      tally[std::string(to_string(got.distance.status))]++;
+    }
+  }
+  for (const char* outcome : {"separated", "overlapping"}) EXPECT_GT(tally[outcome], 0) << outcome;
+  const MeshDistance<double, N> none = signed_distance(Ellipsoid<double, N>(), TriangleMesh<double, N>());
+  EXPECT_EQ(none.triangle, -1);
+  EXPECT_EQ(none.distance.distance, inf);
+  EXPECT_EQ(none.distance.status, DistanceStatus::separated);
+}
+
+TEST(TriangleMesh, DistanceMatchesEveryTriangle2D) { distance_matches_every_triangle<2>(); }
+TEST(TriangleMesh, DistanceMatchesEveryTriangle3D) { distance_matches_every_triangle<3>(); }
+
 // Found by the queries fuzz target: a float circle whose box edge lies exactly on the
 // triangle's box edge (y = 0); its float axes are unit only to float's rounding, so a box
 // from them fell short by an ulp and the walk dropped the triangle.

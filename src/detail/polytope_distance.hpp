@@ -1,0 +1,251 @@
+// Signed distance of a body and a convex polytope (a triangle, a box) from the stationary
+// directions of the support gap.
+//
+// Math. In the body's frame, y = A^T (x - c) with radii r and Sigma = diag(r^2), the signed
+// distance of the body and P = conv{y_k} is the maximum over unit n of the support gap
+//     G(n) = min_k n . y_k - rho(n),   rho(n) = sqrt(n^T Sigma n)
+// (distance.hpp: the separation distance when apart, minus the penetration depth when
+// overlapping). The sphere of directions splits into strata by the vertices attaining the
+// minimum: one vertex (open regions), an edge (n orthogonal to it), a face (n its normal, 3D).
+// On a stratum G is one smooth g_k(n) = n . y_k - rho(n), so the maximizer is a stationary
+// point of g_k restricted to its stratum:
+//   vertex    y - Sigma n / rho = lambda n: the support point x = Sigma n / rho is a
+//             stationary point of |y - x| on the boundary, x_i = r_i^2 y_i / (r_i^2 + s), n
+//             along x_i / r_i^2 = y_i / (r_i^2 + s), for each real root s of the secular
+//             equation sum_i r_i^2 y_i^2 / (r_i^2 + s)^2 = 1: one beyond each extreme pole,
+//             none or two between neighbouring poles (the sum is convex there), at most 2N;
+//             and, where y_i = 0, s = -r_i^2 with x_i from the boundary (the hard case);
+//   edge      the same problem one dimension down: along the edge e the body's shadow on the
+//             plane orthogonal to e is the ellipse of shape B^T Sigma B (B an orthonormal
+//             basis of that plane) and the edge is the point B^T y_j;
+//   face      n = +- the face's normal (in 2D the edges' normals).
+// Every candidate is a direction, so G there is at most the maximum, and the maximizer is a
+// candidate: the best candidate is the answer, exact up to the rounding of the roots (of
+// second order in G, which is stationary there) and of G's evaluation. The hard-case
+// directions are added for every axis, also where y_i != 0, so that a root too close to its
+// pole to be resolved has its limit among the candidates.
+#pragma once
+
+#include <ellipsect/classify.hpp>
+#include <ellipsect/distance.hpp>
+
+#include "axes.hpp"
+#include "contact_start.hpp"
+#include "scale.hpp"
+
+#include <Eigen/Eigenvalues>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <span>
+#include <type_traits>
+
+namespace ellipsect::detail {
+
+// Calls emit(n) with the normal direction (not normalized) at each stationary point of
+// |y - x| over the boundary of {x : sum_i x_i^2 / a_i <= 1}, a_i = r_i^2 > 0.
+template <class F, int M, class Emit>
+void stationary_normals(const Vec<F, M>& a, const Vec<F, M>& y, Emit&& emit) noexcept {
+  // The active poles -a_i (b_i = a_i y_i^2 > 0), equal ones merged, a ascending.
+  std::array<F, M> pa{}, pb{};
+  int m = 0;
+  std::array<int, M> index;
+  for (int i = 0; i < M; ++i) index[i] = i;
+  std::sort(index.begin(), index.end(), [&](int i, int j) { return a[i] < a[j]; });
+  F total = 0;
+  for (const int i : index) {
+    const F b = a[i] * y[i] * y[i];
+    if (!(b > F(0))) continue;
+    total += b;
+    if (m > 0 && pa[m - 1] == a[i]) {
+      pb[m - 1] += b;
+    } else {
+      pa[m] = a[i];
+      pb[m++] = b;
+    }
+  }
+  const auto secular = [&](F s) {
+    F f = -1;
+    for (int j = 0; j < m; ++j) f += pb[j] / ((pa[j] + s) * (pa[j] + s));
+    return f;
+  };
+  const auto slope = [&](F s) {
+    F f = 0;
+    for (int j = 0; j < m; ++j) f -= 2 * pb[j] / ((pa[j] + s) * (pa[j] + s) * (pa[j] + s));
+    return f;
+  };
+  // Bisection of [lo, hi] on the sign of f, positive at lo when lo_positive (bounded: 200
+  // halvings reach the rounding of s from any bracket).
+  const auto bisect = [](auto&& f, F lo, F hi, bool lo_positive) {
+    for (int it = 0; it < 200; ++it) {
+      const F mid = lo + (hi - lo) / 2;
+      if (!(mid > lo && mid < hi)) break;
+      (((f(mid) > F(0)) == lo_positive) ? lo : hi) = mid;
+    }
+    return lo + (hi - lo) / 2;
+  };
+  const auto emit_root = [&](F s) {
+    Vec<F, M> n;
+    for (int i = 0; i < M; ++i) n[i] = y[i] == F(0) ? F(0) : y[i] / (a[i] + s);
+    emit(n);
+  };
+  if (m > 0) {
+    const F spread = std::sqrt(total);
+    emit_root(bisect(secular, -pa[0] + std::sqrt(pb[0]), -pa[0] + spread, true));
+    emit_root(bisect(secular, -pa[m - 1] - spread, -pa[m - 1] - std::sqrt(pb[m - 1]), false));
+    for (int j = 0; j + 1 < m; ++j) {
+      const F lo = -pa[j + 1], hi = -pa[j];
+      const F low = bisect(slope, lo, hi, false);
+      if (!(secular(low) < F(0))) continue;
+      emit_root(bisect(secular, lo, low, true));
+      emit_root(bisect(secular, low, hi, false));
+    }
+  }
+  // The hard-case directions s = -a_i.
+  for (int i = 0; i < M; ++i) {
+    Vec<F, M> n;
+    F rest = 1;
+    bool valid = true;
+    for (int j = 0; j < M; ++j) {
+      if (j == i) continue;
+      if (a[j] == a[i]) {
+        valid = valid && y[j] == F(0);
+        n[j] = 0;
+        continue;
+      }
+      n[j] = y[j] / (a[j] - a[i]);
+      rest -= a[j] * n[j] * n[j];
+    }
+    if (!valid || !(rest >= F(0))) continue;
+    n[i] = std::sqrt(rest / a[i]);
+    emit(n);
+    n[i] = -n[i];
+    emit(n);
+  }
+}
+
+// The polytope: vertices, edges as vertex index pairs, faces (3D) as three of their vertices'
+// indices; in 2D the edges' normals are the face directions.
+template <class F, int N>
+struct Polytope {
+  std::span<const Vec<F, N>> vertices;
+  std::span<const std::array<int, 2>> edges;
+  std::span<const std::array<int, 3>> faces;
+};
+
+template <class F, int N>
+struct GapMaximum {
+  Vec<F, N> normal;  // unit, body frame
+  F gap = -std::numeric_limits<F>::infinity();
+  int evaluations = 0;
+};
+
+// max over unit n of G(n) (above) for the body of squared radii a.
+template <class F, int N>
+GapMaximum<F, N> max_support_gap(const Vec<F, N>& a, const Polytope<F, N>& p) noexcept {
+  GapMaximum<F, N> best;
+  best.normal.setZero();
+  const auto consider = [&](const Vec<F, N>& direction) {
+    const Vec<F, N> n = unit_vector<F, N>(direction);
+    if (!(n.squaredNorm() > F(0.5)) || !n.allFinite()) return;
+    F low = std::numeric_limits<F>::infinity();
+    for (const auto& y : p.vertices) low = std::min(low, n.dot(y));
+    const F gap = low - std::sqrt(n.cwiseAbs2().dot(a));
+    ++best.evaluations;
+    if (gap > best.gap) {
+      best.gap = gap;
+      best.normal = n;
+    }
+  };
+  for (const auto& y : p.vertices) stationary_normals<F, N>(a, y, consider);
+  for (const auto& [j, k] : p.edges) {
+    const Vec<F, N> e = unit_vector<F, N>(p.vertices[k] - p.vertices[j]);
+    if (!(e.squaredNorm() > F(0.5))) continue;  // coincident vertices: their vertex strata
+    if constexpr (N == 2) {
+      const Vec<F, 2> normal(-e[1], e[0]);
+      consider(normal);
+      consider(-normal);
+    } else {
+      Mat<F, 3> frame;
+      frame.col(0) = e.unitOrthogonal();
+      frame.col(1) = e.cross(frame.col(0));
+      const Eigen::Matrix<F, 3, 2> basis = frame.template leftCols<2>();
+      const Mat<F, 2> shadow = basis.transpose() * a.asDiagonal() * basis;
+      Eigen::SelfAdjointEigenSolver<Mat<F, 2>> eigen;
+      eigen.computeDirect(shadow);
+      const Eigen::Matrix<F, 3, 2> to_world = basis * eigen.eigenvectors();
+      const Vec<F, 2> point = to_world.transpose() * p.vertices[j];
+      const Vec<F, 2> squared = eigen.eigenvalues().cwiseMax(F(0));
+      if (!(squared.minCoeff() > F(0))) continue;
+      stationary_normals<F, 2>(squared, point, [&](const Vec<F, 2>& m) { consider(to_world * m); });
+    }
+  }
+  if constexpr (N == 3)
+    for (const auto& [i, j, k] : p.faces) {
+      const Vec<F, 3> n = (p.vertices[j] - p.vertices[i]).cross(p.vertices[k] - p.vertices[i]);
+      consider(n);
+      consider(-n);
+    }
+  return best;
+}
+
+// The signed distance of the body and the polytope of the world-frame vertices (at most 8;
+// edges and faces as in Polytope), with classify's relation as status (overlapping for
+// containment). The computation runs on the body scaled to a largest radius in [1, 2), in
+// double (long double beyond the native range, scale.hpp).
+template <class T, int N>
+Distance<T, N> polytope_signed_distance(const Ellipsoid<T, N>& body, std::span<const Vec<T, N>> vertices,
+                                        std::span<const std::array<int, 2>> edges,
+                                        std::span<const std::array<int, 3>> faces, Relation relation) noexcept {
+  T coordinate = max_abs(body.center());
+  for (const auto& v : vertices) coordinate = std::max(coordinate, max_abs(v));
+  const Scale scale = scale_of<T>(body.radii().maxCoeff(), body.radii().minCoeff(), coordinate);
+  const auto run = [&](auto zero) {
+    using F = decltype(zero);
+    const int e = std::ilogb(body.radii().maxCoeff());
+    const Mat<F, N> axes = work_axes<F>(body);
+    const Vec<F, N> center = body.center().template cast<F>();
+    const Vec<F, N> r = times_pow2(body.radii().template cast<F>(), -e);
+    std::array<Vec<F, N>, 8> y;
+    for (std::size_t k = 0; k < vertices.size(); ++k)
+      y[k] = times_pow2(axes.transpose() * (vertices[k].template cast<F>() - center), -e);
+    const Polytope<F, N> p{std::span<const Vec<F, N>>(y.data(), vertices.size()), edges, faces};
+    const Vec<F, N> a = r.cwiseAbs2();
+    const GapMaximum<F, N> best = max_support_gap<F, N>(a, p);
+    Distance<T, N> out;
+    out.iterations = best.evaluations;
+    const Vec<F, N> support = a.cwiseProduct(best.normal) / std::sqrt(best.normal.cwiseAbs2().dot(a));
+    const F gap = std::ldexp(best.gap, e);
+    out.normal = (axes * best.normal).template cast<T>();
+    out.point_a = (center + axes * times_pow2(support, e)).template cast<T>();
+    out.distance = T(gap);
+    out.point_b = (center + axes * times_pow2(support, e) + gap * (axes * best.normal)).template cast<T>();
+    return out;
+  };
+  Distance<T, N> out = scale.range == Range::wide ? run(0.0L) : run(std::conditional_t<(sizeof(T) < sizeof(double)), double, T>(0));
+  switch (relation) {
+    case Relation::separated:
+      out.status = DistanceStatus::separated;
+      out.distance = std::max(out.distance, T(0));
+      break;
+    case Relation::touching: out.status = DistanceStatus::touching; break;
+    default:
+      out.status = DistanceStatus::overlapping;
+      out.distance = std::min(out.distance, T(0));
+      break;
+  }
+  return out;
+}
+
+// distance() from signed_distance(): overlapping bodies get 0 and NaN points and normal.
+template <class T, int N>
+Distance<T, N> unsigned_distance(Distance<T, N> d) noexcept {
+  if (d.status != DistanceStatus::overlapping) return d;
+  d.distance = 0;
+  d.point_a = d.point_b = d.normal = nan_vec<T, N>();
+  return d;
+}
+
+}  // namespace ellipsect::detail
