@@ -239,6 +239,14 @@ void def_results(py::module_& m, const char* suffix) {
         return "MeshContact(status=" + std::string(to_string(c.contact.status)) + ", time=" +
                std::to_string(c.contact.time) + ", triangle=" + std::to_string(c.triangle) + ")";
       });
+  using MD = MeshDistance<double, N>;
+  py::class_<MD>(m, ("MeshDistance" + s).c_str(), "distance / signed_distance's answer against a mesh (see mesh.hpp).")
+      .def_property_readonly("distance", [](const MD& d) { return d.distance; })
+      .def_property_readonly("triangle", [](const MD& d) { return d.triangle; }, "The nearest (deepest) triangle, or -1.")
+      .def("__repr__", [](const MD& d) {
+        return "MeshDistance(status=" + std::string(to_string(d.distance.status)) + ", distance=" +
+               std::to_string(d.distance.distance) + ", triangle=" + std::to_string(d.triangle) + ")";
+      });
   using D = Distance<double, N>;
   py::class_<D>(m, ("Distance" + s).c_str(), "distance / signed_distance's answer (see distance.hpp).")
       .def_property_readonly("status", [](const D& d) { return d.status; })
@@ -349,6 +357,10 @@ void def_queries(py::module_& m) {
         py::arg("b"), py::arg("options") = Options{});
   m.def("overlap", py::overload_cast<const E&, const Bx&, const Options&>(&overlap<double, N>), py::arg("a"),
         py::arg("b"), py::arg("options") = Options{});
+  m.def("distance", py::overload_cast<const E&, const Bx&, const Options&>(&distance<double, N>), py::arg("a"),
+        py::arg("b"), py::arg("options") = Options{});
+  m.def("signed_distance", py::overload_cast<const E&, const Bx&, const Options&>(&signed_distance<double, N>),
+        py::arg("a"), py::arg("b"), py::arg("options") = Options{});
   m.def("first_contact",
         [](const E& a, const Row<N>& va, const Bx& b, const Row<N>& vb, double t_max, const Options& o) {
           return first_contact(a, vec<N>(va), b, vec<N>(vb), t_max, o);
@@ -362,6 +374,22 @@ void def_queries(py::module_& m) {
         py::arg("b"), py::arg("options") = Options{});
   m.def("overlap", py::overload_cast<const E&, const Tr&, const Options&>(&overlap<double, N>), py::arg("a"),
         py::arg("b"), py::arg("options") = Options{});
+  m.def("distance", py::overload_cast<const E&, const Tr&, const Options&>(&distance<double, N>), py::arg("a"),
+        py::arg("b"), py::arg("options") = Options{});
+  m.def("signed_distance", py::overload_cast<const E&, const Tr&, const Options&>(&signed_distance<double, N>),
+        py::arg("a"), py::arg("b"), py::arg("options") = Options{});
+  using MeshQuery = MeshDistance<double, N> (*)(const E&, const TM&, const Options&) noexcept;
+  for (const auto& named : {std::pair<const char*, MeshQuery>{"distance", &distance<double, N>},
+                            std::pair<const char*, MeshQuery>{"signed_distance", &signed_distance<double, N>}}) {
+    const MeshQuery query = named.second;
+    m.def(
+        named.first,
+        [query](const E& a, const TM& b, const Options& o) {
+          py::gil_scoped_release release;
+          return query(a, b, o);
+        },
+        py::arg("a"), py::arg("b"), py::arg("options") = Options{});
+  }
   m.def("first_contact",
         [](const E& a, const Row<N>& va, const Tr& b, const Row<N>& vb, double t_max, const Options& o) {
           return first_contact(a, vec<N>(va), b, vec<N>(vb), t_max, o);

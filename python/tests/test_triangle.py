@@ -143,3 +143,27 @@ def test_box():
         ellipsect.Box3([0, 0, 0], [1, 0, 1])
     with pytest.raises(IndexError):
         box.corner(8)
+
+
+def test_signed_distance_of_triangles_boxes_and_meshes():
+    ball = ellipsect.Ellipsoid.ball([0, 0, 0], 1)
+    floor = ellipsect.Triangle3([-10, -10, 3], [10, -10, 3], [0, 20, 3])
+    d = ellipsect.signed_distance(ball, floor)
+    assert d.status == ellipsect.DistanceStatus.separated
+    assert d.distance == pytest.approx(2, abs=1e-15)
+    np.testing.assert_allclose(d.normal, [0, 0, 1], atol=1e-15)
+    np.testing.assert_allclose(d.point_b, [0, 0, 3], atol=1e-15)
+    # A plane through the body: pushed out by 0.5 along +z; distance() reports 0 there.
+    low = ellipsect.Triangle3([-10, -10, 0.5], [10, -10, 0.5], [0, 20, 0.5])
+    assert ellipsect.signed_distance(ball, low).distance == pytest.approx(-0.5, abs=1e-15)
+    assert ellipsect.distance(ball, low).distance == 0
+    assert math.isnan(ellipsect.distance(ball, low).normal[0])
+    box = ellipsect.Box3([0, 0, 0], [10, 10, 10])
+    assert ellipsect.signed_distance(ball, box).distance == pytest.approx(-11, abs=1e-13)
+    # A mesh of two triangles: the nearer one is reported.
+    mesh = ellipsect.TriangleMesh3(
+        np.array([[-10, -10, 3], [10, -10, 3], [0, 20, 3], [-10, -10, 5], [10, -10, 5], [0, 20, 5]], dtype=float),
+        np.array([[3, 4, 5], [0, 1, 2]], dtype=np.int64))
+    md = ellipsect.signed_distance(ball, mesh)
+    assert md.triangle == 1
+    assert md.distance.distance == pytest.approx(2, abs=1e-15)
