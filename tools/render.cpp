@@ -549,8 +549,8 @@ int render(const Input& in, const RenderOptions& opt, const Plane& plane) {
   if (m > 0) {
     svg += "<rect x=\"" + fmt(lx) + "\" y=\"" + fmt(ly - 6) + "\" width=\"18\" height=\"12\" fill=\"" + obstacle_color +
            "\" fill-opacity=\"0.2\" stroke=\"" + obstacle_color + "\"/>\n";
-    legend_text(lx + 26, "obstacles (" + std::to_string(m) + "; " + std::to_string(n_red_obstacles) +
-                             " overlapped, red)");
+    legend_text(lx + 26, "obstacles (" + std::to_string(m) + ", " + std::to_string(n_red_obstacles) +
+                             " overlapped at t)");
     ly += row_h;
   }
   if (any_moving) {

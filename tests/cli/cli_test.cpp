@@ -1579,6 +1579,29 @@ TEST(CliObstacles, SphereAgainstObjAndStlCubesAnswersAsTheBox) {
   }
 }
 
+// The bundled scenes: B (r 0.5) falls at 1.5 from (6, 0, 4) onto the apex of the binary STL
+// tetrahedron, (6, 0, 1.6) rounded to float: t = (3.5 - float(1.6)) / 1.5.
+TEST(CliObstacles, BundledObstacleScenes) {
+  const auto dir = work_dir();
+  const Outcome r2 = run_cli({"check", (scenes / "obstacles_2d.json").string()}, dir);
+  ASSERT_EQ(r2.code, 0) << describe(r2);
+  EXPECT_EQ(parse_json(r2.out)["results"].size(), 3u + 3u * 4u);
+  const Outcome r3 = run_cli({"check", (scenes / "obstacles_3d.json").string()}, dir);
+  ASSERT_EQ(r3.code, 0) << describe(r3);
+  const json out = parse_json(r3.out);
+  ASSERT_EQ(out["results"].size(), 3u + 3u * 4u);
+  const json& tetrahedron = out["results"][9];
+  ASSERT_EQ(tetrahedron["a"], "B");
+  ASSERT_EQ(tetrahedron["b"], "tetrahedron");
+  const double apex = static_cast<double>(1.6f);
+  expect_hit(tetrahedron["contact"], (3.5 - apex) / 1.5, {6, 0, apex}, {0, 0, -1});
+  for (const std::string scene : {"obstacles_2d.json", "obstacles_3d.json"}) {
+    const Outcome p = run_cli({"render", (scenes / scene).string(), "-o", (dir / (scene + ".svg")).string()}, dir);
+    ASSERT_EQ(p.code, 0) << describe(p);
+    EXPECT_EQ(read_svg(dir / (scene + ".svg")).obstacles, 4);
+  }
+}
+
 TEST(CliObstacles, RenderDrawsObstaclesRedWhenABodyOverlapsThem) {
   const auto dir = work_dir();
   write_file(dir / "obstacles.json", obstacles_2d_scene);
