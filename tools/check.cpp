@@ -465,7 +465,7 @@ int check_bodies(const Input& in, const CheckOptions& opt, const Window& w, cons
   const std::uint64_t n = bodies.size();
   const std::uint64_t all_pairs = n * (n - 1) / 2;
   std::vector<Obstacle<N>> obstacles;  // at the window start
-  for (const auto& o : scene.obstacles) obstacles.push_back(obstacle_at<N>(o, w.t0));
+  for (const auto& o : scene.obstacles) obstacles.push_back(obstacle_at<N>(o, w.t0, in.path));
   const std::uint64_t obstacle_pairs = n * obstacles.size();
 
   // The pair source: fill(jobs, max) appends up to max jobs, returns how many; fraction()

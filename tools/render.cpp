@@ -252,7 +252,7 @@ int render(const Input& in, const RenderOptions& opt, const Plane& plane) {
   const std::size_t n = bodies.size();
   const std::size_t m = set.obstacles.size();
   std::vector<Obstacle<N>> obstacles_t0;
-  for (const auto& o : set.obstacles) obstacles_t0.push_back(obstacle_at<N>(o, w.t0));
+  for (const auto& o : set.obstacles) obstacles_t0.push_back(obstacle_at<N>(o, w.t0, in.path));
   // The id of pair member j: a body, or an obstacle from n on.
   const auto id_of = [&](std::uint32_t j) -> const std::string& {
     return j < n ? bodies[j].id : set.obstacles[j - n].id;
@@ -304,7 +304,7 @@ int render(const Input& in, const RenderOptions& opt, const Plane& plane) {
     }
   }
   std::vector<Obstacle<N>> obstacles_at_t;
-  for (const auto& o : set.obstacles) obstacles_at_t.push_back(obstacle_at<N>(o, T));
+  for (const auto& o : set.obstacles) obstacles_at_t.push_back(obstacle_at<N>(o, T, in.path));
   std::vector<IndexPair> rel_pairs = set.pairs;
   if (set.pairs_from_broad_phase) {
     // The body pairs from the broad phase at T; the obstacle pairs as listed.

@@ -770,7 +770,7 @@ const char* obstacle_type(const Obstacle<N>& o) {
 }
 
 template <int N>
-Obstacle<N> obstacle_at(const Obstacle<N>& o, double t) {
+Obstacle<N> obstacle_at(const Obstacle<N>& o, double t, const std::string& file) {
   if (t == 0.0 || o.velocity.isZero()) return o;
   const Vec<double, N> offset = o.velocity * t;
   Obstacle<N> moved{o.id, {}, o.velocity};
@@ -797,7 +797,7 @@ Obstacle<N> obstacle_at(const Obstacle<N>& o, double t) {
         },
         o.shape);
   } catch (const InputError& e) {
-    throw BadInput("obstacle " + o.id + " at t = " + number_string(t) + ": " + e.what());
+    throw BadInput(file + ": obstacle " + o.id + " at t = " + number_string(t) + ": " + e.what());
   }
   return moved;
 }
@@ -977,10 +977,10 @@ void load_pair_rows(const Input& in, std::size_t limit, std::vector<Body<N>>& bo
 
 #define ELLIPSECT_CLI_INSTANTIATE(N)                                                                        \
   template BodyScene<N> load_bodies<N>(const Input&);                                                        \
-  template std::unordered_map<std::string, std::uint32_t> id_index<N>(const std::vector<Body<N>>&,            \
-                                                                      const std::vector<Obstacle<N>>&);     \
+  template std::unordered_map<std::string, std::uint32_t> id_index<N>(const std::vector<Body<N>>&,          \
+                                                                      const std::vector<Obstacle<N>>&);       \
   template const char* obstacle_type<N>(const Obstacle<N>&);                                                 \
-  template Obstacle<N> obstacle_at<N>(const Obstacle<N>&, double);                                           \
+  template Obstacle<N> obstacle_at<N>(const Obstacle<N>&, double, const std::string&);                       \
   template PairColumns<N> pair_columns<N>(const Input&);                                                     \
   template std::pair<Body<N>, Body<N>> parse_pair_row<N>(std::string_view, std::uint64_t, const PairColumns<N>&, \
                                                          const std::string&, RowScratch&);                    \

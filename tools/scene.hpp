@@ -51,9 +51,10 @@ template <int N>
 const char* obstacle_type(const Obstacle<N>& o);
 
 // The obstacle at time t: shape moved by t * velocity (a mesh rebuilt, its triangles keeping
-// their indices). Throws BadInput naming the obstacle where that leaves the range of double.
+// their indices). Throws BadInput naming the scene `file` and the obstacle where that leaves
+// the range of double.
 template <int N>
-Obstacle<N> obstacle_at(const Obstacle<N>& o, double t);
+Obstacle<N> obstacle_at(const Obstacle<N>& o, double t, const std::string& file);
 
 // The time window [t0, t1] (t1 may be +infinity) in which first contact is searched; the
 // relation is reported at t0.
