@@ -3,6 +3,7 @@
 
 #include <ellipsect/batch.hpp>
 #include <ellipsect/box.hpp>
+#include <ellipsect/capsule.hpp>
 #include <ellipsect/broad_phase.hpp>
 #include <ellipsect/classify.hpp>
 #include <ellipsect/contact.hpp>

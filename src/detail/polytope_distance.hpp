@@ -21,7 +21,9 @@
 //   face      n = +- the face's normal (in 2D the edges' normals).
 // Every candidate is a direction, so G there is at most the maximum, and the maximizer is a
 // candidate: the best candidate is the answer, exact up to the rounding of the roots (of
-// second order in G, which is stationary there) and of G's evaluation. The hard-case
+// second order in G, which is stationary there) and of G's evaluation. The same candidates,
+// with their opposites, give two more maxima over the sphere used for containment (reach and
+// farthest, below). The hard-case
 // directions are added for every axis, also where y_i != 0, so that a root too close to its
 // pole to be resolved has its limit among the candidates.
 #pragma once
@@ -137,12 +139,20 @@ struct Polytope {
 
 template <class F, int N>
 struct GapMaximum {
-  Vec<F, N> normal;  // unit, body frame
+  Vec<F, N> normal;  // unit, body frame: where gap is reached
   F gap = -std::numeric_limits<F>::infinity();
+  // max over n of min_k n . y_k + rho(n): the body lies in the polytope grown by a ball of
+  // radius R exactly when reach <= R (support functions compared: h_body <= h_polytope + R).
+  F reach = -std::numeric_limits<F>::infinity();
+  // max over n of max_k n . y_k - rho(n) = max_k of vertex k's signed distance to the body's
+  // boundary: the polytope grown by R lies in the body exactly when farthest <= -R.
+  F farthest = -std::numeric_limits<F>::infinity();
   int evaluations = 0;
 };
 
-// max over unit n of G(n) (above) for the body of squared radii a.
+// The three maxima above for the body of squared radii a. reach and farthest have the same
+// stationary directions, negated (the body is symmetric about its center), so every
+// candidate is evaluated with its opposite.
 template <class F, int N>
 GapMaximum<F, N> max_support_gap(const Vec<F, N>& a, const Polytope<F, N>& p) noexcept {
   GapMaximum<F, N> best;
@@ -150,23 +160,30 @@ GapMaximum<F, N> max_support_gap(const Vec<F, N>& a, const Polytope<F, N>& p) no
   const auto consider = [&](const Vec<F, N>& direction) {
     const Vec<F, N> n = unit_vector<F, N>(direction);
     if (!(n.squaredNorm() > F(0.5)) || !n.allFinite()) return;
-    F low = std::numeric_limits<F>::infinity();
-    for (const auto& y : p.vertices) low = std::min(low, n.dot(y));
-    const F gap = low - std::sqrt(n.cwiseAbs2().dot(a));
-    ++best.evaluations;
-    if (gap > best.gap) {
-      best.gap = gap;
+    F low = std::numeric_limits<F>::infinity(), high = -low;
+    for (const auto& y : p.vertices) {
+      low = std::min(low, n.dot(y));
+      high = std::max(high, n.dot(y));
+    }
+    const F rho = std::sqrt(n.cwiseAbs2().dot(a));
+    best.evaluations += 2;
+    if (low - rho > best.gap) {
+      best.gap = low - rho;
       best.normal = n;
     }
+    if (-high - rho > best.gap) {
+      best.gap = -high - rho;
+      best.normal = -n;
+    }
+    best.reach = std::max({best.reach, low + rho, rho - high});
+    best.farthest = std::max({best.farthest, high - rho, -low - rho});
   };
   for (const auto& y : p.vertices) stationary_normals<F, N>(a, y, consider);
   for (const auto& [j, k] : p.edges) {
     const Vec<F, N> e = unit_vector<F, N>(p.vertices[k] - p.vertices[j]);
     if (!(e.squaredNorm() > F(0.5))) continue;  // coincident vertices: their vertex strata
     if constexpr (N == 2) {
-      const Vec<F, 2> normal(-e[1], e[0]);
-      consider(normal);
-      consider(-normal);
+      consider(Vec<F, 2>(-e[1], e[0]));
     } else {
       Mat<F, 3> frame;
       frame.col(0) = e.unitOrthogonal();
@@ -184,21 +201,27 @@ GapMaximum<F, N> max_support_gap(const Vec<F, N>& a, const Polytope<F, N>& p) no
   }
   if constexpr (N == 3)
     for (const auto& [i, j, k] : p.faces) {
-      const Vec<F, 3> n = (p.vertices[j] - p.vertices[i]).cross(p.vertices[k] - p.vertices[i]);
-      consider(n);
-      consider(-n);
+      consider((p.vertices[j] - p.vertices[i]).cross(p.vertices[k] - p.vertices[i]));
     }
   return best;
 }
 
-// The signed distance of the body and the polytope of the world-frame vertices (at most 8;
-// edges and faces as in Polytope), with classify's relation as status (overlapping for
-// containment). The computation runs on the body scaled to a largest radius in [1, 2), in
-// double (long double beyond the native range, scale.hpp).
+// The maxima in world units: the gap (the signed distance), where it is reached (the world
+// normal, the body's support point there and its support radius), reach and farthest.
 template <class T, int N>
-Distance<T, N> polytope_signed_distance(const Ellipsoid<T, N>& body, std::span<const Vec<T, N>> vertices,
-                                        std::span<const std::array<int, 2>> edges,
-                                        std::span<const std::array<int, 3>> faces, Relation relation) noexcept {
+struct Support {
+  Vec<T, N> normal, point;
+  T gap, radius, reach, farthest;
+  int evaluations;
+};
+
+// For the body and the polytope of the world-frame vertices (at most 8; edges and faces as in
+// Polytope). Runs on the body scaled to a largest radius in [1, 2), in double (long double
+// beyond the native range, scale.hpp).
+template <class T, int N>
+Support<T, N> polytope_support(const Ellipsoid<T, N>& body, std::span<const Vec<T, N>> vertices,
+                               std::span<const std::array<int, 2>> edges,
+                               std::span<const std::array<int, 3>> faces) noexcept {
   T coordinate = max_abs(body.center());
   for (const auto& v : vertices) coordinate = std::max(coordinate, max_abs(v));
   const Scale scale = scale_of<T>(body.radii().maxCoeff(), body.radii().minCoeff(), coordinate);
@@ -207,24 +230,30 @@ Distance<T, N> polytope_signed_distance(const Ellipsoid<T, N>& body, std::span<c
     const int e = std::ilogb(body.radii().maxCoeff());
     const Mat<F, N> axes = work_axes<F>(body);
     const Vec<F, N> center = body.center().template cast<F>();
-    const Vec<F, N> r = times_pow2(body.radii().template cast<F>(), -e);
+    const Vec<F, N> a = times_pow2(body.radii().template cast<F>(), -e).cwiseAbs2();
     std::array<Vec<F, N>, 8> y;
     for (std::size_t k = 0; k < vertices.size(); ++k)
       y[k] = times_pow2(axes.transpose() * (vertices[k].template cast<F>() - center), -e);
-    const Polytope<F, N> p{std::span<const Vec<F, N>>(y.data(), vertices.size()), edges, faces};
-    const Vec<F, N> a = r.cwiseAbs2();
-    const GapMaximum<F, N> best = max_support_gap<F, N>(a, p);
-    Distance<T, N> out;
-    out.iterations = best.evaluations;
-    const Vec<F, N> support = a.cwiseProduct(best.normal) / std::sqrt(best.normal.cwiseAbs2().dot(a));
-    const F gap = std::ldexp(best.gap, e);
-    out.normal = (axes * best.normal).template cast<T>();
-    out.point_a = (center + axes * times_pow2(support, e)).template cast<T>();
-    out.distance = T(gap);
-    out.point_b = (center + axes * times_pow2(support, e) + gap * (axes * best.normal)).template cast<T>();
-    return out;
+    const GapMaximum<F, N> m =
+        max_support_gap<F, N>(a, {std::span<const Vec<F, N>>(y.data(), vertices.size()), edges, faces});
+    const F rho = std::sqrt(m.normal.cwiseAbs2().dot(a));
+    const Vec<F, N> support = a.cwiseProduct(m.normal) / rho;
+    return Support<T, N>{(axes * m.normal).template cast<T>(), (center + axes * times_pow2(support, e)).template cast<T>(),
+                         T(std::ldexp(m.gap, e)), T(std::ldexp(rho, e)), T(std::ldexp(m.reach, e)),
+                         T(std::ldexp(m.farthest, e)), m.evaluations};
   };
-  Distance<T, N> out = scale.range == Range::wide ? run(0.0L) : run(std::conditional_t<(sizeof(T) < sizeof(double)), double, T>(0));
+  return scale.range == Range::wide ? run(0.0L) : run(std::conditional_t<(sizeof(T) < sizeof(double)), double, T>(0));
+}
+
+// A Distance from the support maximum less `grow` (a capsule's radius), with classify's
+// relation as status (overlapping for containment); point_b = point_a + distance * normal.
+template <class T, int N>
+Distance<T, N> distance_of(const Support<T, N>& s, T grow, Relation relation) noexcept {
+  Distance<T, N> out;
+  out.iterations = s.evaluations;
+  out.normal = s.normal;
+  out.point_a = s.point;
+  out.distance = s.gap - grow;
   switch (relation) {
     case Relation::separated:
       out.status = DistanceStatus::separated;
@@ -236,7 +265,15 @@ Distance<T, N> polytope_signed_distance(const Ellipsoid<T, N>& body, std::span<c
       out.distance = std::min(out.distance, T(0));
       break;
   }
+  out.point_b = out.point_a + out.distance * out.normal;
   return out;
+}
+
+template <class T, int N>
+Distance<T, N> polytope_signed_distance(const Ellipsoid<T, N>& body, std::span<const Vec<T, N>> vertices,
+                                        std::span<const std::array<int, 2>> edges,
+                                        std::span<const std::array<int, 3>> faces, Relation relation) noexcept {
+  return distance_of(polytope_support<T, N>(body, vertices, edges, faces), T(0), relation);
 }
 
 // distance() from signed_distance(): overlapping bodies get 0 and NaN points and normal.

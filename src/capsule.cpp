@@ -1,0 +1,147 @@
+// Bodies against capsules (capsule.hpp): every answer from the support maxima of the body
+// and the capsule's segment (detail/polytope_distance.hpp), less the capsule's radius.
+#include <ellipsect/capsule.hpp>
+
+#include "detail/contact_start.hpp"
+#include "detail/instantiate.hpp"
+#include "detail/polytope_distance.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <string>
+
+namespace ellipsect {
+
+namespace {
+
+constexpr std::array<std::array<int, 2>, 1> segment_edge{{{0, 1}}};
+
+// The support maxima of the body and the segment moved by `shift`.
+template <class T, int N>
+detail::Support<T, N> support_of(const Ellipsoid<T, N>& a, const Capsule<T, N>& b, const Vec<T, N>& shift) noexcept {
+  const std::array<Vec<T, N>, 2> p{Vec<T, N>(b.point(0) + shift), Vec<T, N>(b.point(1) + shift)};
+  return detail::polytope_support<T, N>(a, p, segment_edge, {});
+}
+
+template <class T, int N>
+Relation relation_of(const detail::Support<T, N>& s, T radius, const Options& options) noexcept {
+  const T band = T(options.tolerance) * s.radius;
+  const T gap = s.gap - radius;
+  if (gap > band) return Relation::separated;
+  if (gap >= -band) return Relation::touching;
+  if (s.farthest + radius <= band) return Relation::a_contains_b;
+  if (s.reach - radius <= band) return Relation::b_contains_a;
+  return Relation::overlapping;
+}
+
+}  // namespace
+
+template <class T, int N>
+Capsule<T, N> Capsule<T, N>::from_segment(const Vec<T, N>& p0, const Vec<T, N>& p1, T radius) {
+  for (int i = 0; i < N; ++i) {
+    if (!std::isfinite(p0[i])) throw InputError("p0[" + std::to_string(i) + "]", "must be finite");
+    if (!std::isfinite(p1[i])) throw InputError("p1[" + std::to_string(i) + "]", "must be finite");
+  }
+  if (!(radius > T(0) && radius <= std::numeric_limits<T>::max())) throw InputError("radius", "must be finite and > 0");
+  Capsule c;
+  Eigen::Map<Vec<T, N>>(c.points_[0].data()) = p0;
+  Eigen::Map<Vec<T, N>>(c.points_[1].data()) = p1;
+  c.radius_ = radius;
+  return c;
+}
+
+template <class T, int N>
+Capsule<T, N> Capsule<T, N>::translated(const Vec<T, N>& offset) const {
+  if (!offset.allFinite()) throw InputError("offset", "must be finite");
+  const Vec<T, N> p0 = point(0) + offset, p1 = point(1) + offset;
+  if (!p0.allFinite() || !p1.allFinite()) throw InputError("offset", "moves a point beyond the range of the type");
+  return from_segment(p0, p1, radius_);
+}
+
+template <class T, int N>
+Relation classify(const Ellipsoid<T, N>& a, const Capsule<T, N>& b, const Options& options) noexcept {
+  return relation_of(support_of<T, N>(a, b, Vec<T, N>::Zero()), b.radius(), options);
+}
+
+template <class T, int N>
+bool overlap(const Ellipsoid<T, N>& a, const Capsule<T, N>& b, const Options& options) noexcept {
+  return classify(a, b, options) != Relation::separated;
+}
+
+template <class T, int N>
+Distance<T, N> signed_distance(const Ellipsoid<T, N>& a, const Capsule<T, N>& b, const Options& options) noexcept {
+  const detail::Support<T, N> s = support_of<T, N>(a, b, Vec<T, N>::Zero());
+  return detail::distance_of(s, b.radius(), relation_of(s, b.radius(), options));
+}
+
+template <class T, int N>
+Distance<T, N> distance(const Ellipsoid<T, N>& a, const Capsule<T, N>& b, const Options& options) noexcept {
+  return detail::unsigned_distance(signed_distance(a, b, options));
+}
+
+template <class T, int N>
+Contact<T, N> first_contact(const Ellipsoid<T, N>& a, const VecArg<T, N>& velocity_a, const Capsule<T, N>& b,
+                            const VecArg<T, N>& velocity_b, T t_max, const Options& options) noexcept {
+  Contact<T, N> out = detail::unanswered_contact<T, N>();
+  if (!detail::valid_motion<T, N>(velocity_a, velocity_b, t_max)) return out;
+  detail::Support<T, N> s = support_of<T, N>(a, b, Vec<T, N>::Zero());
+  const Relation start = relation_of(s, b.radius(), options);
+  if (start != Relation::separated) {
+    out.time = 0;
+    if (start != Relation::touching) {
+      out.status = ContactStatus::overlapping_at_start;
+      return out;
+    }
+    out.status = ContactStatus::touching_at_start;
+    out.point = s.point;
+    out.normal = s.normal;
+    return out;
+  }
+  out.status = ContactStatus::no_contact_in_window;
+  // The capsule relative to the body: its points move at w; the gap L(t) is convex in t
+  // with slope n*(t) . w, and Newton from 0 stays at or below its first root.
+  const Vec<T, N> w = Vec<T, N>(velocity_b) - Vec<T, N>(velocity_a);
+  T size = a.radii().maxCoeff() + b.radius();
+  for (int k = 0; k < 2; ++k) size = std::max(size, a.radii().maxCoeff() + b.radius() + (b.point(k) - a.center()).norm());
+  const T close = T(1e-14) * size;
+  T t = 0;
+  for (int step = 0; step < options.max_iterations; ++step) {
+    const T gap = s.gap - b.radius();
+    if (gap <= close) {
+      out.status = ContactStatus::hit;
+      out.time = t;
+      out.point = s.point + t * Vec<T, N>(velocity_a);
+      out.normal = s.normal;
+      return out;
+    }
+    const T slope = s.normal.dot(w);
+    if (!(slope < T(0))) return out;  // the gap never closes
+    const T next = t - gap / slope;
+    out.iterations = step + 1;
+    if (!(next <= t_max)) {
+      // The first root lies beyond next > t_max: none in the window.
+      return out;
+    }
+    if (!(next > t)) break;  // no progress in T: reported below
+    t = next;
+    s = support_of<T, N>(a, b, Vec<T, N>(t * w));
+  }
+  out.status = ContactStatus::did_not_converge;
+  out.time = t;
+  return out;
+}
+
+#define ELLIPSECT_INSTANTIATE(T, N)                                                                                 \
+  template class Capsule<T, N>;                                                                                    \
+  template Relation classify<T, N>(const Ellipsoid<T, N>&, const Capsule<T, N>&, const Options&) noexcept;        \
+  template bool overlap<T, N>(const Ellipsoid<T, N>&, const Capsule<T, N>&, const Options&) noexcept;             \
+  template Distance<T, N> signed_distance<T, N>(const Ellipsoid<T, N>&, const Capsule<T, N>&, const Options&) noexcept; \
+  template Distance<T, N> distance<T, N>(const Ellipsoid<T, N>&, const Capsule<T, N>&, const Options&) noexcept;  \
+  template Contact<T, N> first_contact<T, N>(const Ellipsoid<T, N>&, const VecArg<T, N>&, const Capsule<T, N>&,   \
+                                             const VecArg<T, N>&, T, const Options&) noexcept;
+ELLIPSECT_FOR_EACH_TYPE_AND_DIM(ELLIPSECT_INSTANTIATE)
+#undef ELLIPSECT_INSTANTIATE
+
+}  // namespace ellipsect
