@@ -7,7 +7,7 @@ only, first_contact under rigid motion with body_at, perram_wertheim and
 closest_approach), and in 2D
 intersect_boundaries, overlap_area, iou and Niemitalo's tests. classify, overlap,
 distance, signed_distance and first_contact also take a body and a HalfPlane (2D) or
-HalfSpace (3D); classify, overlap and first_contact a Box2 / Box3, a Triangle2 / Triangle3 or a
+HalfSpace (3D), a Box2 / Box3, a Capsule2 / Capsule3, a Triangle2 / Triangle3 or a
 TriangleMesh2 / TriangleMesh3 (the answer then names the triangle); collide_and_slide moves
 a body through a list of half-spaces or a mesh. Among many bodies,
 overlapping_pairs and earliest_contact (open space or a periodic box). Every number comes
@@ -19,6 +19,8 @@ from ._ellipsect import (  # noqa: F401
     BoundaryIntersection,
     Box2,
     Box3,
+    Capsule2,
+    Capsule3,
     BoundaryStatus,
     Circle,
     ClosestApproach2,
@@ -45,6 +47,8 @@ from ._ellipsect import (  # noqa: F401
     InputError,
     MeshContact2,
     MeshContact3,
+    MeshDistance2,
+    MeshDistance3,
     MeshRelation,
     Options,
     OverlapArea,

@@ -208,6 +208,31 @@ void def_box(py::module_& m, const char* name) {
 }
 
 template <int N>
+void def_capsule(py::module_& m, const char* name) {
+  using C = Capsule<double, N>;
+  py::class_<C>(m, name, "A validated capsule {x : dist(x, [p0, p1]) <= radius} (capsule.hpp).")
+      .def(py::init([](const Row<N>& p0, const Row<N>& p1, double radius) {
+             return make_capsule<double, N>(vec<N>(p0), vec<N>(p1), radius);
+           }),
+           py::arg("p0"), py::arg("p1"), py::arg("radius"))
+      .def_property_readonly("p0", [](const C& c) { return to_array<N>(c.point(0)); })
+      .def_property_readonly("p1", [](const C& c) { return to_array<N>(c.point(1)); })
+      .def_property_readonly("radius", &C::radius)
+      .def("translated", [](const C& c, const Row<N>& offset) { return c.translated(vec<N>(offset)); },
+           py::arg("offset"))
+      .def("__repr__", [name](const C& c) {
+        std::ostringstream s;
+        s.precision(17);
+        s << name << "(p0=[";
+        for (int k = 0; k < N; ++k) s << (k ? ", " : "") << c.point(0)[k];
+        s << "], p1=[";
+        for (int k = 0; k < N; ++k) s << (k ? ", " : "") << c.point(1)[k];
+        s << "], radius=" << c.radius() << ")";
+        return s.str();
+      });
+}
+
+template <int N>
 void def_results(py::module_& m, const char* suffix) {
   const std::string s = suffix;
   using C = Contact<double, N>;
@@ -367,6 +392,22 @@ void def_queries(py::module_& m) {
         },
         py::arg("a"), py::arg("velocity_a"), py::arg("b"), py::arg("velocity_b"), py::arg("t_max"),
         py::arg("options") = Options{}, "First contact of a body and a moving box in [0, t_max].");
+  // A body against a capsule (capsule.hpp).
+  using Cp = Capsule<double, N>;
+  m.def("classify", py::overload_cast<const E&, const Cp&, const Options&>(&classify<double, N>), py::arg("a"),
+        py::arg("b"), py::arg("options") = Options{});
+  m.def("overlap", py::overload_cast<const E&, const Cp&, const Options&>(&overlap<double, N>), py::arg("a"),
+        py::arg("b"), py::arg("options") = Options{});
+  m.def("distance", py::overload_cast<const E&, const Cp&, const Options&>(&distance<double, N>), py::arg("a"),
+        py::arg("b"), py::arg("options") = Options{});
+  m.def("signed_distance", py::overload_cast<const E&, const Cp&, const Options&>(&signed_distance<double, N>),
+        py::arg("a"), py::arg("b"), py::arg("options") = Options{});
+  m.def("first_contact",
+        [](const E& a, const Row<N>& va, const Cp& b, const Row<N>& vb, double t_max, const Options& o) {
+          return first_contact(a, vec<N>(va), b, vec<N>(vb), t_max, o);
+        },
+        py::arg("a"), py::arg("velocity_a"), py::arg("b"), py::arg("velocity_b"), py::arg("t_max"),
+        py::arg("options") = Options{}, "First contact of a body and a moving capsule in [0, t_max].");
   // A body against a triangle (triangle.hpp) and a mesh (mesh.hpp).
   using Tr = Triangle<double, N>;
   using TM = TriangleMesh<double, N>;
@@ -585,6 +626,8 @@ void def_scalar(py::module_& m) {
   def_half_space<3>(m, "HalfSpace");
   def_box<2>(m, "Box2");
   def_box<3>(m, "Box3");
+  def_capsule<2>(m, "Capsule2");
+  def_capsule<3>(m, "Capsule3");
   def_triangle<2>(m, "Triangle2");
   def_triangle<3>(m, "Triangle3");
   py::class_<MeshRelation>(m, "MeshRelation", "classify's answer against a mesh (see mesh.hpp).")

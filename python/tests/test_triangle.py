@@ -167,3 +167,19 @@ def test_signed_distance_of_triangles_boxes_and_meshes():
     md = ellipsect.signed_distance(ball, mesh)
     assert md.triangle == 1
     assert md.distance.distance == pytest.approx(2, abs=1e-15)
+
+
+def test_capsule():
+    ball = ellipsect.Ellipsoid.ball([1, 0, 5], 1)
+    lying = ellipsect.Capsule3([-3, 0, 0], [3, 0, 0], 0.5)
+    assert lying.radius == 0.5 and lying.p1.tolist() == [3, 0, 0]
+    assert ellipsect.classify(ball, lying) == ellipsect.Relation.separated
+    d = ellipsect.signed_distance(ball, lying)
+    assert d.distance == pytest.approx(3.5, abs=1e-14)
+    np.testing.assert_allclose(d.normal, [0, 0, -1], atol=1e-14)
+    c = ellipsect.first_contact(ball, [0, 0, -2], lying, [0, 0, 0], math.inf)
+    assert c.status == ellipsect.ContactStatus.hit and c.time == pytest.approx(1.75, abs=1e-14)
+    big = ellipsect.Ellipsoid.ball([0, 0, 0], 10)
+    assert ellipsect.classify(big, lying) == ellipsect.Relation.a_contains_b
+    with pytest.raises(ellipsect.InputError, match="radius"):
+        ellipsect.Capsule2([0, 0], [1, 0], 0)
