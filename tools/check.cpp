@@ -88,8 +88,8 @@ void append_record(std::string& out, Format format, std::uint64_t index, std::ui
   // Only read when the contact / distance was computed (the fields are set then).
   const bool has_point = q.contact && std::isfinite(c.point[0]);
   const bool has_time = q.contact && std::isfinite(c.time);
-  const bool has_distance = q.distance && r.has_distance && std::isfinite(d.distance);
-  const bool has_witness = q.distance && r.has_distance && std::isfinite(d.point_a[0]);
+  const bool has_distance = q.distance && std::isfinite(d.distance);
+  const bool has_witness = q.distance && std::isfinite(d.point_a[0]);
   if (format == Format::json) {
     out += "    {\"index\": ";
     out += std::to_string(index);
@@ -123,9 +123,7 @@ void append_record(std::string& out, Format format, std::uint64_t index, std::ui
       }
       out += '}';
     }
-    if (q.distance && !r.has_distance) {
-      out += ", \"distance\": null";
-    } else if (q.distance) {
+    if (q.distance) {
       open_object(out, "distance", to_string(d.status));
       append_field(out, "distance", has_distance, &d.distance, 1);
       append_field(out, "point_a", has_witness, d.point_a.data(), N);
@@ -133,6 +131,10 @@ void append_record(std::string& out, Format format, std::uint64_t index, std::ui
       append_field(out, "normal", has_witness, d.normal.data(), N);
       out += ", \"iterations\": ";
       out += std::to_string(d.iterations);
+      if (r.mesh) {
+        out += ", \"triangle\": ";
+        out += r.distance_triangle >= 0 ? std::to_string(r.distance_triangle) : "null";
+      }
       out += '}';
     }
     out += '}';
@@ -169,7 +171,7 @@ void append_record(std::string& out, Format format, std::uint64_t index, std::ui
   }
   if (q.distance) {
     out += ',';
-    if (r.has_distance) out += to_string(d.status);
+    out += to_string(d.status);
     out += ',';
     if (has_distance) append_number(out, d.distance);
     for (const Vec<double, N>* v : {&d.point_a, &d.point_b, &d.normal})
@@ -178,11 +180,13 @@ void append_record(std::string& out, Format format, std::uint64_t index, std::ui
         if (has_witness) append_number(out, (*v)[i]);
       }
     out += ',';
-    if (r.has_distance) out += std::to_string(d.iterations);
+    out += std::to_string(d.iterations);
   }
   if (q.triangles) {
-    // relation_triangle, contact_triangle: empty unless b is a mesh and a triangle decides.
-    for (const auto& [on, k] : {std::pair{q.relation, r.relation_triangle}, std::pair{q.contact, r.contact_triangle}}) {
+    // relation_triangle, contact_triangle, distance_triangle: empty unless b is a mesh and a
+    // triangle decides.
+    for (const auto& [on, k] : {std::pair{q.relation, r.relation_triangle}, std::pair{q.contact, r.contact_triangle},
+                                std::pair{q.distance, r.distance_triangle}}) {
       if (!on) continue;
       out += ',';
       if (k >= 0) out += std::to_string(k);
@@ -212,6 +216,7 @@ std::string csv_header(int dim, bool line_column, const Queries& q) {
   }
   if (q.triangles && q.relation) h += ",relation_triangle";
   if (q.triangles && q.contact) h += ",contact_triangle";
+  if (q.triangles && q.distance) h += ",distance_triangle";
   h += '\n';
   return h;
 }
@@ -273,7 +278,7 @@ void count(Counters& c, const PairResult<N>& r, const Queries& q) {
   ++c.pairs;
   if (q.relation) ++c.relation[static_cast<std::size_t>(r.relation)];
   if (q.contact) ++c.contact[static_cast<std::size_t>(r.contact.status)];
-  if (q.distance && r.has_distance) ++c.distance[static_cast<std::size_t>(r.distance.status)];
+  if (q.distance) ++c.distance[static_cast<std::size_t>(r.distance.status)];
 }
 
 Queries resolve_queries(const std::vector<std::string>& names, bool has_velocity) {
@@ -661,7 +666,6 @@ PairResult<N> evaluate(const Body<N>& a, const Obstacle<N>& b, const Window& win
     }
   }
   PairResult<N> r;
-  r.has_distance = std::holds_alternative<HalfSpace<double, N>>(b.shape);
   std::visit(
       [&](const auto& shape) {
         using S = std::decay_t<decltype(shape)>;
@@ -677,11 +681,15 @@ PairResult<N> evaluate(const Body<N>& a, const Obstacle<N>& b, const Window& win
             r.contact = m.contact;
             r.contact_triangle = m.triangle;
           }
+          if (queries.distance) {
+            const MeshDistance<double, N> m = signed_distance(a0, shape);
+            r.distance = m.distance;
+            r.distance_triangle = m.triangle;
+          }
         } else {
           if (queries.relation) r.relation = classify(a0, shape);
           if (queries.contact) r.contact = first_contact(a0, a.velocity, shape, b.velocity, window.t1 - window.t0);
-          if constexpr (std::is_same_v<S, HalfSpace<double, N>>)
-            if (queries.distance) r.distance = signed_distance(a0, shape);
+          if (queries.distance) r.distance = signed_distance(a0, shape);
         }
       },
       b.shape);

@@ -28,10 +28,10 @@ struct PairResult {
   Relation relation = Relation::separated;
   Contact<double, N> contact;
   Distance<double, N> distance;
-  bool has_distance = true;  // false: b is an obstacle the library has no distance for
   bool mesh = false;         // b is a mesh: the triangles below are its answer
   std::int64_t relation_triangle = -1;  // the triangle deciding the relation (-1: none)
   std::int64_t contact_triangle = -1;   // the triangle of the contact (-1: none)
+  std::int64_t distance_triangle = -1;  // the triangle of the signed distance (-1: none)
 };
 
 // Evaluates one pair over the window: the relation and the signed distance at t0, and the
@@ -46,9 +46,9 @@ template <int N>
 PairResult<N> separated_result();
 
 // Evaluates a body against an obstacle as `evaluate` does two bodies, `b` given as at the
-// window start (obstacle_at(b, t0)): the relation (library classify, with the deciding
-// triangle for meshes) and, for half-spaces, the signed distance at t0; the first contact
-// in [t0, t1] (absolute time; the normal from the body towards the obstacle).
+// window start (obstacle_at(b, t0)): the relation and the signed distance at t0 and the
+// first contact in [t0, t1] (absolute time; the normal from the body towards the obstacle),
+// each from the library's query against that shape, with its triangle for meshes.
 template <int N>
 PairResult<N> evaluate(const Body<N>& a, const Obstacle<N>& b_at_t0, const Window& window, const Queries& queries);
 

@@ -1411,13 +1411,27 @@ TEST(CliObstacles, EveryBodyAgainstEveryObstacleWithoutListedPairs) {
   EXPECT_EQ(res[3]["b"], "tilted");
   EXPECT_EQ(res[17]["a"], "side");
   EXPECT_EQ(res[17]["b"], "wedge");
-  // Signed distance for half-spaces only: the ball's center is 4 above the tilted line.
+  // Signed distance against every obstacle: the ball's center is 4 above the tilted line and
+  // 5 above the floor triangle's top edge.
   EXPECT_EQ(res[3]["distance"]["status"], "separated");
   EXPECT_NEAR(res[3]["distance"]["distance"].get<double>(), 3.0, 1e-14);
-  EXPECT_TRUE(res[4]["distance"].is_null());
-  // The body pairs are apart; of the bodies, only the ball is above the tilted line.
-  EXPECT_EQ(out["summary"]["distance"]["separated"], 3 + 1);
-  EXPECT_EQ(out["summary"]["distance"]["overlapping"], 2);
+  EXPECT_EQ(res[4]["b"], "floor");
+  EXPECT_EQ(res[4]["distance"]["status"], "separated");
+  EXPECT_NEAR(res[4]["distance"]["distance"].get<double>(), 4.0, 1e-14);
+  EXPECT_NEAR(res[4]["distance"]["normal"][1].get<double>(), -1.0, 1e-14);
+  EXPECT_FALSE(res[4]["distance"].contains("triangle"));
+  // The sitter's center lies inside the mesh's triangle 0 (its deepest); the side circle
+  // overlaps the floor's top edge by 0.5.
+  EXPECT_EQ(res[11]["a"], "sitter");
+  EXPECT_EQ(res[11]["b"], "mesh");
+  EXPECT_EQ(res[11]["distance"]["status"], "overlapping");
+  EXPECT_EQ(res[11]["distance"]["triangle"], 0);
+  EXPECT_EQ(res[14]["b"], "floor");
+  EXPECT_NEAR(res[14]["distance"]["distance"].get<double>(), -0.5, 1e-14);
+  // Overlapping: the sitter and the side circle below the tilted line, the side circle across
+  // the floor, the sitter in the mesh; everything else apart (the body pairs too).
+  EXPECT_EQ(out["summary"]["distance"]["separated"], 14);
+  EXPECT_EQ(out["summary"]["distance"]["overlapping"], 4);
 }
 
 // The floor y <= 0 rising at speed 1 and the ball falling at 2 from height 5 close their gap of
