@@ -11,6 +11,7 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <type_traits>
 
 namespace ellipsect {
 
@@ -23,6 +24,26 @@ template <class T, int N>
 detail::Support<T, N> support_of(const Ellipsoid<T, N>& a, const Capsule<T, N>& b, const Vec<T, N>& shift) noexcept {
   const std::array<Vec<T, N>, 2> p{Vec<T, N>(b.point(0) + shift), Vec<T, N>(b.point(1) + shift)};
   return detail::polytope_support<T, N>(a, p, segment_edge, {});
+}
+
+// The body's center against the segment, with the body between the balls of its smallest
+// and largest radius: -1 where they surely overlap (the center nearer the segment than r_min
+// + R), +1 where they are surely apart by more than the tangency band (farther than r_max +
+// R, by 1e-9 of the lengths: the relative gap is then above 1e-9), 0 otherwise.
+template <class T, int N>
+int by_spheres(const Ellipsoid<T, N>& a, const Capsule<T, N>& b) noexcept {
+  using W = std::conditional_t<(sizeof(T) < sizeof(double)), double, T>;
+  const Vec<W, N> c = a.center().template cast<W>(), p0 = b.point(0).template cast<W>();
+  const Vec<W, N> e = b.point(1).template cast<W>() - p0;
+  const W ee = e.squaredNorm();
+  const W u = ee > W(0) ? std::clamp((c - p0).dot(e) / ee, W(0), W(1)) : W(0);
+  const W d = (c - p0 - u * e).norm();
+  const W r_max = W(a.radii().maxCoeff()), r_min = W(a.radii().minCoeff()), R = W(b.radius());
+  const W margin = W(1e-9) * (d + r_max + R);
+  if (!std::isfinite(d) || !std::isfinite(margin)) return 0;
+  if (d - r_max - R > margin) return 1;
+  if (d - r_min - R < -margin) return -1;
+  return 0;
 }
 
 template <class T, int N>
@@ -62,11 +83,16 @@ Capsule<T, N> Capsule<T, N>::translated(const Vec<T, N>& offset) const {
 
 template <class T, int N>
 Relation classify(const Ellipsoid<T, N>& a, const Capsule<T, N>& b, const Options& options) noexcept {
+  if (options.tolerance < 1e-9 && by_spheres(a, b) > 0) return Relation::separated;
   return relation_of(support_of<T, N>(a, b, Vec<T, N>::Zero()), b.radius(), options);
 }
 
 template <class T, int N>
 bool overlap(const Ellipsoid<T, N>& a, const Capsule<T, N>& b, const Options& options) noexcept {
+  if (options.tolerance < 1e-9) {
+    const int spheres = by_spheres(a, b);
+    if (spheres != 0) return spheres < 0;
+  }
   return classify(a, b, options) != Relation::separated;
 }
 

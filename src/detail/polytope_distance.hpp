@@ -47,9 +47,10 @@
 namespace ellipsect::detail {
 
 // Calls emit(n) with the normal direction (not normalized) at each stationary point of
-// |y - x| over the boundary of {x : sum_i x_i^2 / a_i <= 1}, a_i = r_i^2 > 0.
+// |y - x| over the boundary of {x : sum_i x_i^2 / a_i <= 1}, a_i = r_i^2 > 0; unless `all`,
+// only at the largest root (the nearest point of a point outside).
 template <class F, int M, class Emit>
-void stationary_normals(const Vec<F, M>& a, const Vec<F, M>& y, Emit&& emit) noexcept {
+void stationary_normals(const Vec<F, M>& a, const Vec<F, M>& y, bool all, Emit&& emit) noexcept {
   // The active poles -a_i (b_i = a_i y_i^2 > 0), equal ones merged, a ascending.
   std::array<F, M> pa{}, pb{};
   int m = 0;
@@ -78,15 +79,30 @@ void stationary_normals(const Vec<F, M>& a, const Vec<F, M>& y, Emit&& emit) noe
     for (int j = 0; j < m; ++j) f -= 2 * pb[j] / ((pa[j] + s) * (pa[j] + s) * (pa[j] + s));
     return f;
   };
-  // Bisection of [lo, hi] on the sign of f, positive at lo when lo_positive (bounded: 200
-  // halvings reach the rounding of s from any bracket).
-  const auto bisect = [](auto&& f, F lo, F hi, bool lo_positive) {
-    for (int it = 0; it < 200; ++it) {
-      const F mid = lo + (hi - lo) / 2;
-      if (!(mid > lo && mid < hi)) break;
-      (((f(mid) > F(0)) == lo_positive) ? lo : hi) = mid;
+  const auto curvature = [&](F s) {
+    F f = 0;
+    for (int j = 0; j < m; ++j) {
+      const F q = (pa[j] + s) * (pa[j] + s);
+      f += 6 * pb[j] / (q * q);
     }
-    return lo + (hi - lo) / 2;
+    return f;
+  };
+  // The root of f in (lo, hi), where f changes sign once (positive towards lo when
+  // lo_positive), by Newton from `start` (monotone from the side where the convex secular
+  // function is positive), each iterate shrinking the bracket and a step that leaves it
+  // replaced by bisection; at most 100 steps, ending when a step is within the rounding of
+  // the iterate.
+  const auto solve = [](auto&& f, auto&& df, F lo, F hi, bool lo_positive, F x) {
+    for (int it = 0; it < 100; ++it) {
+      const F fx = f(x);
+      if (fx == F(0)) return x;
+      (((fx > F(0)) == lo_positive) ? lo : hi) = x;
+      F next = x - fx / df(x);
+      if (!(next > lo && next < hi)) next = lo + (hi - lo) / 2;
+      if (!(std::abs(next - x) > 4 * std::numeric_limits<F>::epsilon() * std::abs(x))) return next;
+      x = next;
+    }
+    return x;
   };
   const auto emit_root = [&](F s) {
     Vec<F, M> n;
@@ -95,16 +111,29 @@ void stationary_normals(const Vec<F, M>& a, const Vec<F, M>& y, Emit&& emit) noe
   };
   if (m > 0) {
     const F spread = std::sqrt(total);
-    emit_root(bisect(secular, -pa[0] + std::sqrt(pb[0]), -pa[0] + spread, true));
-    emit_root(bisect(secular, -pa[m - 1] - spread, -pa[m - 1] - std::sqrt(pb[m - 1]), false));
+    // Beyond the extreme poles the secular function is monotone and convex: Newton from the
+    // end of the bracket where it is >= 0.
+    const F right = -pa[0] + std::sqrt(pb[0]), left = -pa[m - 1] - std::sqrt(pb[m - 1]);
+    emit_root(solve(secular, slope, right, -pa[0] + spread, true, right));
+    if (!all) return;
+    emit_root(solve(secular, slope, -pa[m - 1] - spread, left, false, left));
+    // Between neighbouring poles it is convex: its least value (the root of the increasing
+    // slope), then a root on either side of it where that value is negative.
     for (int j = 0; j + 1 < m; ++j) {
       const F lo = -pa[j + 1], hi = -pa[j];
-      const F low = bisect(slope, lo, hi, false);
+      // The two poles' terms alone, B1 / u^2 + B2 / (L - u)^2 with u = s - lo, L = hi - lo,
+      // are least at u = L c / (1 + c), c = (B1 / B2)^(1/3), where they are
+      // (B1^(1/3) + B2^(1/3))^3 / L^2: at least 1 there, the function has no root here; the
+      // place starts the search for its least value.
+      const F c1 = std::cbrt(pb[j + 1]), c2 = std::cbrt(pb[j]);
+      if ((c1 + c2) * (c1 + c2) * (c1 + c2) >= (hi - lo) * (hi - lo)) continue;
+      const F low = solve(slope, curvature, lo, hi, false, lo + (hi - lo) * c1 / (c1 + c2));
       if (!(secular(low) < F(0))) continue;
-      emit_root(bisect(secular, lo, low, true));
-      emit_root(bisect(secular, low, hi, false));
+      emit_root(solve(secular, slope, lo, low, true, lo + (low - lo) / 2));
+      emit_root(solve(secular, slope, low, hi, false, low + (hi - low) / 2));
     }
   }
+  if (!all) return;
   // The hard-case directions s = -a_i.
   for (int i = 0; i < M; ++i) {
     Vec<F, M> n;
@@ -147,6 +176,8 @@ struct GapMaximum {
   // max over n of max_k n . y_k - rho(n) = max_k of vertex k's signed distance to the body's
   // boundary: the polytope grown by R lies in the body exactly when farthest <= -R.
   F farthest = -std::numeric_limits<F>::infinity();
+  // reach and farthest are over every stationary direction only where gap <= 0 (below);
+  // where the body and the polytope are apart, only the largest roots' were evaluated.
   int evaluations = 0;
 };
 
@@ -178,31 +209,38 @@ GapMaximum<F, N> max_support_gap(const Vec<F, N>& a, const Polytope<F, N>& p) no
     best.reach = std::max({best.reach, low + rho, rho - high});
     best.farthest = std::max({best.farthest, high - rho, -low - rho});
   };
-  for (const auto& y : p.vertices) stationary_normals<F, N>(a, y, consider);
-  for (const auto& [j, k] : p.edges) {
-    const Vec<F, N> e = unit_vector<F, N>(p.vertices[k] - p.vertices[j]);
-    if (!(e.squaredNorm() > F(0.5))) continue;  // coincident vertices: their vertex strata
-    if constexpr (N == 2) {
-      consider(Vec<F, 2>(-e[1], e[0]));
-    } else {
-      Mat<F, 3> frame;
-      frame.col(0) = e.unitOrthogonal();
-      frame.col(1) = e.cross(frame.col(0));
-      const Eigen::Matrix<F, 3, 2> basis = frame.template leftCols<2>();
-      const Mat<F, 2> shadow = basis.transpose() * a.asDiagonal() * basis;
-      Eigen::SelfAdjointEigenSolver<Mat<F, 2>> eigen;
-      eigen.computeDirect(shadow);
-      const Eigen::Matrix<F, 3, 2> to_world = basis * eigen.eigenvectors();
-      const Vec<F, 2> point = to_world.transpose() * p.vertices[j];
-      const Vec<F, 2> squared = eigen.eigenvalues().cwiseMax(F(0));
-      if (!(squared.minCoeff() > F(0))) continue;
-      stationary_normals<F, 2>(squared, point, [&](const Vec<F, 2>& m) { consider(to_world * m); });
+  // Where the best largest-root direction already separates (G > 0), it is the answer: on
+  // {G > 0} every stratum's function is concave, its one stationary point there the largest
+  // root's. Otherwise every stationary direction is tried.
+  const auto pass = [&](bool all) {
+    for (const auto& y : p.vertices) stationary_normals<F, N>(a, y, all, consider);
+    for (const auto& [j, k] : p.edges) {
+      const Vec<F, N> e = unit_vector<F, N>(p.vertices[k] - p.vertices[j]);
+      if (!(e.squaredNorm() > F(0.5))) continue;  // coincident vertices: their vertex strata
+      if constexpr (N == 2) {
+        consider(Vec<F, 2>(-e[1], e[0]));
+      } else {
+        Mat<F, 3> frame;
+        frame.col(0) = e.unitOrthogonal();
+        frame.col(1) = e.cross(frame.col(0));
+        const Eigen::Matrix<F, 3, 2> basis = frame.template leftCols<2>();
+        const Mat<F, 2> shadow = basis.transpose() * a.asDiagonal() * basis;
+        Eigen::SelfAdjointEigenSolver<Mat<F, 2>> eigen;
+        eigen.computeDirect(shadow);
+        const Eigen::Matrix<F, 3, 2> to_world = basis * eigen.eigenvectors();
+        const Vec<F, 2> point = to_world.transpose() * p.vertices[j];
+        const Vec<F, 2> squared = eigen.eigenvalues().cwiseMax(F(0));
+        if (!(squared.minCoeff() > F(0))) continue;
+        stationary_normals<F, 2>(squared, point, all, [&](const Vec<F, 2>& m) { consider(to_world * m); });
+      }
     }
-  }
-  if constexpr (N == 3)
-    for (const auto& [i, j, k] : p.faces) {
-      consider((p.vertices[j] - p.vertices[i]).cross(p.vertices[k] - p.vertices[i]));
-    }
+    if constexpr (N == 3)
+      for (const auto& [i, j, k] : p.faces) {
+        consider((p.vertices[j] - p.vertices[i]).cross(p.vertices[k] - p.vertices[i]));
+      }
+  };
+  pass(false);
+  if (!(best.gap > F(0))) pass(true);
   return best;
 }
 
