@@ -20,6 +20,10 @@
 //                 b_contains_a  the body inside the capsule: its support function below the
 //                               capsule's, max over n of (min_k n . (p_k - c) + rho(n)) <= R;
 //                 (both with the tolerance band counted as inside), overlapping otherwise.
+//                 Before any of that, the body's center against the segment: farther than
+//                 largest radius + R by 1e-9 of the lengths is separated, nearer than smallest
+//                 radius + R by as much overlaps (overlap() answers there; classify goes on
+//                 to tell containment).
 //   first_contact With the capsule moving relative to the body at w, the gap
 //                 L(t) = max_n (G(n) + t n . w) is convex in t (a maximum of affine
 //                 functions), with slope n*(t) . w: Newton from t = 0 climbs monotonically to

@@ -65,8 +65,10 @@
 // of candidate directions that contains the maximizer: the stationary points of G on each
 // stratum of the sphere where one vertex, two (n orthogonal to an edge) or, in 3D, three (the
 // face's normals) attain the minimum, from the secular equation of the point (vertex) or of
-// the edge's point in the body's shadow along the edge (src/detail/polytope_distance.hpp).
-// No iteration beyond bounded bisections; the status is classify's. Accuracy (tests/property/
+// the edge's point in the body's shadow along the edge (src/detail/polytope_distance.hpp);
+// where the largest roots' directions already separate (G > 0) they alone are tried, every
+// stratum's function being concave there. Each root by Newton within its bracket (at most 100
+// steps, bisection where a step leaves it); the status is classify's. Accuracy (tests/property/
 // polytope_distance_property_test.cpp, against a 50-digit search of the sphere stratum by
 // stratum; the triangle scenarios above and boxes: random, around the body, inside it, thin
 // to aspect 1e4), with scale = largest radius + largest |vertex - center|: the distance
