@@ -48,11 +48,19 @@
 //               classify != separated; a_contains_b exactly when every triangle of the box is
 //               inside a; b_contains_a only where every face's half-space contains a;
 //               first_contact (velocities va and 0) starts as the relation says, a hit is in
-//               (0, t_max] and no later than the earliest of the box's triangles' hits.
+//               (0, t_max] and no later than the earliest of the box's triangles' hits;
+//               signed_distance's status is classify's (overlapping for containment), its
+//               distance >= 0 when separated and <= 0 when overlapping.
+//   capsule     a against the capsule along b's first axis (its largest radius either side of
+//               b's center, its smallest as the radius): overlap is classify != separated;
+//               signed_distance as for the box; first_contact (velocities va and 0):
+//               invalid_input exactly for bad input, the start status is the relation's, a
+//               hit is in [0, t_max].
 #include "fuzz_support.hpp"
 
 #include <ellipsect/batch.hpp>
 #include <ellipsect/box.hpp>
+#include <ellipsect/capsule.hpp>
 #include <ellipsect/classify.hpp>
 #include <ellipsect/contact.hpp>
 #include <ellipsect/contact_function.hpp>
@@ -63,6 +71,7 @@
 
 #include <cstdlib>
 #include <memory>
+#include <optional>
 #include <vector>
 
 namespace {
@@ -342,6 +351,18 @@ void check_triangle(const Ellipsoid<T, N>& a, const Vec<T, N>& p, const Vec<T, N
              << "moved " << hex(slide.moved) << " for " << hex(vb));
 }
 
+// signed_distance's status and sign against the relation.
+template <class T, int N>
+void check_signed_distance(const Distance<T, N>& d, Relation rel, const char* what) {
+  const DistanceStatus want = rel == Relation::separated  ? DistanceStatus::separated
+                              : rel == Relation::touching ? DistanceStatus::touching
+                                                          : DistanceStatus::overlapping;
+  FUZZ_CHECK(d.status == want, << what << ": signed_distance " << to_string(d.status) << ", classify " << to_string(rel));
+  FUZZ_CHECK(!(d.status == DistanceStatus::separated && d.distance < 0) &&
+                 !(d.status == DistanceStatus::overlapping && d.distance > 0),
+             << what << ": " << to_string(d.status) << " at distance " << hex(d.distance));
+}
+
 template <class T, int N>
 void check_box(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b, const Vec<T, N>& va, T t_max) {
   const auto box = make_box<T, N>(b.center(), b.axes(), b.radii());
@@ -359,6 +380,7 @@ void check_box(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b, const Vec<T, 
         const Relation face = classify(a, make_half_space<T, N>(box.center() + box.half_extents()[i] * normal, normal));
         FUZZ_CHECK(face == Relation::b_contains_a, << "box contains a, its face " << i << " says " << to_string(face));
       }
+  check_signed_distance<T, N>(signed_distance(a, box), rel, "box");
   const Contact<T, N> c = first_contact(a, va, box, Vec<T, N>::Zero(), t_max);
   if (c.status == ContactStatus::invalid_input) {
     FUZZ_CHECK(!all_finite(va) || !(t_max >= 0), << "box: invalid_input");
@@ -373,6 +395,32 @@ void check_box(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b, const Vec<T, 
     FUZZ_CHECK(ct.status != ContactStatus::hit || ct.time >= c.time,
                << "box hit at " << hex(c.time) << ", a triangle's at " << hex(ct.time));
   }
+}
+
+template <class T, int N>
+void check_capsule(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b, const Vec<T, N>& va, T t_max) {
+  const Vec<T, N> along = b.axes().col(0) * b.radii()[0];
+  std::optional<Capsule<T, N>> capsule;
+  try {
+    capsule = make_capsule<T, N>(Vec<T, N>(b.center() - along), Vec<T, N>(b.center() + along), b.radii().minCoeff());
+  } catch (const InputError&) {
+    return;  // end points beyond the range of T
+  }
+  const Relation rel = classify(a, *capsule);
+  FUZZ_CHECK(overlap(a, *capsule) == (rel != Relation::separated), << "capsule: overlap vs classify " << to_string(rel));
+  check_signed_distance<T, N>(signed_distance(a, *capsule), rel, "capsule");
+  const Contact<T, N> c = first_contact(a, va, *capsule, Vec<T, N>::Zero(), t_max);
+  if (c.status == ContactStatus::invalid_input) {
+    FUZZ_CHECK(!all_finite(va) || !(t_max >= 0), << "capsule: invalid_input");
+    return;
+  }
+  const bool start_ok = rel == Relation::separated
+                            ? c.status == ContactStatus::hit || c.status == ContactStatus::no_contact_in_window ||
+                                  c.status == ContactStatus::did_not_converge
+                        : rel == Relation::touching ? c.status == ContactStatus::touching_at_start
+                                                    : c.status == ContactStatus::overlapping_at_start;
+  FUZZ_CHECK(start_ok, << "capsule contact " << to_string(c.status) << ", classify " << to_string(rel));
+  if (c.status == ContactStatus::hit) FUZZ_CHECK(c.time >= 0 && c.time <= t_max, << "capsule hit at " << hex(c.time));
 }
 
 template <class T, int N>
@@ -409,6 +457,7 @@ void run(Bytes& in) {
     check_half_space<T, N>(*a, Vec<T, N>(b->center()), va, vb, t_max);
     check_triangle<T, N>(*a, Vec<T, N>(b->center()), va, vb, t_max);
     check_box<T, N>(*a, *b, va, t_max);
+    check_capsule<T, N>(*a, *b, va, t_max);
     as.push_back(*a);
     bs.push_back(*b);
     vas.push_back(va);
