@@ -10,10 +10,11 @@
 // normals in 2D), or, in 3D, three (the normals of their plane). Each vertex's gap is
 // searched on the whole sphere from the local maxima among evenly spread directions (a 150 x
 // 300 latitude-longitude grid; 4,000 angles on the circle; the best 6), each pair's great
-// circle from the local maxima among 2,000 angles, by golden-section windows of +-0.5 rad shrinking tenfold (nested in tangent
-// coordinates on the sphere) in long double, then +-1e-8 rad in Real; G itself, evaluated in
-// Real at every direction found, picks the answer. The searches assume each smooth function
-// has one maximum within a window around a good start.
+// circle from the local maxima among 2,000 angles, by golden-section windows of +-0.5 rad
+// shrinking tenfold (nested in tangent coordinates on the sphere) in long double, then
+// +-1e-8 rad in Real for the directions within 1e-9 of the best; G itself, evaluated in Real
+// at every direction found, picks the answer. The searches assume each smooth function has
+// one maximum within a window around a good start.
 #pragma once
 
 #include "tests/reference/reference.hpp"
