@@ -10,7 +10,6 @@
 #include <array>
 #include <cmath>
 #include <limits>
-#include <string>
 #include <type_traits>
 
 namespace ellipsect {
@@ -58,28 +57,6 @@ Relation relation_of(const detail::Support<T, N>& s, T radius, const Options& op
 }
 
 }  // namespace
-
-template <class T, int N>
-Capsule<T, N> Capsule<T, N>::from_segment(const Vec<T, N>& p0, const Vec<T, N>& p1, T radius) {
-  for (int i = 0; i < N; ++i) {
-    if (!std::isfinite(p0[i])) throw InputError("p0[" + std::to_string(i) + "]", "must be finite");
-    if (!std::isfinite(p1[i])) throw InputError("p1[" + std::to_string(i) + "]", "must be finite");
-  }
-  if (!(radius > T(0) && radius <= std::numeric_limits<T>::max())) throw InputError("radius", "must be finite and > 0");
-  Capsule c;
-  Eigen::Map<Vec<T, N>>(c.points_[0].data()) = p0;
-  Eigen::Map<Vec<T, N>>(c.points_[1].data()) = p1;
-  c.radius_ = radius;
-  return c;
-}
-
-template <class T, int N>
-Capsule<T, N> Capsule<T, N>::translated(const Vec<T, N>& offset) const {
-  if (!offset.allFinite()) throw InputError("offset", "must be finite");
-  const Vec<T, N> p0 = point(0) + offset, p1 = point(1) + offset;
-  if (!p0.allFinite() || !p1.allFinite()) throw InputError("offset", "moves a point beyond the range of the type");
-  return from_segment(p0, p1, radius_);
-}
 
 template <class T, int N>
 Relation classify(const Ellipsoid<T, N>& a, const Capsule<T, N>& b, const Options& options) noexcept {
@@ -160,7 +137,6 @@ Contact<T, N> first_contact(const Ellipsoid<T, N>& a, const VecArg<T, N>& veloci
 }
 
 #define ELLIPSECT_INSTANTIATE(T, N)                                                                                 \
-  template class Capsule<T, N>;                                                                                    \
   template Relation classify<T, N>(const Ellipsoid<T, N>&, const Capsule<T, N>&, const Options&) noexcept;        \
   template bool overlap<T, N>(const Ellipsoid<T, N>&, const Capsule<T, N>&, const Options&) noexcept;             \
   template Distance<T, N> signed_distance<T, N>(const Ellipsoid<T, N>&, const Capsule<T, N>&, const Options&) noexcept; \

@@ -1,3 +1,4 @@
+#include <ellipsect/capsule.hpp>
 #include <ellipsect/half_space.hpp>
 #include <ellipsect/triangle.hpp>
 #include <ellipsect/shapes.hpp>
@@ -368,9 +369,34 @@ Triangle<T, N> Triangle<T, N>::translated(const Vec<T, N>& offset) const {
   return t;
 }
 
+template <class T, int N>
+Capsule<T, N> Capsule<T, N>::from_segment(const Vec<T, N>& p0, const Vec<T, N>& p1, T radius) {
+  require_finite(p0, "p0");
+  require_finite(p1, "p1");
+  require_positive(radius, "radius");
+  Capsule c;
+  Eigen::Map<Vec<T, N>>(c.points_[0].data()) = p0;
+  Eigen::Map<Vec<T, N>>(c.points_[1].data()) = p1;
+  c.radius_ = radius;
+  return c;
+}
+
+template <class T, int N>
+Capsule<T, N> Capsule<T, N>::translated(const Vec<T, N>& offset) const {
+  if (!offset.allFinite()) throw InputError("offset", "must be finite");
+  Capsule c = *this;
+  for (auto& p : c.points_)
+    for (int i = 0; i < N; ++i) {
+      p[i] += offset[i];
+      if (!std::isfinite(p[i])) throw InputError("offset", "moves a point beyond the range of the type");
+    }
+  return c;
+}
+
 #define ELLIPSECT_INSTANTIATE(T, N) \
   template class HalfSpace<T, N>;   \
   template class Triangle<T, N>;    \
+  template class Capsule<T, N>;     \
   template class Ellipsoid<T, N>;   \
   template Ellipsoid<T, N> make_ball<T, N>(const Vec<T, N>&, T); \
   template void make_bodies<T, N>(std::span<const T>, std::span<const T>, std::span<const T>, std::span<Ellipsoid<T, N>>);

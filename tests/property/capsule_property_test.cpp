@@ -29,6 +29,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -152,10 +153,14 @@ void check(Kind kind, int seed, std::map<std::string, int>& tally) {
       Real deepest = -std::numeric_limits<Real>::infinity();
       for (int k = 0; k < 2; ++k) deepest = std::max(deepest, ref::max_support_gap<N>(body, {c.b.point(k)}).gap);
       const double inside = ref::to_double(Real(deepest + Real(c.b.radius())));
-      if (std::abs(inside) > tol) ASSERT_EQ(relation == Relation::a_contains_b, inside < 0) << what << " " << inside;
+      if (std::abs(inside) > tol) {
+        ASSERT_EQ(relation == Relation::a_contains_b, inside < 0) << what << " " << inside;
+      }
     }
   }
-  if (kind == Kind::capsule_inside) ASSERT_EQ(relation, Relation::a_contains_b) << what;
+  if (kind == Kind::capsule_inside) {
+    ASSERT_EQ(relation, Relation::a_contains_b) << what;
+  }
   if (kind == Kind::body_inside) {
     // The center on the segment, the ends beyond the body: inside when R exceeds the largest
     // radius, crossing the capsule's surface when R is below the smallest.
