@@ -202,10 +202,7 @@ MeshDistance<T, N> signed_distance(const Ellipsoid<T, N>& a, const TriangleMesh<
     return W(out.distance.distance);
   });
   // The status is the mesh's relation (classify); the fields those of the triangle found.
-  const Relation r = classify(a, b, options).relation;
-  out.distance.status = r == Relation::separated  ? DistanceStatus::separated
-                        : r == Relation::touching ? DistanceStatus::touching
-                                                  : DistanceStatus::overlapping;
+  out.distance.status = detail::distance_status(classify(a, b, options).relation);
   return out;
 }
 

@@ -283,6 +283,13 @@ Support<T, N> polytope_support(const Ellipsoid<T, N>& body, std::span<const Vec<
   return scale.range == Range::wide ? run(0.0L) : run(std::conditional_t<(sizeof(T) < sizeof(double)), double, T>(0));
 }
 
+// The distance status of a relation: containment counts as overlapping.
+inline DistanceStatus distance_status(Relation r) noexcept {
+  return r == Relation::separated  ? DistanceStatus::separated
+         : r == Relation::touching ? DistanceStatus::touching
+                                   : DistanceStatus::overlapping;
+}
+
 // A Distance from the support maximum less `grow` (a capsule's radius), with classify's
 // relation as status (overlapping for containment); point_b = point_a + distance * normal.
 template <class T, int N>
@@ -291,18 +298,10 @@ Distance<T, N> distance_of(const Support<T, N>& s, T grow, Relation relation) no
   out.iterations = s.evaluations;
   out.normal = s.normal;
   out.point_a = s.point;
+  out.status = distance_status(relation);
   out.distance = s.gap - grow;
-  switch (relation) {
-    case Relation::separated:
-      out.status = DistanceStatus::separated;
-      out.distance = std::max(out.distance, T(0));
-      break;
-    case Relation::touching: out.status = DistanceStatus::touching; break;
-    default:
-      out.status = DistanceStatus::overlapping;
-      out.distance = std::min(out.distance, T(0));
-      break;
-  }
+  if (out.status == DistanceStatus::separated) out.distance = std::max(out.distance, T(0));
+  if (out.status == DistanceStatus::overlapping) out.distance = std::min(out.distance, T(0));
   out.point_b = out.point_a + out.distance * out.normal;
   return out;
 }
