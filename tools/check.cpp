@@ -80,11 +80,18 @@ void open_object(std::string& out, const char* name, std::string_view status) {
   out += '"';
 }
 
+// A normal as written: zero components without their sign (0, not -0).
+template <int N>
+Vec<double, N> unsigned_zeros(const Vec<double, N>& v) {
+  return v.unaryExpr([](double x) { return x == 0.0 ? 0.0 : x; });
+}
+
 template <int N>
 void append_record(std::string& out, Format format, std::uint64_t index, std::uint64_t line, const std::string* a,
                    const std::string* b, const PairResult<N>& r, const Queries& q) {
   const Contact<double, N>& c = r.contact;
   const Distance<double, N>& d = r.distance;
+  const Vec<double, N> contact_normal = unsigned_zeros<N>(c.normal), distance_normal = unsigned_zeros<N>(d.normal);
   // Only read when the contact / distance was computed (the fields are set then).
   const bool has_point = q.contact && std::isfinite(c.point[0]);
   const bool has_time = q.contact && std::isfinite(c.time);
@@ -114,7 +121,7 @@ void append_record(std::string& out, Format format, std::uint64_t index, std::ui
       open_object(out, "contact", to_string(c.status));
       append_field(out, "time", has_time, &c.time, 1);
       append_field(out, "point", has_point, c.point.data(), N);
-      append_field(out, "normal", has_point, c.normal.data(), N);
+      append_field(out, "normal", has_point, contact_normal.data(), N);
       out += ", \"iterations\": ";
       out += std::to_string(c.iterations);
       if (r.mesh) {
@@ -128,7 +135,7 @@ void append_record(std::string& out, Format format, std::uint64_t index, std::ui
       append_field(out, "distance", has_distance, &d.distance, 1);
       append_field(out, "point_a", has_witness, d.point_a.data(), N);
       append_field(out, "point_b", has_witness, d.point_b.data(), N);
-      append_field(out, "normal", has_witness, d.normal.data(), N);
+      append_field(out, "normal", has_witness, distance_normal.data(), N);
       out += ", \"iterations\": ";
       out += std::to_string(d.iterations);
       if (r.mesh) {
@@ -164,7 +171,7 @@ void append_record(std::string& out, Format format, std::uint64_t index, std::ui
     }
     for (int i = 0; i < N; ++i) {
       out += ',';
-      if (has_point) append_number(out, c.normal[i]);
+      if (has_point) append_number(out, contact_normal[i]);
     }
     out += ',';
     out += std::to_string(c.iterations);
@@ -174,7 +181,7 @@ void append_record(std::string& out, Format format, std::uint64_t index, std::ui
     out += to_string(d.status);
     out += ',';
     if (has_distance) append_number(out, d.distance);
-    for (const Vec<double, N>* v : {&d.point_a, &d.point_b, &d.normal})
+    for (const Vec<double, N>* v : {&d.point_a, &d.point_b, &distance_normal})
       for (int i = 0; i < N; ++i) {
         out += ',';
         if (has_witness) append_number(out, (*v)[i]);
@@ -445,7 +452,7 @@ int check_pairs_csv(const Input& in, const CheckOptions& opt, const Window& w, c
       const auto ab = parse_pair_row<N>(ch.lines[k], ch.numbers[k], columns, in.path, scratch);
       const std::string* a = columns.a.id >= 0 ? &ab.first.id : nullptr;
       const std::string* b = columns.b.id >= 0 ? &ab.second.id : nullptr;
-      add_record<N>(o, format, ch.first + k, ch.numbers[k], a, b, evaluate<N>(ab.first, ab.second, w, q), q);
+      add_record<N>(o, format, ch.first + k, ch.numbers[k], a, b, evaluate<N>(ab.first, ab.second, w, q, in.path), q);
     });
   };
   const std::uint64_t total = run_pipeline<LineChunk>(read, process, writer, progress);
@@ -598,12 +605,12 @@ int check_bodies(const Input& in, const CheckOptions& opt, const Window& w, cons
       const Body<N>& a = bodies[jb.i];
       if (jb.j >= n) {
         const Obstacle<N>& ob = obstacles[jb.j - n];
-        add_record<N>(o, format, ch.first + k, 0, &a.id, &ob.id, evaluate<N>(a, ob, w, q), q);
+        add_record<N>(o, format, ch.first + k, 0, &a.id, &ob.id, evaluate<N>(a, ob, w, q, in.path), q);
         return;
       }
       const Body<N>& b = bodies[jb.j];
-      PairResult<N> r = jb.deduced ? sep : evaluate<N>(a, b, w, q);
-      if (jb.deduced && q.distance) r.distance = evaluate<N>(a, b, w, distance_only).distance;
+      PairResult<N> r = jb.deduced ? sep : evaluate<N>(a, b, w, q, in.path);
+      if (jb.deduced && q.distance) r.distance = evaluate<N>(a, b, w, distance_only, in.path).distance;
       add_record<N>(o, format, ch.first + k, 0, &a.id, &b.id, r, q);
     });
   };
@@ -629,7 +636,8 @@ int check_bodies(const Input& in, const CheckOptions& opt, const Window& w, cons
 }  // namespace
 
 template <int N>
-PairResult<N> evaluate(const Body<N>& a, const Body<N>& b, const Window& window, const Queries& queries) {
+PairResult<N> evaluate(const Body<N>& a, const Body<N>& b, const Window& window, const Queries& queries,
+                       const std::string& file) {
   PairResult<N> r;
   if (window.t0 == 0.0) {
     if (queries.relation) r.relation = classify(a.shape, b.shape);
@@ -638,14 +646,7 @@ PairResult<N> evaluate(const Body<N>& a, const Body<N>& b, const Window& window,
     return r;
   }
   // Move both bodies to t0; search [t0, t1] as [0, t1 - t0] from there.
-  Ellipsoid<double, N> a0 = a.shape, b0 = b.shape;
-  try {
-    a0 = a.shape.translated(a.velocity * window.t0);
-    b0 = b.shape.translated(b.velocity * window.t0);
-  } catch (const InputError& e) {
-    throw BadInput("body " + a.id + " or " + b.id + " at the window start t0 = " + number_string(window.t0) + ": " +
-                   e.what());
-  }
+  const Ellipsoid<double, N> a0 = shape_at<N>(a, window.t0, file), b0 = shape_at<N>(b, window.t0, file);
   if (queries.relation) r.relation = classify(a0, b0);
   if (queries.distance) r.distance = signed_distance(a0, b0);
   if (queries.contact) {
@@ -656,15 +657,9 @@ PairResult<N> evaluate(const Body<N>& a, const Body<N>& b, const Window& window,
 }
 
 template <int N>
-PairResult<N> evaluate(const Body<N>& a, const Obstacle<N>& b, const Window& window, const Queries& queries) {
-  Ellipsoid<double, N> a0 = a.shape;
-  if (window.t0 != 0.0) {
-    try {
-      a0 = a.shape.translated(a.velocity * window.t0);
-    } catch (const InputError& e) {
-      throw BadInput("body " + a.id + " at the window start t0 = " + number_string(window.t0) + ": " + e.what());
-    }
-  }
+PairResult<N> evaluate(const Body<N>& a, const Obstacle<N>& b, const Window& window, const Queries& queries,
+                       const std::string& file) {
+  const Ellipsoid<double, N> a0 = shape_at<N>(a, window.t0, file);
   PairResult<N> r;
   std::visit(
       [&](const auto& shape) {
@@ -761,10 +756,12 @@ int run_check(const CheckOptions& opt) {
   return in.dim == 2 ? check_bodies<2>(in, opt, w, q, format, threads) : check_bodies<3>(in, opt, w, q, format, threads);
 }
 
-template PairResult<2> evaluate<2>(const Body<2>&, const Body<2>&, const Window&, const Queries&);
-template PairResult<3> evaluate<3>(const Body<3>&, const Body<3>&, const Window&, const Queries&);
-template PairResult<2> evaluate<2>(const Body<2>&, const Obstacle<2>&, const Window&, const Queries&);
-template PairResult<3> evaluate<3>(const Body<3>&, const Obstacle<3>&, const Window&, const Queries&);
+template PairResult<2> evaluate<2>(const Body<2>&, const Body<2>&, const Window&, const Queries&, const std::string&);
+template PairResult<3> evaluate<3>(const Body<3>&, const Body<3>&, const Window&, const Queries&, const std::string&);
+template PairResult<2> evaluate<2>(const Body<2>&, const Obstacle<2>&, const Window&, const Queries&,
+                                   const std::string&);
+template PairResult<3> evaluate<3>(const Body<3>&, const Obstacle<3>&, const Window&, const Queries&,
+                                   const std::string&);
 template PairResult<2> separated_result<2>();
 template PairResult<3> separated_result<3>();
 template PairSet<2> load_pair_set<2>(const Input&, const Common&, const Window&, bool, std::size_t, std::uint64_t);

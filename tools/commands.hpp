@@ -36,9 +36,11 @@ struct PairResult {
 
 // Evaluates one pair over the window: the relation and the signed distance at t0, and the
 // first contact in [t0, t1] (bodies move as center + t * velocity; the contact time is
-// absolute).
+// absolute). A body moved beyond the range of double at t0 is BadInput naming the scene `file`
+// (shape_at).
 template <int N>
-PairResult<N> evaluate(const Body<N>& a, const Body<N>& b, const Window& window, const Queries& queries);
+PairResult<N> evaluate(const Body<N>& a, const Body<N>& b, const Window& window, const Queries& queries,
+                       const std::string& file);
 
 // The answer the broad phase implies for a pair it left out: separated, no contact (the
 // distance is not implied; the caller evaluates it when asked).
@@ -50,7 +52,8 @@ PairResult<N> separated_result();
 // first contact in [t0, t1] (absolute time; the normal from the body towards the obstacle),
 // each from the library's query against that shape, with its triangle for meshes.
 template <int N>
-PairResult<N> evaluate(const Body<N>& a, const Obstacle<N>& b_at_t0, const Window& window, const Queries& queries);
+PairResult<N> evaluate(const Body<N>& a, const Obstacle<N>& b_at_t0, const Window& window, const Queries& queries,
+                       const std::string& file);
 
 // Settings common to the commands.
 struct Common {

@@ -149,12 +149,16 @@ std::vector<Point2> convex_hull(std::vector<Point2> points) {
 }
 
 // An obstacle in the drawing plane: polygons (a triangle, a box's outline, a mesh's
-// triangles), or for a half-space the region its projection covers within the view.
+// triangles), a capsule's stadium, or for a half-space the region its projection covers
+// within the view.
 struct Shadow {
   std::vector<std::vector<Point2>> polygons;
   bool half_space = false;
   Point2 normal, point;  // half_space: the region normal . (x - point) <= 0 ...
   bool everywhere = false;  // ... or, in 3D with a normal off the plane, the whole view
+  bool capsule = false;
+  Point2 ends[2];       // capsule: the points within `radius` of the segment ends[0] ends[1]
+  double radius = 0.0;  // (a capsule's projection is the stadium of its projected segment)
 };
 
 template <int N>
@@ -176,6 +180,11 @@ Shadow shadow(const Obstacle<N>& o, const Plane& p) {
           std::vector<Point2> corners;
           for (int k = 0; k < (1 << N); ++k) corners.push_back(project(shape.corner(k)));
           s.polygons.push_back(convex_hull(std::move(corners)));
+        } else if constexpr (std::is_same_v<S, Capsule<double, N>>) {
+          s.capsule = true;
+          s.ends[0] = project(shape.point(0));
+          s.ends[1] = project(shape.point(1));
+          s.radius = shape.radius();
         } else {
           for (std::size_t k = 0; k < shape.triangle_count(); ++k) {
             const Triangle<double, N> t = shape.triangle(k);
@@ -270,8 +279,9 @@ int render(const Input& in, const RenderOptions& opt, const Plane& plane) {
       const std::size_t end = std::min(set.pairs.size(), (b + 1) * block);
       for (std::size_t k = b * block; k < end; ++k)
         contacts[k] = set.pairs[k].second < n
-                          ? evaluate<N>(bodies[set.pairs[k].first], bodies[set.pairs[k].second], w, cq)
-                          : evaluate<N>(bodies[set.pairs[k].first], obstacles_t0[set.pairs[k].second - n], w, cq);
+                          ? evaluate<N>(bodies[set.pairs[k].first], bodies[set.pairs[k].second], w, cq, in.path)
+                          : evaluate<N>(bodies[set.pairs[k].first], obstacles_t0[set.pairs[k].second - n], w, cq,
+                                        in.path);
     });
   }
   double first = std::numeric_limits<double>::infinity();
@@ -296,13 +306,7 @@ int render(const Input& in, const RenderOptions& opt, const Plane& plane) {
   // Bodies at T and their relations there.
   std::vector<Body<N>> at_t;
   at_t.reserve(n);
-  for (const auto& b : bodies) {
-    try {
-      at_t.push_back(Body<N>{b.id, b.velocity.isZero() ? b.shape : b.shape.translated(b.velocity * T), b.velocity});
-    } catch (const InputError& e) {
-      throw BadInput(in.path + ": body " + b.id + " at t = " + number_string(T) + ": " + e.what());
-    }
-  }
+  for (const auto& b : bodies) at_t.push_back(Body<N>{b.id, shape_at<N>(b, T, in.path), b.velocity});
   std::vector<Obstacle<N>> obstacles_at_t;
   for (const auto& o : set.obstacles) obstacles_at_t.push_back(obstacle_at<N>(o, T, in.path));
   std::vector<IndexPair> rel_pairs = set.pairs;
@@ -322,11 +326,12 @@ int render(const Input& in, const RenderOptions& opt, const Plane& plane) {
     parallel_for((rel_pairs.size() + block - 1) / block, threads, [&](std::size_t b) {
       const std::size_t end = std::min(rel_pairs.size(), (b + 1) * block);
       for (std::size_t k = b * block; k < end; ++k)
-        over[k] = is_overlap(
-            (rel_pairs[k].second < n
-                 ? evaluate<N>(at_t[rel_pairs[k].first], at_t[rel_pairs[k].second], Window{0.0, 0.0}, rq)
-                 : evaluate<N>(at_t[rel_pairs[k].first], obstacles_at_t[rel_pairs[k].second - n], Window{0.0, 0.0}, rq))
-                .relation);
+        over[k] = is_overlap((rel_pairs[k].second < n
+                                  ? evaluate<N>(at_t[rel_pairs[k].first], at_t[rel_pairs[k].second], Window{0.0, 0.0},
+                                                rq, in.path)
+                                  : evaluate<N>(at_t[rel_pairs[k].first], obstacles_at_t[rel_pairs[k].second - n],
+                                                Window{0.0, 0.0}, rq, in.path))
+                                 .relation);
     });
     for (std::size_t k = 0; k < rel_pairs.size(); ++k)
       if (over[k]) red[rel_pairs[k].first] = red[rel_pairs[k].second] = 1;
@@ -352,7 +357,7 @@ int render(const Input& in, const RenderOptions& opt, const Plane& plane) {
     shapes[i] = outline<N>(at_t[i].shape, plane);
     bounds.add(shapes[i]);
     if (!bodies[i].velocity.isZero()) {
-      ghosts[i] = outline<N>(bodies[i].shape.translated(bodies[i].velocity * w.t0), plane);
+      ghosts[i] = outline<N>(shape_at<N>(bodies[i], w.t0, in.path), plane);
       if (T != w.t0) bounds.add(ghosts[i]);
       const Vec<double, N> c_end = bodies[i].shape.center() + bodies[i].velocity * t_end;
       bounds.add(c_end[plane.u], c_end[plane.v]);
@@ -366,6 +371,8 @@ int render(const Input& in, const RenderOptions& opt, const Plane& plane) {
     const Shadow& s = shadows.back();
     for (const auto& polygon : s.polygons)
       for (const Point2& x : polygon) bounds.add(x[0], x[1]);
+    if (s.capsule)
+      for (const Point2& x : s.ends) bounds.add(x[0], x[1], s.radius, s.radius);
     // A half-plane: the feet of the bodies' centers on its line.
     if (s.half_space && !s.everywhere && s.normal.squaredNorm() > 0)
       for (const Outline& b : shapes) {
@@ -456,6 +463,18 @@ int render(const Input& in, const RenderOptions& opt, const Plane& plane) {
         for (std::size_t i = 0; i < polygon.size(); ++i)
           d += (i == 0 ? "M " : " L ") + fmt(sx(polygon[i][0])) + " " + fmt(sy(polygon[i][1]));
         if (!polygon.empty()) d += " Z ";
+      }
+      if (s.capsule) {
+        // Along the segment's left side, round its second end, back along its right side, round
+        // its first end: half circles turning clockwise as drawn (SVG's sweep flag 1). A ball
+        // (equal ends) is the two half circles.
+        const Point2 along = s.ends[1] - s.ends[0];
+        const Point2 side = along.norm() > 0 ? Point2(-along[1], along[0]).normalized() * s.radius
+                                             : Point2(0.0, s.radius);
+        const std::string arc = "A " + fmt(s.radius * scale) + " " + fmt(s.radius * scale) + " 0 0 1 ";
+        const auto at = [&](const Point2& x) { return fmt(sx(x[0])) + " " + fmt(sy(x[1])); };
+        d += "M " + at(s.ends[0] + side) + " L " + at(s.ends[1] + side) + " " + arc + at(s.ends[1] - side) + " L " +
+             at(s.ends[0] - side) + " " + arc + at(s.ends[0] + side) + " Z";
       }
       const char* color = red[n + k] ? overlap_color : obstacle_color;
       svg += "<path class=\"" + std::string(red[n + k] ? "obstacle overlapping" : "obstacle") + "\" data-id=\"" +

@@ -375,7 +375,7 @@ Obstacle<N> json_obstacle(const JsonCtx& c, const json& jo, std::size_t index, c
   const std::string type = jt.is_string() ? jt.get<std::string>() : std::string();
   if (jo.contains("velocity")) o.velocity = json_vector<N>(c, jo["velocity"], path + ".velocity", dim);
   // The library's InputErrors name its fields as this format does ("normal", "vertices[1][0]",
-  // "half_extents[2]", "triangles[4][1]"): they are reported under the obstacle's path.
+  // "half_extents[2]", "radius", "triangles[4][1]"): they are reported under the obstacle's path.
   try {
     if (type == "half_space") {
       check_keys(c, jo, path, {"id", "type", "point", "normal", "velocity", "comment"});
@@ -404,6 +404,11 @@ Obstacle<N> json_obstacle(const JsonCtx& c, const json& jo, std::size_t index, c
                          [w = c.at(path)] { return w; })
               .axes();
       o.shape = make_box<double, N>(center, axes, half);
+    } else if (type == "capsule") {
+      check_keys(c, jo, path, {"id", "type", "p0", "p1", "radius", "velocity", "comment"});
+      const Vec<double, N> p0 = json_vector<N>(c, required(c, jo, path, "p0"), path + ".p0", dim);
+      const Vec<double, N> p1 = json_vector<N>(c, required(c, jo, path, "p1"), path + ".p1", dim);
+      o.shape = make_capsule<double, N>(p0, p1, json_number(c, required(c, jo, path, "radius"), path + ".radius"));
     } else if (type == "mesh") {
       check_keys(c, jo, path, {"id", "type", "vertices", "triangles", "file", "velocity", "comment"});
       if (jo.contains("file")) {
@@ -434,7 +439,7 @@ Obstacle<N> json_obstacle(const JsonCtx& c, const json& jo, std::size_t index, c
         o.shape = TriangleMesh<double, N>::from_arrays(vertices, triangles);
       }
     } else {
-      fail(c.at(path + ".type"), "unknown obstacle type " + excerpt(jt) + " (half_space, triangle, box or mesh)");
+      fail(c.at(path + ".type"), "unknown obstacle type " + excerpt(jt) + " (half_space, triangle, box, capsule or mesh)");
     }
   } catch (const InputError& e) {
     fail(c.at(path + "." + e.field()), input_error_detail(e));
@@ -764,8 +769,18 @@ std::unordered_map<std::string, std::uint32_t> id_index(const std::vector<Body<N
 }
 
 template <int N>
+Ellipsoid<double, N> shape_at(const Body<N>& b, double t, const std::string& file) {
+  if (t == 0.0 || b.velocity.isZero()) return b.shape;
+  try {
+    return b.shape.translated(b.velocity * t);
+  } catch (const InputError& e) {
+    throw BadInput(file + ": body " + b.id + " at t = " + number_string(t) + ": " + e.what());
+  }
+}
+
+template <int N>
 const char* obstacle_type(const Obstacle<N>& o) {
-  static const char* const names[] = {"half_space", "triangle", "box", "mesh"};
+  static const char* const names[] = {"half_space", "triangle", "box", "capsule", "mesh"};
   return names[o.shape.index()];
 }
 
@@ -979,6 +994,7 @@ void load_pair_rows(const Input& in, std::size_t limit, std::vector<Body<N>>& bo
   template BodyScene<N> load_bodies<N>(const Input&);                                                        \
   template std::unordered_map<std::string, std::uint32_t> id_index<N>(const std::vector<Body<N>>&,          \
                                                                       const std::vector<Obstacle<N>>&);       \
+  template Ellipsoid<double, N> shape_at<N>(const Body<N>&, double, const std::string&);                     \
   template const char* obstacle_type<N>(const Obstacle<N>&);                                                 \
   template Obstacle<N> obstacle_at<N>(const Obstacle<N>&, double, const std::string&);                       \
   template PairColumns<N> pair_columns<N>(const Input&);                                                     \

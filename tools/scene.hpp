@@ -9,6 +9,7 @@
 
 #include <ellipsect/box.hpp>
 #include <ellipsect/broad_phase.hpp>
+#include <ellipsect/capsule.hpp>
 #include <ellipsect/half_space.hpp>
 #include <ellipsect/mesh.hpp>
 #include <ellipsect/shapes.hpp>
@@ -37,16 +38,23 @@ struct Body {
   Vec<double, N> velocity;
 };
 
-// An obstacle of a JSON scene: a half-space (half-plane), a triangle, an oriented box or a
-// triangle mesh, moving as a whole at a constant velocity (`shape` is its place at time 0).
+// The body's shape at time t: moved by t * velocity. Throws BadInput naming the scene `file`
+// and the body where that leaves the range of double.
+template <int N>
+Ellipsoid<double, N> shape_at(const Body<N>& b, double t, const std::string& file);
+
+// An obstacle of a JSON scene: a half-space (half-plane), a triangle, an oriented box, a
+// capsule (stadium in 2D) or a triangle mesh, moving as a whole at a constant velocity
+// (`shape` is its place at time 0).
 template <int N>
 struct Obstacle {
   std::string id;
-  std::variant<HalfSpace<double, N>, Triangle<double, N>, Box<double, N>, TriangleMesh<double, N>> shape;
+  std::variant<HalfSpace<double, N>, Triangle<double, N>, Box<double, N>, Capsule<double, N>, TriangleMesh<double, N>>
+      shape;
   Vec<double, N> velocity;
 };
 
-// "half_space", "triangle", "box" or "mesh": the obstacle's `type` in the scene.
+// "half_space", "triangle", "box", "capsule" or "mesh": the obstacle's `type` in the scene.
 template <int N>
 const char* obstacle_type(const Obstacle<N>& o);
 

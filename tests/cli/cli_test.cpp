@@ -1060,6 +1060,24 @@ TEST(CliBadInput, AnErrorDeepInAStreamLeavesNoOutputFile) {
   }
 }
 
+// A velocity of 1e308 carries a shape beyond the range of double by the window start t0 = 2:
+// bad input naming the scene and the body (in a pair of bodies or with an obstacle) or the
+// obstacle.
+TEST(CliBadInput, ShapesMovedBeyondTheRangeOfDoubleNameTheScene) {
+  const auto dir = work_dir();
+  const std::string bodies = R"("time_window": [2, 3],
+    "bodies": [{"id": "a", "center": [0, 0], "radius": 1, "velocity": [1e308, 0]}, {"id": "b", "center": [5, 0], "radius": 1}])";
+  const std::string floor = R"({"id": "floor", "type": "half_space", "point": [0, -5], "normal": [0, 1]})";
+  expect_bad_input({"body_pair.json", "{" + bodies + R"(, "pairs": [["a", "b"]]})",
+                    {"body_pair.json: body a at t = 2: ", "must be finite"}}, dir);
+  expect_bad_input({"body_obstacle.json", "{" + bodies + R"(, "obstacles": [)" + floor + R"(], "pairs": [["a", "floor"]]})",
+                    {"body_obstacle.json: body a at t = 2: ", "must be finite"}}, dir);
+  expect_bad_input({"obstacle.json", R"({"time_window": [2, 3], "bodies": [{"id": "b", "center": [5, 0], "radius": 1}],
+                      "obstacles": [{"id": "rod", "type": "capsule", "p0": [0, 0], "p1": [1, 0], "radius": 1,
+                                     "velocity": [1e308, 0]}]})",
+                    {"obstacle.json: obstacle rod at t = 2: ", "offset"}}, dir);
+}
+
 TEST(CliBadInput, IoErrorsExitWithThree) {
   const auto dir = work_dir();
   const Outcome missing = run_cli({"check", (dir / "nowhere.json").string()}, dir);
@@ -1456,6 +1474,25 @@ TEST(CliObstacles, MovingObstaclesAndWindowsThatStartLater) {
   }
 }
 
+// The contact normal of the ball on the floor y <= 0 is minus the half-plane's normal (0, 1):
+// written (0, -1), not (-0, -1), in JSON and CSV, for the contact and the distance.
+TEST(CliObstacles, NormalsAreWrittenWithoutTheSignOfZero) {
+  const auto dir = work_dir();
+  write_file(dir / "floor.json", R"({
+    "bodies": [{"id": "ball", "center": [0, 5], "radius": 1, "velocity": [0, -2]}],
+    "obstacles": [{"id": "floor", "type": "half_space", "point": [0, 0], "normal": [0, 1]}]})");
+  const Outcome r = run_cli({"check", (dir / "floor.json").string(), "--query", "relation,contact,distance"}, dir);
+  ASSERT_EQ(r.code, 0) << describe(r);
+  EXPECT_NE(r.out.find(R"("time": 2, "point": [0, 0], "normal": [0, -1])"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find(R"("point_b": [0, 0], "normal": [0, -1])"), std::string::npos) << r.out;
+  const Outcome c = run_cli({"check", (dir / "floor.json").string(), "--query", "relation,contact,distance", "-f", "csv"},
+                            dir);
+  ASSERT_EQ(c.code, 0) << describe(c);
+  const auto lines = split_lines(c.out);
+  ASSERT_EQ(lines.size(), 2u);
+  EXPECT_EQ(lines[1], "0,ball,floor,separated,hit,2,0,0,0,-1,0,separated,4,0,4,0,0,0,-1,0");
+}
+
 // The cube [-1, 1]^3 as a box, as an OBJ (quads, every index form, negative indices, lines
 // to ignore, CRLF) and as ASCII and binary STL, all with the same 12 triangles in the same
 // order: two per face, the faces -x, +x, -y, +y, -z, +z.
@@ -1734,6 +1771,259 @@ TEST(CliObstacles, MalformedMeshFilesNameTheFileAndLine) {
   // So is a path that is not a regular file.
   fs::create_directories(dir / "dir.obj");
   expect_bad_input({"directory.json", scene_with("dir.obj"), {"dir.obj: not a regular file"}}, dir, 3);
+}
+
+// ------------------------------------------------------------------------------------------
+// Capsules (stadiums in 2D)
+// ------------------------------------------------------------------------------------------
+
+void expect_distance(const json& distance, const char* status, double value, const std::vector<double>& point_a,
+                     const std::vector<double>& point_b, const std::vector<double>& normal) {
+  SCOPED_TRACE(distance.dump());
+  EXPECT_EQ(distance["status"], status);
+  EXPECT_NEAR(distance["distance"].get<double>(), value, 1e-12 * std::max(1.0, std::abs(value)));
+  for (std::size_t i = 0; i < normal.size(); ++i) {
+    EXPECT_NEAR(distance["point_a"][i].get<double>(), point_a[i], 1e-12);
+    EXPECT_NEAR(distance["point_b"][i].get<double>(), point_b[i], 1e-12);
+    EXPECT_NEAR(distance["normal"][i].get<double>(), normal[i], 1e-12);
+  }
+}
+
+// The bar: the points within 0.5 of the segment (-3, 0)..(3, 0): its top edge y = 0.5 for
+// |x| <= 3, half discs of radius 0.5 round (-3, 0) and (3, 0). Closed forms:
+// - ball (r 1) falls at 2 from (0, 5): its center's height above the segment, 5 - 2t, is
+//   1 + 0.5 at t = 1.75, touching the top edge at (0, 0.5), normal (0, -1); at t = 0 the gap
+//   is 5 - 1.5 = 3.5 between (0, 4) and (0, 0.5);
+// - side (r 1) moves at -2 along y = 1.2 from x = 10 towards the end disc round (3, 0): its
+//   center is 1.5 from (3, 0) when (x - 3)^2 + 1.2^2 = 1.5^2, x = 3.9, t = (10 - 3.9) / 2 =
+//   3.05; normal (3 - 3.9, -1.2) / 1.5 = (-0.6, -0.8), point (3, 0) + 0.5 (0.6, 0.8) =
+//   (3.3, 0.4); at t = 0 the gap is |(7, 1.2)| - 1.5 = sqrt(50.44) - 1.5;
+// - away (r 1) rises at 1 from (0, 5): never meets the bar;
+// - sunk (r 1) at (0, 1) reaches down to y = 0, 0.5 into the bar: overlapping, distance -0.5
+//   from its lowest point (0, 0) to the top edge's (0, 0.5), normal (0, -1);
+// - small (r 0.2) at (1, 0), on the segment: inside the bar (b_contains_a), the bar to be
+//   moved 0.5 + 0.2 across it to clear it: distance -0.7;
+// - big (r 10) at the origin: the bar's farthest point is 3.5 away: the bar is inside it
+//   (a_contains_b), the bar to be moved 10 + 0.5 across the segment to clear it: -10.5.
+const char* capsule_2d_scene = R"({
+  "time_window": [0, 10],
+  "bodies": [
+    {"id": "ball", "center": [0, 5], "radius": 1, "velocity": [0, -2]},
+    {"id": "side", "center": [10, 1.2], "radius": 1, "velocity": [-2, 0]},
+    {"id": "away", "center": [0, 5], "radius": 1, "velocity": [0, 1]},
+    {"id": "sunk", "center": [0, 1], "radius": 1},
+    {"id": "small", "center": [1, 0], "radius": 0.2},
+    {"id": "big", "center": [0, 0], "radius": 10}
+  ],
+  "obstacles": [{"id": "bar", "type": "capsule", "p0": [-3, 0], "p1": [3, 0], "radius": 0.5}],
+  "pairs": [["ball", "bar"], ["side", "bar"], ["away", "bar"], ["sunk", "bar"], ["small", "bar"], ["big", "bar"]]
+})";
+
+TEST(CliCapsules, CirclesAgainstAHorizontalCapsuleMatchClosedForms) {
+  const auto dir = work_dir();
+  write_file(dir / "bar.json", capsule_2d_scene);
+  const Outcome r = run_cli({"check", (dir / "bar.json").string(), "--query", "relation,contact,distance"}, dir);
+  ASSERT_EQ(r.code, 0) << describe(r);
+  const json out = parse_json(r.out);
+  EXPECT_EQ(out["obstacles"], 1);
+  const json& res = out["results"];
+  ASSERT_EQ(res.size(), 6u);
+  const char* const relations[] = {"separated", "separated", "separated", "overlapping", "b_contains_a", "a_contains_b"};
+  for (std::size_t k = 0; k < 6; ++k) EXPECT_EQ(res[k]["relation"], relations[k]) << k;
+  expect_hit(res[0]["contact"], 1.75, {0, 0.5}, {0, -1});
+  expect_distance(res[0]["distance"], "separated", 3.5, {0, 4}, {0, 0.5}, {0, -1});
+  expect_hit(res[1]["contact"], 3.05, {3.3, 0.4}, {-0.6, -0.8});
+  EXPECT_NEAR(res[1]["distance"]["distance"].get<double>(), std::sqrt(50.44) - 1.5, 1e-12);
+  EXPECT_EQ(res[2]["contact"]["status"], "no_contact_in_window");
+  EXPECT_TRUE(res[2]["contact"]["time"].is_null());
+  expect_distance(res[3]["distance"], "overlapping", -0.5, {0, 0}, {0, 0.5}, {0, -1});
+  for (std::size_t k = 3; k < 6; ++k) EXPECT_EQ(res[k]["contact"]["status"], "overlapping_at_start") << k;
+  EXPECT_EQ(res[4]["distance"]["status"], "overlapping");
+  EXPECT_NEAR(res[4]["distance"]["distance"].get<double>(), -0.7, 1e-12);
+  EXPECT_NEAR(res[5]["distance"]["distance"].get<double>(), -10.5, 1e-12);
+  // Capsule records carry no triangles.
+  EXPECT_FALSE(res[0].contains("relation_triangle"));
+  EXPECT_FALSE(res[0]["contact"].contains("triangle"));
+  EXPECT_FALSE(res[0]["distance"].contains("triangle"));
+
+  // CSV: the same numbers, no triangle columns.
+  const Outcome c = run_cli({"check", (dir / "bar.json").string(), "--query", "relation,contact,distance", "-f", "csv"},
+                            dir);
+  ASSERT_EQ(c.code, 0) << describe(c);
+  const auto lines = split_lines(c.out);
+  ASSERT_EQ(lines.size(), 7u);
+  EXPECT_EQ(lines[0], "index,a,b,relation,contact_status,contact_time,contact_x,contact_y,normal_x,normal_y,"
+                      "contact_iterations,distance_status,distance,point_a_x,point_a_y,point_b_x,point_b_y,"
+                      "distance_normal_x,distance_normal_y,distance_iterations");
+  for (std::size_t k = 0; k < 2; ++k) {
+    const auto row = split_csv_line(lines[k + 1]);
+    ASSERT_EQ(row.size(), 20u);
+    const json& rec = res[k];
+    EXPECT_EQ(row[2], "bar");
+    EXPECT_EQ(row[4], "hit");
+    EXPECT_EQ(std::stod(row[5]), rec["contact"]["time"].get<double>());
+    for (std::size_t i = 0; i < 2; ++i) {
+      EXPECT_EQ(std::stod(row[6 + i]), rec["contact"]["point"][i].get<double>());
+      EXPECT_EQ(std::stod(row[8 + i]), rec["contact"]["normal"][i].get<double>());
+      EXPECT_EQ(std::stod(row[17 + i]), rec["distance"]["normal"][i].get<double>());
+    }
+    EXPECT_EQ(row[11], "separated");
+    EXPECT_EQ(std::stod(row[12]), rec["distance"]["distance"].get<double>());
+  }
+}
+
+// The bar rising at 1 and the ball falling at 2 close their gap of 3.5 at t = 7/6, the bar's
+// top edge then at 7/6 + 0.5 = 5/3 (the ball's center at 5 - 7/3 = 8/3, 1 above); with the
+// window starting at t0 = 1 (the bar moved there first) the gap at t0 is 3 - 1.5 = 0.5.
+TEST(CliCapsules, MovingCapsuleAndWindowsThatStartLater) {
+  const auto dir = work_dir();
+  write_file(dir / "rising.json", R"({
+    "bodies": [{"id": "ball", "center": [0, 5], "radius": 1, "velocity": [0, -2]}],
+    "obstacles": [{"id": "bar", "type": "capsule", "p0": [-3, 0], "p1": [3, 0], "radius": 0.5, "velocity": [0, 1]}]})");
+  for (const auto& [start, t0, gap] : {std::tuple{"0", 0.0, 3.5}, std::tuple{"1", 1.0, 0.5}}) {
+    const Outcome r = run_cli({"check", (dir / "rising.json").string(), "--window", start, "10", "--query",
+                               "relation,contact,distance"}, dir);
+    ASSERT_EQ(r.code, 0) << describe(r);
+    const json out = parse_json(r.out);
+    ASSERT_EQ(out["results"].size(), 1u);
+    const json& rec = out["results"][0];
+    EXPECT_EQ(rec["relation"], "separated");
+    expect_hit(rec["contact"], 7.0 / 6, {0, 5.0 / 3}, {0, -1});
+    expect_distance(rec["distance"], "separated", gap, {0, 4 - 2 * t0}, {0, 0.5 + t0}, {0, -1});
+  }
+}
+
+// 3D, closed forms:
+// - E (radii 2, 1, 0.5 along x, y, z) falls at 1 from (0, 0, 3) onto the rod (radius 0.5 round
+//   the y axis from y = -2 to 2): across the rod (along x) E's underside rises as x^2 / 16 and
+//   the rod's top falls as x^2, so they first meet at E's lowest point (0, 0, 2.5 - t) and
+//   the rod's top (0, 0, 0.5): t = 2, normal (0, 0, -1); the gap at t = 0 is 2;
+// - S (r 1) falls at 2 from (1, 1, 4) onto diag (radius 0.5 round (-2, -2, 0)..(2, 2, 0),
+//   which passes under S's center at (1, 1, 0)): 4 - 2t = 1.5 at t = 1.25, at (1, 1, 0.5).
+// Seen along y (plane xz) the rod is the disc of radius 0.5 round the origin.
+TEST(CliCapsules, EllipsoidsAgainstCapsulesIn3D) {
+  const auto dir = work_dir();
+  write_file(dir / "rods.json", R"({
+    "time_window": [0, 10],
+    "bodies": [
+      {"id": "E", "center": [0, 0, 3], "radii": [2, 1, 0.5], "velocity": [0, 0, -1]},
+      {"id": "S", "center": [1, 1, 4], "radius": 1, "velocity": [0, 0, -2]}
+    ],
+    "obstacles": [
+      {"id": "rod", "type": "capsule", "p0": [0, -2, 0], "p1": [0, 2, 0], "radius": 0.5},
+      {"id": "diag", "type": "capsule", "p0": [-2, -2, 0], "p1": [2, 2, 0], "radius": 0.5}
+    ],
+    "pairs": [["E", "rod"], ["S", "diag"]]})");
+  const Outcome r = run_cli({"check", (dir / "rods.json").string(), "--query", "relation,contact,distance"}, dir);
+  ASSERT_EQ(r.code, 0) << describe(r);
+  const json out = parse_json(r.out);
+  const json& res = out["results"];
+  ASSERT_EQ(res.size(), 2u);
+  EXPECT_EQ(res[0]["relation"], "separated");
+  expect_hit(res[0]["contact"], 2.0, {0, 0, 0.5}, {0, 0, -1});
+  expect_distance(res[0]["distance"], "separated", 2.0, {0, 0, 2.5}, {0, 0, 0.5}, {0, 0, -1});
+  EXPECT_EQ(res[1]["relation"], "separated");
+  expect_hit(res[1]["contact"], 1.25, {1, 1, 0.5}, {0, 0, -1});
+  expect_distance(res[1]["distance"], "separated", 2.5, {1, 1, 3}, {1, 1, 0.5}, {0, 0, -1});
+  // Drawn as stadiums: two sides and two half circles each (for the rod seen along its axis,
+  // sides of length 0: its disc). Red at t = 2.5, E's lowest point (0, 0, 0) and S's center
+  // (1, 1, -1) then inside the rod and diag.
+  for (const std::string plane : {"xy", "xz"}) {
+    const fs::path svg = dir / ("rods_" + plane + ".svg");
+    const Outcome p = run_cli({"render", (dir / "rods.json").string(), "--plane", plane, "--time", "2.5", "-o",
+                               svg.string()}, dir);
+    ASSERT_EQ(p.code, 0) << describe(p);
+    const SvgSummary s = read_svg(svg);
+    EXPECT_EQ(s.obstacles, 2);
+    EXPECT_EQ(s.obstacles_overlapping, 2);
+    const std::string text = slurp(svg);
+    const std::string key = "data-type=\"capsule\" d=\"";
+    std::size_t capsules = 0;
+    for (std::size_t at = text.find(key); at != std::string::npos; at = text.find(key, at + 1)) {
+      ++capsules;
+      const std::size_t begin = at + key.size();
+      const std::string d = text.substr(begin, text.find('"', begin) - begin);
+      EXPECT_EQ(std::count(d.begin(), d.end(), 'L'), 2) << d;
+      EXPECT_EQ(std::count(d.begin(), d.end(), 'A'), 2) << d;
+    }
+    EXPECT_EQ(capsules, 2u);
+  }
+}
+
+TEST(CliCapsules, MalformedCapsulesNameTheField) {
+  const auto dir = work_dir();
+  const std::string head2 = R"({"bodies": [{"id": "a", "center": [0, 0], "radius": 1}], "obstacles": [)";
+  const std::string head3 = R"({"bodies": [{"id": "a", "center": [0, 0, 0], "radius": 1}], "obstacles": [)";
+  const std::string capsule = R"({"id": "o", "type": "capsule", )";
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {head2 + capsule + R"("p0": [0, 0], "radius": 1}]})", "$.obstacles[0].p1: missing"},
+      {head2 + capsule + R"("p1": [0, 0], "radius": 1}]})", "$.obstacles[0].p0: missing"},
+      {head2 + capsule + R"("p0": [0, 0], "p1": [1, 0]}]})", "$.obstacles[0].radius: missing"},
+      {head2 + capsule + R"("p0": [0, 0], "p1": [1, 0], "radius": 0}]})", "$.obstacles[0].radius: must be > 0 (got 0)"},
+      {head3 + capsule + R"("p0": [0, 0, 0], "p1": [1, 0, 0], "radius": -0.5}]})",
+       "$.obstacles[0].radius: must be > 0 (got -0.5)"},
+      {head2 + capsule + R"("p0": [0, 0], "p1": [1, 0], "radius": "NaN"}]})",
+       "$.obstacles[0].radius: expected a number, got a string"},
+      {head2 + capsule + R"("p0": [0, 0], "p1": [1, 0], "radius": null}]})",
+       "$.obstacles[0].radius: expected a number, got null"},
+      {head2 + capsule + R"("p0": [0, "Infinity"], "p1": [1, 0], "radius": 1}]})",
+       "$.obstacles[0].p0[1]: expected a number, got a string"},
+      {head2 + capsule + R"("p0": 0, "p1": [1, 0], "radius": 1}]})",
+       "$.obstacles[0].p0: expected an array of 2 numbers, got a number"},
+      {head2 + capsule + R"("p0": [0, 0], "p1": [1, 0, 0], "radius": 1}]})",
+       "$.obstacles[0].p1: has 3 components, but the scene is 2D"},
+      {head3 + capsule + R"("p0": [0, 0, 0], "p1": [1, 0], "radius": 1}]})",
+       "$.obstacles[0].p1: has 2 components, but the scene is 3D"},
+      {head2 + capsule + R"("p0": [0, 0], "p1": [1, 0], "radius": 1, "velocity": [1, 0, 0]}]})",
+       "$.obstacles[0].velocity: has 3 components, but the scene is 2D"},
+      {head2 + capsule + R"("p0": [0, 0], "p1": [1, 0], "radius": 1, "center": [0, 0]}]})",
+       "$.obstacles[0].center: unknown key (allowed here: id, type, p0, p1, radius, velocity, comment)"},
+      {head2 + R"({"id": "o", "type": "stadium"}]})", "(half_space, triangle, box, capsule or mesh)"},
+  };
+  for (std::size_t k = 0; k < cases.size(); ++k)
+    expect_bad_input({"bad" + std::to_string(k) + ".json", cases[k].first, {cases[k].second}}, dir);
+  // A radius beyond the range of double never reaches the scene: the JSON number is rejected.
+  expect_bad_input({"huge.json", head2 + capsule + R"("p0": [0, 0], "p1": [1, 0], "radius": 1e999}]})",
+                    {"huge.json:1:", "number 1e999 is out of range"}}, dir);
+}
+
+// The bundled scene, closed forms:
+// - E (radii 1.5, 0.6 along x, y) falls at 1 from (0, 5): its lowest point (0, 4.4 - t)
+//   meets the bar's flat top y = 0.5 (|x| <= 4) at t = 3.9, normal (0, -1);
+// - C (r 0.8) rolls at 2 along y = 7 from x = -2 to the peg, the disc of radius 0.7 round
+//   (6, 7): centers 1.5 apart at x = 4.5, t = 3.25, point (5.3, 7), normal (1, 0);
+// - B (r 1) falls at 2 from (-6, 9); the arm (radius 0.4) slides at 1 along x, its segment
+//   (-9 + t, 2)..(-6 + t, 5) on the line y = x + 11 - t, from which B's center (-6, 9 - 2t)
+//   is (9 - 2t + 6 - 11 + t) / sqrt(2) = (4 - t) / sqrt(2) away: 1.4 at t = 4 - 1.4 sqrt(2)
+//   (about 2.02; the center's foot on the line is then (10 - 3t) / sqrt(2), about 2.79, along
+//   the segment of length 3 sqrt(2) from its first end), at the center moved 1 along the
+//   normal (1, -1) / sqrt(2): (-6 + sqrt(2) / 2, 1 + 2.8 sqrt(2) - sqrt(2) / 2).
+TEST(CliCapsules, BundledCapsuleScene) {
+  const auto dir = work_dir();
+  const fs::path scene = scenes / "obstacles_capsule.json";
+  const Outcome r = run_cli({"check", scene.string()}, dir);
+  ASSERT_EQ(r.code, 0) << describe(r);
+  const json out = parse_json(r.out);
+  const json& res = out["results"];
+  ASSERT_EQ(res.size(), 3u + 3u * 3u);
+  EXPECT_EQ(res[3]["a"], "E");
+  EXPECT_EQ(res[3]["b"], "bar");
+  expect_hit(res[3]["contact"], 3.9, {0, 0.5}, {0, -1});
+  EXPECT_EQ(res[7]["a"], "C");
+  EXPECT_EQ(res[7]["b"], "peg");
+  expect_hit(res[7]["contact"], 3.25, {5.3, 7}, {1, 0});
+  EXPECT_EQ(res[11]["a"], "B");
+  EXPECT_EQ(res[11]["b"], "arm");
+  const double h = std::sqrt(2.0) / 2;
+  expect_hit(res[11]["contact"], 4 - 1.4 * std::sqrt(2.0), {-6 + h, 1 + 2.3 * std::sqrt(2.0)}, {h, -h});
+  EXPECT_EQ(out["summary"]["contact"]["hit"], 3);
+  // Drawn at the first contact (B and the arm), nothing overlapping.
+  const Outcome p = run_cli({"render", scene.string(), "-o", (dir / "capsules.svg").string()}, dir);
+  ASSERT_EQ(p.code, 0) << describe(p);
+  const SvgSummary s = read_svg(dir / "capsules.svg");
+  EXPECT_NEAR(std::stod(s.attr("data-time")), 4 - 1.4 * std::sqrt(2.0), 1e-12);
+  EXPECT_EQ(s.obstacles, 3);
+  EXPECT_EQ(s.obstacles_overlapping, 0);
 }
 
 // ------------------------------------------------------------------------------------------
