@@ -7,7 +7,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
+#include <initializer_list>
 #include <limits>
 #include <string>
 
@@ -93,6 +95,54 @@ std::pair<Relation, int> relation_of(const Ellipsoid<T, N>& a, const Box<T, N>& 
   return {Relation::b_contains_a, -1};
 }
 
+// The features that can hold the box's point nearest the body where the two are apart
+// (detail::Near), from two necessary conditions on that point p, in the box's frame (body
+// center c, support radii rho_i = |diag(r) A^T u_i| along the box's axes u_i, half extents h):
+//   slabs      p lies within D of the body (D the distance), so |p_i - c_i| <= rho_i + D <=
+//              rho_i + U for every i, where U >= D is the distance from the box's point q
+//              nearest c to where the segment from c to q leaves the body;
+//   sides      along an axis where the body's slab c_i +- rho_i lies wholly beyond the box's,
+//              every direction from the body to the box, so the normal at the nearest points,
+//              has that side's sign: the feature lies on the face on the body's side.
+// A feature is a set of corners: along each axis fixed at one side, or spanning both. 1e-9
+// of the lengths is left for rounding.
+template <class T, int N, std::size_t E, std::size_t F>
+detail::Near near_features(const Ellipsoid<T, N>& a, const Box<T, N>& b, const std::array<std::array<int, 2>, E>& edges,
+                           const std::array<std::array<int, 3>, F>& faces) noexcept {
+  using W = std::conditional_t<(sizeof(T) < sizeof(double)), double, T>;
+  const Mat<W, N> box = b.axes().template cast<W>(), body = a.axes().template cast<W>();
+  const Vec<W, N> h = b.half_extents().template cast<W>(), r = a.radii().template cast<W>();
+  const Vec<W, N> c = box.transpose() * (a.center().template cast<W>() - b.center().template cast<W>());
+  const Vec<W, N> to_box = c.cwiseMax(-h).cwiseMin(h) - c;
+  const W exit = 1 / r.cwiseInverse().cwiseProduct(body.transpose() * (box * to_box)).norm();
+  const W reach = std::max(W(0), (1 - exit) * to_box.norm());
+  // allowed[i]: bit 0 the side -h_i, bit 1 the side +h_i, bit 2 spanning both.
+  std::array<unsigned, N> allowed{};
+  for (int i = 0; i < N; ++i) {
+    const W rho = r.cwiseProduct(body.transpose() * box.col(i)).norm();
+    const W margin = W(1e-9) * (std::abs(c[i]) + rho + reach + h[i]);
+    const W lo = c[i] - rho - reach - margin, hi = c[i] + rho + reach + margin;
+    if (!(lo <= hi)) return {};  // not finite: no certificate
+    allowed[i] = unsigned(lo <= -h[i] && -h[i] <= hi) | unsigned(lo <= h[i] && h[i] <= hi) << 1 |
+                 unsigned(lo <= h[i] && -h[i] <= hi) << 2;
+    if (c[i] - rho > h[i] + margin) allowed[i] &= 2u;
+    if (c[i] + rho < -h[i] - margin) allowed[i] &= 1u;
+  }
+  const auto near = [&](std::initializer_list<int> corners) {
+    for (int i = 0; i < N; ++i) {
+      unsigned bits = 0;
+      for (const int k : corners) bits |= 1u << ((k >> i) & 1);
+      if (!(allowed[i] & (bits == 3u ? 4u : bits))) return false;
+    }
+    return true;
+  };
+  detail::Near out{0, 0, 0};
+  for (int k = 0; k < (1 << N); ++k) out.vertices |= std::uint32_t(near({k})) << k;
+  for (std::size_t e = 0; e < E; ++e) out.edges |= std::uint32_t(near({edges[e][0], edges[e][1]})) << e;
+  for (std::size_t f = 0; f < F; ++f) out.faces |= std::uint32_t(near({faces[f][0], faces[f][1], faces[f][2]})) << f;
+  return out;
+}
+
 }  // namespace
 
 template <class T, int N>
@@ -147,7 +197,8 @@ Distance<T, N> signed_distance(const Ellipsoid<T, N>& a, const Box<T, N>& b, con
   }
   return detail::polytope_signed_distance<T, N>(a, corners, edges,
                                                 std::span<const std::array<int, 3>>(faces.data(), N == 3 ? faces.size() : 0),
-                                                classify(a, b, options));
+                                                options, [&] { return classify(a, b, options); },
+                                                near_features(a, b, edges, faces));
 }
 
 template <class T, int N>

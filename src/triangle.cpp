@@ -509,7 +509,7 @@ Distance<T, N> signed_distance(const Ellipsoid<T, N>& a, const Triangle<T, N>& b
   static constexpr std::array<std::array<int, 3>, 1> face{{{0, 1, 2}}};
   const std::array<Vec<T, N>, 3> v{b.vertex(0), b.vertex(1), b.vertex(2)};
   return detail::polytope_signed_distance<T, N>(a, v, edges, std::span<const std::array<int, 3>>(face.data(), N == 3 ? 1 : 0),
-                                                classify(a, b, options));
+                                                options, [&] { return classify(a, b, options); });
 }
 
 template <class T, int N>

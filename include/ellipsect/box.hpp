@@ -71,6 +71,9 @@ bool overlap(const Ellipsoid<T, N>& a, const Box<T, N>& b, const Options& option
 
 // Signed distance and distance as for a triangle (triangle.hpp), the solid box the polytope
 // of its 2^N corners: minus the penetration depth for a body inside the box or containing it.
+// The first pass (largest roots) tries only the features that can hold the nearest point: those
+// within the body's slabs along the box's axes widened by an upper bound on the distance, and
+// on the body's side along an axis where the body's slab lies beyond the box's.
 template <class T, int N>
 Distance<T, N> signed_distance(const Ellipsoid<T, N>& a, const Box<T, N>& b, const Options& options = {}) noexcept;
 

@@ -68,10 +68,14 @@
 // the edge's point in the body's shadow along the edge (src/detail/polytope_distance.hpp);
 // where the largest roots' directions already separate (G > 0) they alone are tried, every
 // stratum's function being concave there. Each root by Newton within its bracket (at most 100
-// steps, bisection where a step leaves it); the status is classify's. Accuracy (tests/property/
+// steps, bisection where a step leaves it; the extreme roots on 1 - q^(-1/2), q the secular
+// sum, nearly linear there). The status is classify's, which is asked only where |G| <=
+// (tolerance + 1e-9) R + 1e-12 max_k |v_k - c| (R the largest radius): beyond that the
+// relative gap is beyond the tolerance on the same side (the body scaled by d about its center
+// moves its boundary by at most |d - 1| R). Accuracy (tests/property/
 // polytope_distance_property_test.cpp, against a 50-digit search of the sphere stratum by
 // stratum; the triangle scenarios above and boxes: random, around the body, inside it, thin
-// to aspect 1e4), with scale = largest radius + largest |vertex - center|: the distance
+// to aspect 1e4, near tangency at faces, edges and corners, and those features far), with scale = largest radius + largest |vertex - center|: the distance
 // within 1e-12 scale, the support gap at the returned normal within 1e-12 scale of the
 // maximum; point_a on the body to 1e-12 relative, the normal its outward normal there.
 #pragma once

@@ -40,6 +40,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <span>
 #include <type_traits>
@@ -69,11 +70,12 @@ void stationary_normals(const Vec<F, M>& a, const Vec<F, M>& y, bool all, Emit&&
       pb[m++] = b;
     }
   }
-  const auto secular = [&](F s) {
-    F f = -1;
+  const auto sum = [&](F s) {
+    F f = 0;
     for (int j = 0; j < m; ++j) f += pb[j] / ((pa[j] + s) * (pa[j] + s));
     return f;
   };
+  const auto secular = [&](F s) { return sum(s) - 1; };
   const auto slope = [&](F s) {
     F f = 0;
     for (int j = 0; j < m; ++j) f -= 2 * pb[j] / ((pa[j] + s) * (pa[j] + s) * (pa[j] + s));
@@ -104,6 +106,14 @@ void stationary_normals(const Vec<F, M>& a, const Vec<F, M>& y, bool all, Emit&&
     }
     return x;
   };
+  // Beyond the extreme poles 1 - sum^(-1/2), with the secular function's roots and signs, is
+  // concave and nearly linear (linear for one pole): Newton on it takes a few steps where on
+  // the secular function itself it creeps away from a near pole.
+  const auto flat = [&](F s) { return 1 - 1 / std::sqrt(sum(s)); };
+  const auto flat_slope = [&](F s) {
+    const F q = sum(s);
+    return slope(s) / (2 * q * std::sqrt(q));
+  };
   const auto emit_root = [&](F s) {
     Vec<F, M> n;
     for (int i = 0; i < M; ++i) n[i] = y[i] == F(0) ? F(0) : y[i] / (a[i] + s);
@@ -111,12 +121,12 @@ void stationary_normals(const Vec<F, M>& a, const Vec<F, M>& y, bool all, Emit&&
   };
   if (m > 0) {
     const F spread = std::sqrt(total);
-    // Beyond the extreme poles the secular function is monotone and convex: Newton from the
-    // end of the bracket where it is >= 0.
+    // Beyond the extreme poles: Newton on `flat` from the end of the bracket where the
+    // secular function is >= 0.
     const F right = -pa[0] + std::sqrt(pb[0]), left = -pa[m - 1] - std::sqrt(pb[m - 1]);
-    emit_root(solve(secular, slope, right, -pa[0] + spread, true, right));
+    emit_root(solve(flat, flat_slope, right, -pa[0] + spread, true, right));
     if (!all) return;
-    emit_root(solve(secular, slope, -pa[m - 1] - spread, left, false, left));
+    emit_root(solve(flat, flat_slope, -pa[m - 1] - spread, left, false, left));
     // Between neighbouring poles it is convex: its least value (the root of the increasing
     // slope), then a root on either side of it where that value is negative.
     for (int j = 0; j + 1 < m; ++j) {
@@ -159,11 +169,19 @@ void stationary_normals(const Vec<F, M>& a, const Vec<F, M>& y, bool all, Emit&&
 
 // The polytope: vertices, edges as vertex index pairs, faces (3D) as three of their vertices'
 // indices; in 2D the edges' normals are the face directions.
+// The features (bit k: vertex, edge or face k) that can hold the polytope's nearest point to
+// the body where the two are apart: the caller's certificate (a box's slabs, box.cpp), every
+// feature when unknown. The first pass tries only these.
+struct Near {
+  std::uint32_t vertices = ~std::uint32_t(0), edges = ~std::uint32_t(0), faces = ~std::uint32_t(0);
+};
+
 template <class F, int N>
 struct Polytope {
   std::span<const Vec<F, N>> vertices;
   std::span<const std::array<int, 2>> edges;
   std::span<const std::array<int, 3>> faces;
+  Near near;
 };
 
 template <class F, int N>
@@ -211,10 +229,16 @@ GapMaximum<F, N> max_support_gap(const Vec<F, N>& a, const Polytope<F, N>& p) no
   };
   // Where the best largest-root direction already separates (G > 0), it is the answer: on
   // {G > 0} every stratum's function is concave, its one stationary point there the largest
-  // root's. Otherwise every stationary direction is tried.
+  // root's, and the maximum's stratum is one of the near features'. Otherwise every
+  // stationary direction of every feature is tried.
   const auto pass = [&](bool all) {
-    for (const auto& y : p.vertices) stationary_normals<F, N>(a, y, all, consider);
-    for (const auto& [j, k] : p.edges) {
+    const Near near = all ? Near{} : p.near;
+    const auto tried = [](std::uint32_t mask, std::size_t k) { return (mask >> k & 1) != 0; };
+    for (std::size_t k = 0; k < p.vertices.size(); ++k)
+      if (tried(near.vertices, k)) stationary_normals<F, N>(a, p.vertices[k], all, consider);
+    for (std::size_t edge = 0; edge < p.edges.size(); ++edge) {
+      if (!tried(near.edges, edge)) continue;
+      const auto [j, k] = p.edges[edge];
       const Vec<F, N> e = unit_vector<F, N>(p.vertices[k] - p.vertices[j]);
       if (!(e.squaredNorm() > F(0.5))) continue;  // coincident vertices: their vertex strata
       if constexpr (N == 2) {
@@ -235,8 +259,10 @@ GapMaximum<F, N> max_support_gap(const Vec<F, N>& a, const Polytope<F, N>& p) no
       }
     }
     if constexpr (N == 3)
-      for (const auto& [i, j, k] : p.faces) {
-        consider((p.vertices[j] - p.vertices[i]).cross(p.vertices[k] - p.vertices[i]));
+      for (std::size_t face = 0; face < p.faces.size(); ++face) {
+        const auto [i, j, k] = p.faces[face];
+        if (tried(near.faces, face))
+          consider((p.vertices[j] - p.vertices[i]).cross(p.vertices[k] - p.vertices[i]));
       }
   };
   pass(false);
@@ -258,8 +284,8 @@ struct Support {
 // beyond the native range, scale.hpp).
 template <class T, int N>
 Support<T, N> polytope_support(const Ellipsoid<T, N>& body, std::span<const Vec<T, N>> vertices,
-                               std::span<const std::array<int, 2>> edges,
-                               std::span<const std::array<int, 3>> faces) noexcept {
+                               std::span<const std::array<int, 2>> edges, std::span<const std::array<int, 3>> faces,
+                               Near near = {}) noexcept {
   T coordinate = max_abs(body.center());
   for (const auto& v : vertices) coordinate = std::max(coordinate, max_abs(v));
   const Scale scale = scale_of<T>(body.radii().maxCoeff(), body.radii().minCoeff(), coordinate);
@@ -273,7 +299,7 @@ Support<T, N> polytope_support(const Ellipsoid<T, N>& body, std::span<const Vec<
     for (std::size_t k = 0; k < vertices.size(); ++k)
       y[k] = times_pow2(axes.transpose() * (vertices[k].template cast<F>() - center), -e);
     const GapMaximum<F, N> m =
-        max_support_gap<F, N>(a, {std::span<const Vec<F, N>>(y.data(), vertices.size()), edges, faces});
+        max_support_gap<F, N>(a, {std::span<const Vec<F, N>>(y.data(), vertices.size()), edges, faces, near});
     const F rho = std::sqrt(m.normal.cwiseAbs2().dot(a));
     const Vec<F, N> support = a.cwiseProduct(m.normal) / rho;
     return Support<T, N>{(axes * m.normal).template cast<T>(), (center + axes * times_pow2(support, e)).template cast<T>(),
@@ -306,11 +332,28 @@ Distance<T, N> distance_of(const Support<T, N>& s, T grow, Relation relation) no
   return out;
 }
 
-template <class T, int N>
+// The signed distance with classify's relation as status, `classify()` asked only where the
+// gap G leaves it in doubt. Scaled by d about its center the body moves its boundary by at
+// most |d - 1| R (R its largest radius), so G > tolerance R means a relative gap d - 1 >
+// tolerance (separated) and G < -tolerance R one below -tolerance (overlapping or contained:
+// overlapping as a distance status); 1e-9 R and 1e-12 of the vertices' distances from the
+// center are left for the rounding of G and of classify's relation.
+template <class T, int N, class Classify>
 Distance<T, N> polytope_signed_distance(const Ellipsoid<T, N>& body, std::span<const Vec<T, N>> vertices,
                                         std::span<const std::array<int, 2>> edges,
-                                        std::span<const std::array<int, 3>> faces, Relation relation) noexcept {
-  return distance_of(polytope_support<T, N>(body, vertices, edges, faces), T(0), relation);
+                                        std::span<const std::array<int, 3>> faces, const Options& options,
+                                        Classify&& classify, Near near = {}) noexcept {
+  const Support<T, N> s = polytope_support<T, N>(body, vertices, edges, faces, near);
+  using W = std::conditional_t<(sizeof(T) < sizeof(double)), double, T>;
+  W spread = 0;
+  for (const auto& v : vertices) spread = std::max(spread, (v - body.center()).template cast<W>().norm());
+  const W radius = W(body.radii().maxCoeff());
+  const W band = (W(options.tolerance) + W(1e-9)) * radius + W(1e-12) * spread;
+  const Relation relation = !(band < std::numeric_limits<W>::infinity()) ? classify()
+                            : W(s.gap) > band                         ? Relation::separated
+                            : W(s.gap) < -band                        ? Relation::overlapping
+                                                                      : classify();
+  return distance_of(s, T(0), relation);
 }
 
 // distance() from signed_distance(): overlapping bodies get 0 and NaN points and normal.
