@@ -102,4 +102,12 @@ template <class T, int N>
 Contact<T, N> first_contact(const Ellipsoid<T, N>& a, const VecArg<T, N>& velocity_a, const Capsule<T, N>& b,
                             const VecArg<T, N>& velocity_b, T t_max, const Options& options = {}) noexcept;
 
+// The body in rigid motion (contact.hpp: turning about its center at a constant angular
+// velocity) against the capsule moving at velocity_b, by conservative advancement
+// (contact.hpp, "Rigid motion against shapes"); a zero angular velocity gives exactly the
+// answer above.
+template <class T, int N>
+Contact<T, N> first_contact(const Ellipsoid<T, N>& a, const RigidMotion<T, N>& motion_a, const Capsule<T, N>& b,
+                            const VecArg<T, N>& velocity_b, T t_max, const Options& options = {}) noexcept;
+
 }  // namespace ellipsect

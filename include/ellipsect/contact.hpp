@@ -130,4 +130,24 @@ template <class T, int N>
 Contact<T, N> first_contact(const Ellipsoid<T, N>& a, const RigidMotion<T, N>& motion_a, const Ellipsoid<T, N>& b,
                             const RigidMotion<T, N>& motion_b, T t_max, const Options& options = {}) noexcept;
 
+// ---- Rigid motion against shapes ---------------------------------------------------------
+//
+// first_contact(body, RigidMotion, shape, velocity_b, t_max, options) for the half-spaces,
+// triangles, boxes, capsules and meshes of half_space.hpp, triangle.hpp, box.hpp,
+// capsule.hpp and mesh.hpp (declared there): the shape moves at a constant velocity and does
+// not turn. The same advancement as above in the shape's frame (the body moving at v_a - v_b),
+// the slab gap along the normal n of the shape's distance at t taken as
+//     g_n(s) = min over the shape of n . x  -  n . c(s)  -  rho(n, s)
+// (the least over its vertices, its plane along its normal, its segment less the radius:
+// exact for the shape as stored, a lower bound on the distance for any n), with the body's
+// bounds V and K of above and none for the shape. No contact ever where the body's ball of
+// radius R lies beyond the shape's slab and its center does not close on it. Statuses, the
+// never-late guarantee and did_not_converge as above; the contact point in world coordinates
+// at the contact time. Accuracy (tests/property/rigid_shapes_property_test.cpp, against the
+// shapes' 50-digit static references at the reported time and before it): a hit at a time
+// where the reference's relative gap is within 1e-9 of 0 and positive at earlier sampled
+// times; no contact reported where the reference finds the shape touched; balls and bodies
+// spinning about a symmetry axis give the translational time. Range: pairs within the
+// native range (shapes.hpp, "Range"); beyond it the start state, else did_not_converge at 0.
+
 }  // namespace ellipsect

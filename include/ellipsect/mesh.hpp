@@ -99,6 +99,16 @@ template <class T, int N>
 MeshContact<T, N> first_contact(const Ellipsoid<T, N>& a, const VecArg<T, N>& velocity_a, const TriangleMesh<T, N>& b,
                                 const VecArg<T, N>& velocity_b, T t_max, const Options& options = {}) noexcept;
 
+// The body in rigid motion (contact.hpp: turning about its center at a constant angular
+// velocity) against the mesh moving at velocity_b: the start relation as above, else the
+// earliest hit over the triangles whose boxes the body's bounding ball (radius R) meets along
+// its center's path, each by conservative advancement (contact.hpp, "Rigid motion against
+// shapes"); ties, triangle and did_not_converge as above. A zero angular velocity gives
+// exactly the answer above.
+template <class T, int N>
+MeshContact<T, N> first_contact(const Ellipsoid<T, N>& a, const RigidMotion<T, N>& motion_a, const TriangleMesh<T, N>& b,
+                                const VecArg<T, N>& velocity_b, T t_max, const Options& options = {}) noexcept;
+
 // The signed distance of the body and the mesh: the least over the triangles of their signed
 // distance (triangle.hpp), with its triangle (ties: the lowest index). Apart, the distance to
 // the mesh; overlapping, minus the largest penetration depth into one triangle (a mesh is a

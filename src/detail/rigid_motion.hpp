@@ -1,0 +1,241 @@
+// Rigid motion (contact.hpp): the body at time t and the pieces of conservative advancement
+// shared by body pairs (rigid_contact.cpp) and bodies against shapes (rigid_shapes.cpp).
+#pragma once
+
+#include <ellipsect/contact.hpp>
+#include <ellipsect/distance.hpp>
+
+#include "shape_access.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace ellipsect::detail::rigid {
+
+using R = double;  // every step's arithmetic; float bodies keep float rounding margins
+
+template <class T, int N>
+using Omega = decltype(RigidMotion<T, N>::angular_velocity);
+
+// omega x v; in 2D omega is the rate about the normal of the plane.
+template <int N, class W>
+Vec<R, N> cross(const W& omega, const Vec<R, N>& v) noexcept {
+  if constexpr (N == 2) {
+    return Vec<R, 2>(-R(omega) * v[1], R(omega) * v[0]);
+  } else {
+    return Vec<R, 3>(omega.template cast<R>().cross(v));
+  }
+}
+
+template <int N, class W>
+R magnitude(const W& omega) noexcept {
+  if constexpr (N == 2) {
+    return std::abs(R(omega));
+  } else {
+    return omega.template cast<R>().stableNorm();
+  }
+}
+
+template <int N, class W>
+bool all_finite(const W& omega) noexcept {
+  if constexpr (N == 2) {
+    return std::isfinite(omega);
+  } else {
+    return omega.allFinite();
+  }
+}
+
+// exp(t [omega]x) (Rodrigues' formula in 3D).
+template <class T, int N>
+Mat<T, N> rotation(const Omega<T, N>& omega, T t) noexcept {
+  if constexpr (N == 2) {
+    const T angle = omega * t, c = std::cos(angle), s = std::sin(angle);
+    Mat<T, 2> rot;
+    rot << c, -s, s, c;
+    return rot;
+  } else {
+    const T rate = omega.stableNorm();
+    if (!(rate > T(0)) || t == T(0)) return Mat<T, 3>::Identity();
+    const Vec<T, 3> k = omega / rate;
+    const T angle = rate * t, c = std::cos(angle), s = std::sin(angle);
+    Mat<T, 3> kx;
+    kx << T(0), -k[2], k[1], k[2], T(0), -k[0], -k[1], k[0], T(0);
+    return Mat<T, 3>(Mat<T, 3>::Identity() + s * kx + (T(1) - c) * (kx * kx));
+  }
+}
+
+// The body at t, unchecked: the moved center may be infinite (callers test it).
+template <class T, int N>
+Ellipsoid<T, N> moved(const Ellipsoid<T, N>& body, const RigidMotion<T, N>& motion, T t) noexcept {
+  const Vec<T, N> center = body.center() + t * motion.velocity;
+  return detail::ShapeAccess::unchecked<T, N>(center, rotation<T, N>(motion.angular_velocity, t) * body.axes(),
+                                              body.radii());
+}
+
+// Support radius of `body` along the unit n, and the support point's offset from the center.
+template <class T, int N>
+R support(const Ellipsoid<T, N>& body, const Vec<R, N>& n, Vec<R, N>& offset) noexcept {
+  const Mat<R, N> axes = body.axes().template cast<R>();
+  const Vec<R, N> radii = body.radii().template cast<R>();
+  const Vec<R, N> w = radii.cwiseProduct(axes.transpose() * n);
+  const R rho = w.norm();
+  offset = axes * radii.cwiseProduct(w) / rho;
+  return rho;
+}
+
+// One turning body's part in the bounds of conservative advancement (rigid_contact.cpp, top):
+// along a fixed unit n its support radius changes at rate (omega x s) . n (s the support
+// point's offset), at most sweep |omega x n| in magnitude (sweep = min(R, (R^2 - r^2) / (2 r)),
+// zero for a ball), with second derivative at most (R^2 / r) |omega x n|^2 + R |omega|
+// |omega x n| (R, r the largest and smallest radius).
+template <class T, int N>
+struct Turning {
+  const Ellipsoid<T, N>& body;
+  const RigidMotion<T, N>& motion;
+  R big, small, sweep, spin, speed, center;
+
+  Turning(const Ellipsoid<T, N>& b, const RigidMotion<T, N>& m) noexcept
+      : body(b),
+        motion(m),
+        big(R(b.radii().maxCoeff())),
+        small(R(b.radii().minCoeff())),
+        sweep(std::min(big, (big - small) * (big + small) / (2 * small))),
+        spin(magnitude<N>(m.angular_velocity)),
+        speed(m.velocity.template cast<R>().norm()),
+        center(b.center().template cast<R>().norm()) {}
+
+  // The rounding of the body formed at t (center c_0 + t v, the angle |omega| t, Rodrigues'
+  // products, t itself in T), in units of T's epsilon: none at t = 0, where it is the given one.
+  R configuration(R t) const noexcept { return t == R(0) ? R(0) : 4 * (center + t * speed + big * (8 + spin * t)); }
+  R across(const Vec<R, N>& n) const noexcept { return cross<N>(motion.angular_velocity, n).stableNorm(); }
+  R rate(const Vec<R, N>& n, const Vec<R, N>& offset) const noexcept {
+    return n.dot(cross<N>(motion.angular_velocity, offset));
+  }
+  R curvature(R across) const noexcept { return big * big * across * across / small + big * spin * across; }
+};
+
+// The other party of a step along the unit n (from the body towards it), at time t: its least
+// n . x (`low`), that value's rate at fixed n, a bound on how fast it may fall (low(s) >= low -
+// falling (s - t)) and on its second derivative's fall, and its rounding: `configuration` in
+// units of T's epsilon, `magnitude` the size of what low is computed from (for the gap's own
+// rounding), `speed` for the rates' rounding, `small` its smallest radius (0 for a shape).
+struct Side {
+  R low, rate, falling, curvature, configuration, magnitude, speed, small;
+};
+
+// First contact of `a` in rigid motion with another party, by conservative advancement
+// (contact.hpp). Other provides, at a time t:
+//   bool at(R t)                          forms the party at t (false: beyond the type's range);
+//   Distance<T, N> near(body, bool touched)  the distance at t (may be a far estimate:
+//                                         status separated, NaN points, a separating normal);
+//   Distance<T, N> exact(body)            the signed distance at t (for a hit found overlapping);
+//   Side side(n, body)                    as above;
+//   bool never(n, body, margin)           certifies that the two never meet from t on.
+template <class T, int N, class Other>
+Contact<T, N> advance(const Ellipsoid<T, N>& a, const RigidMotion<T, N>& motion, T t_max, const Options& options,
+                      bool out_of_range, Other&& other) noexcept {
+  constexpr T nan = std::numeric_limits<T>::quiet_NaN();
+  constexpr R ulp = R(std::numeric_limits<T>::epsilon()), eps = std::numeric_limits<R>::epsilon();
+  const Turning<T, N> turning(a, motion);
+  const Vec<R, N> v = motion.velocity.template cast<R>();
+  Contact<T, N> out;
+  out.time = nan;
+  out.point.setConstant(nan);
+  out.normal.setConstant(nan);
+  auto fill = [&](ContactStatus status, R t, const Distance<T, N>& d) {
+    out.status = status;
+    out.time = T(t);
+    out.point = ((d.point_a + d.point_b) / T(2)).eval();
+    out.normal = d.normal;
+    return out;
+  };
+
+  R t = 0;
+  bool touched = false;  // an earlier step was within the tangency band
+  R touch_time = 0;
+  Distance<T, N> touch;
+  touch.point_a.setConstant(nan);
+  touch.point_b.setConstant(nan);
+  touch.normal.setConstant(nan);
+  for (int step = 0; step < options.max_motion_steps; ++step) {
+    out.iterations = step;
+    const Ellipsoid<T, N> body = moved(a, motion, T(t));
+    if (!body.center().allFinite() || !body.axes().allFinite() || !other.at(t))
+      break;  // moved or turned beyond the type's range
+    const Distance<T, N> d = other.near(body, touched);
+    if (step == 0 && d.status == DistanceStatus::overlapping) {
+      out.status = ContactStatus::overlapping_at_start;
+      out.time = T(0);
+      return out;
+    }
+    if (step == 0 && d.status == DistanceStatus::touching) return fill(ContactStatus::touching_at_start, 0, d);
+    if (out_of_range) break;
+    if (d.status == DistanceStatus::overlapping)  // within rounding of the contact
+      return touched ? fill(ContactStatus::hit, touch_time, touch) : fill(ContactStatus::hit, t, other.exact(body));
+    if (d.status == DistanceStatus::separated && touched)  // grazed within the band
+      return fill(ContactStatus::hit, touch_time, touch);
+
+    const Vec<R, N> n = d.normal.template cast<R>();
+    Vec<R, N> offset;
+    const R rho = support(body, n, offset);
+    const R along = n.dot(body.center().template cast<R>());
+    const Side b = other.side(n, body);
+    // The gap g_n = low - n . c - rho, less the rounding of this step's bodies and its own.
+    const R margin = ulp * (turning.configuration(t) + b.configuration) + 8 * eps * (std::abs(along) + rho + b.magnitude);
+    const R gap = b.low - along - rho - margin;
+    const R rate_margin = 32 * ulp * (turning.speed + turning.spin * turning.big + b.speed);
+    const R across = turning.across(n);
+    const R slope = b.rate - n.dot(v) - turning.rate(n, offset) - rate_margin;
+    const R fastest = b.falling + n.dot(v) + turning.sweep * across + rate_margin;
+    const R curvature = (turning.curvature(across) + b.curvature) * (1 + 32 * ulp);
+    // The first zero of the larger of the two lower bounds of g_n beyond t (infinite where
+    // neither has one).
+    constexpr R inf = std::numeric_limits<R>::infinity();
+    R advance = 0;
+    if (gap > R(0)) {
+      const R first_order = fastest > R(0) ? gap / fastest : inf;
+      R second_order;
+      if (curvature > R(0)) {
+        const R root = std::sqrt(slope * slope + 2 * curvature * gap);
+        second_order = slope <= R(0) ? 2 * gap / (root - slope) : (slope + root) / curvature;
+      } else {
+        second_order = slope < R(0) ? gap / -slope : inf;
+      }
+      advance = std::max(first_order, second_order) * (1 - 8 * ulp);
+    }
+    if (d.status == DistanceStatus::touching) {
+      if (!touched) {
+        touched = true;
+        touch_time = t;
+        touch = d;
+      }
+      // Converged: no certified progress left at the resolution of the claim.
+      if (!(advance > 1e-14 * t)) return fill(ContactStatus::hit, t, d);
+      touch_time = t;
+      touch = d;
+    }
+    if (other.never(n, body, margin)) advance = inf;
+    if (advance == inf || t + advance > R(t_max)) {
+      if (touched) return fill(ContactStatus::hit, touch_time, touch);
+      out.status = ContactStatus::no_contact_in_window;
+      return out;
+    }
+    if (!(t + advance > t)) {
+      // No certified progress. Where the gap is within the rounding margin of the
+      // configuration (thin bodies have a tangency band narrower than it) or its step below
+      // the resolution of t, that is contact, as closely as the type resolves it; otherwise
+      // the bounds are beyond the range of the type (speeds or spins near overflow).
+      const bool resolved = margin <= (turning.small + b.small) / 4;
+      if (t > R(0) && resolved && gap <= margin + 4 * ulp * t * fastest) return fill(ContactStatus::hit, t, d);
+      break;
+    }
+    t += advance;
+  }
+  if (touched) return fill(ContactStatus::hit, touch_time, touch);
+  out.status = ContactStatus::did_not_converge;
+  out.time = T(t);
+  return out;
+}
+
+}  // namespace ellipsect::detail::rigid

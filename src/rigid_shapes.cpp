@@ -1,0 +1,230 @@
+// First contact of a body in rigid motion with a half-space, triangle, box, capsule or mesh
+// moving at a constant velocity (contact.hpp, "Rigid motion against shapes"): conservative
+// advancement (detail/rigid_motion.hpp) in the shape's frame, where the shape is at rest and
+// the body moves at v_a - v_b and turns. Each step's slab gap along the distance's normal n
+// takes the shape's least n . x over its vertices (or its plane, or its segment less the
+// radius): a lower bound on the distance whatever the accuracy of n.
+#include <ellipsect/box.hpp>
+#include <ellipsect/capsule.hpp>
+#include <ellipsect/half_space.hpp>
+#include <ellipsect/mesh.hpp>
+#include <ellipsect/triangle.hpp>
+
+#include "detail/contact_start.hpp"
+#include "detail/instantiate.hpp"
+#include "detail/mesh_walk.hpp"
+#include "detail/rigid_motion.hpp"
+#include "detail/scale.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <utility>
+
+namespace ellipsect {
+
+using namespace detail::rigid;
+
+namespace {
+
+// The least n . x over the shape and the size of the terms it comes from (for its rounding);
+// -infinity where the shape is unbounded along -n.
+struct Lowest {
+  R low, magnitude;
+};
+
+template <class T, int N, std::size_t K>
+Lowest lowest_of(const Vec<R, N>& n, const std::array<Vec<T, N>, K>& points, R grow) noexcept {
+  Lowest out{std::numeric_limits<R>::infinity(), 0};
+  for (const auto& p : points) {
+    const R x = n.dot(p.template cast<R>());
+    out.low = std::min(out.low, x);
+    out.magnitude = std::max(out.magnitude, std::abs(x));
+  }
+  return {out.low - grow, out.magnitude + grow};
+}
+
+template <class T, int N>
+Lowest lowest_of(const Vec<R, N>& n, const HalfSpace<T, N>& h) noexcept {
+  // The distance's normal is exactly -normal (half_space.hpp); along any other direction the
+  // half-space reaches -infinity.
+  const Vec<R, N> outward = h.normal().template cast<R>();
+  if (n != -outward) return {-std::numeric_limits<R>::infinity(), 0};
+  const R x = n.dot(h.point().template cast<R>());
+  return {x, std::abs(x)};
+}
+template <class T, int N>
+Lowest lowest_of(const Vec<R, N>& n, const Triangle<T, N>& t) noexcept {
+  return lowest_of<T, N, 3>(n, {t.vertex(0), t.vertex(1), t.vertex(2)}, 0);
+}
+template <class T, int N>
+Lowest lowest_of(const Vec<R, N>& n, const Box<T, N>& b) noexcept {
+  std::array<Vec<T, N>, 1 << N> corners;
+  for (int k = 0; k < (1 << N); ++k) corners[std::size_t(k)] = b.corner(k);
+  return lowest_of<T, N, (1 << N)>(n, corners, 0);
+}
+template <class T, int N>
+Lowest lowest_of(const Vec<R, N>& n, const Capsule<T, N>& c) noexcept {
+  return lowest_of<T, N, 2>(n, {c.point(0), c.point(1)}, R(c.radius()));
+}
+
+// A convex shape at rest as the second party of the advancement.
+template <class T, int N, class Shape>
+struct ShapeParty {
+  const Shape& shape;
+  const Options& options;
+  Vec<R, N> velocity;  // the body's, relative to the shape
+  R big;               // the body's largest radius
+
+  bool at(R) const noexcept { return true; }
+  Distance<T, N> near(const Ellipsoid<T, N>& body, bool) const noexcept { return distance(body, shape, options); }
+  Distance<T, N> exact(const Ellipsoid<T, N>& body) const noexcept { return signed_distance(body, shape, options); }
+  Side side(const Vec<R, N>& n, const Ellipsoid<T, N>&) const noexcept {
+    const Lowest l = lowest_of<T, N>(n, shape);
+    return {l.low, 0, 0, 0, 0, l.magnitude, 0, 0};
+  }
+  // The body's bounding ball (radius R about its center, whatever its turn) lies below the
+  // shape's slab and its center does not move towards it: they never meet.
+  bool never(const Vec<R, N>& n, const Ellipsoid<T, N>& body, R margin) const noexcept {
+    constexpr R ulp = R(std::numeric_limits<T>::epsilon());
+    return n.dot(velocity) <= R(0) &&
+           lowest_of<T, N>(n, shape).low - n.dot(body.center().template cast<R>()) - big * (1 + 64 * ulp) - margin > R(0);
+  }
+};
+
+template <class T, int N>
+bool valid_rigid(const RigidMotion<T, N>& motion, const VecArg<T, N>& velocity_b, T t_max) noexcept {
+  return detail::valid_motion<T, N>(motion.velocity, velocity_b, t_max) && all_finite<N>(motion.angular_velocity);
+}
+
+// The body's motion relative to the shape.
+template <class T, int N>
+RigidMotion<T, N> relative(const RigidMotion<T, N>& motion, const VecArg<T, N>& velocity_b) noexcept {
+  return {Vec<T, N>(motion.velocity - velocity_b), motion.angular_velocity};
+}
+
+// The advancement against a convex shape at rest, the contact point in the shape's frame.
+// Pairs beyond the native range (shapes.hpp, "Range": radii or coordinates beyond 2^+-64
+// of each other or of 1) get their start state only, then did_not_converge at 0.
+template <class T, int N, class Shape>
+Contact<T, N> advance_at_rest(const Ellipsoid<T, N>& a, const RigidMotion<T, N>& motion, const Shape& b, T coordinate,
+                              T t_max, const Options& options) noexcept {
+  const detail::Scale scale = detail::scale_of<T>(a.radii().maxCoeff(), a.radii().minCoeff(),
+                                                  std::max(detail::max_abs(a.center()), coordinate));
+  const bool out_of_range = !std::isfinite(magnitude<N>(motion.angular_velocity)) ||
+                            (std::is_same_v<T, double> && scale.range != detail::Range::native);
+  return advance<T, N>(a, motion, t_max, options, out_of_range,
+                       ShapeParty<T, N, Shape>{b, options, motion.velocity.template cast<R>(), R(a.radii().maxCoeff())});
+}
+
+// The answer in world coordinates: the contact point moved with the shape to the contact time.
+template <class T, int N>
+Contact<T, N> in_world(Contact<T, N> c, const VecArg<T, N>& velocity_b) noexcept {
+  if (c.status == ContactStatus::hit) c.point += c.time * velocity_b;
+  return c;
+}
+
+template <class T, int N, class Shape>
+Contact<T, N> rigid_contact(const Ellipsoid<T, N>& a, const RigidMotion<T, N>& motion, const Shape& b,
+                            const VecArg<T, N>& velocity_b, T coordinate, T t_max, const Options& options) noexcept {
+  if (!valid_rigid<T, N>(motion, velocity_b, t_max)) return detail::unanswered_contact<T, N>();
+  if (magnitude<N>(motion.angular_velocity) == R(0)) return first_contact(a, motion.velocity, b, velocity_b, t_max, options);
+  return in_world<T, N>(advance_at_rest<T, N>(a, relative<T, N>(motion, velocity_b), b, coordinate, t_max, options),
+                        velocity_b);
+}
+
+template <class T, int N, std::size_t K>
+T largest(const std::array<Vec<T, N>, K>& points) noexcept {
+  T out = 0;
+  for (const auto& p : points) out = std::max(out, detail::max_abs(p));
+  return out;
+}
+
+}  // namespace
+
+template <class T, int N>
+Contact<T, N> first_contact(const Ellipsoid<T, N>& a, const RigidMotion<T, N>& motion_a, const HalfSpace<T, N>& b,
+                            const VecArg<T, N>& velocity_b, T t_max, const Options& options) noexcept {
+  return rigid_contact<T, N>(a, motion_a, b, velocity_b, detail::max_abs(b.point()), t_max, options);
+}
+
+template <class T, int N>
+Contact<T, N> first_contact(const Ellipsoid<T, N>& a, const RigidMotion<T, N>& motion_a, const Triangle<T, N>& b,
+                            const VecArg<T, N>& velocity_b, T t_max, const Options& options) noexcept {
+  const T coordinate = largest<T, N, 3>({b.vertex(0), b.vertex(1), b.vertex(2)});
+  return rigid_contact<T, N>(a, motion_a, b, velocity_b, coordinate, t_max, options);
+}
+
+template <class T, int N>
+Contact<T, N> first_contact(const Ellipsoid<T, N>& a, const RigidMotion<T, N>& motion_a, const Box<T, N>& b,
+                            const VecArg<T, N>& velocity_b, T t_max, const Options& options) noexcept {
+  std::array<Vec<T, N>, 1 << N> corners;
+  for (int k = 0; k < (1 << N); ++k) corners[std::size_t(k)] = b.corner(k);
+  return rigid_contact<T, N>(a, motion_a, b, velocity_b, largest<T, N, (1 << N)>(corners), t_max, options);
+}
+
+template <class T, int N>
+Contact<T, N> first_contact(const Ellipsoid<T, N>& a, const RigidMotion<T, N>& motion_a, const Capsule<T, N>& b,
+                            const VecArg<T, N>& velocity_b, T t_max, const Options& options) noexcept {
+  const T coordinate = largest<T, N, 2>({b.point(0), b.point(1)}) + b.radius();
+  return rigid_contact<T, N>(a, motion_a, b, velocity_b, coordinate, t_max, options);
+}
+
+template <class T, int N>
+MeshContact<T, N> first_contact(const Ellipsoid<T, N>& a, const RigidMotion<T, N>& motion_a,
+                                const TriangleMesh<T, N>& b, const VecArg<T, N>& velocity_b, T t_max,
+                                const Options& options) noexcept {
+  MeshContact<T, N> out{detail::unanswered_contact<T, N>(), -1};
+  if (!valid_rigid<T, N>(motion_a, velocity_b, t_max)) return out;
+  if (magnitude<N>(motion_a.angular_velocity) == R(0)) return first_contact(a, motion_a.velocity, b, velocity_b, t_max, options);
+  const MeshRelation start = classify(a, b, options);
+  if (start.relation != Relation::separated) {
+    out.triangle = start.triangle;
+    out.contact = first_contact(a, motion_a, b.triangle(static_cast<std::size_t>(start.triangle)), velocity_b, t_max,
+                                options);
+    return out;
+  }
+  out.contact.status = ContactStatus::no_contact_in_window;
+  // The candidates: triangles whose boxes the body's bounding ball (radius R, grown by the
+  // tangency band and 1e-9) meets along its center's path relative to the mesh; each
+  // triangle's own advancement, the earliest hit first (ties: the lowest index).
+  const RigidMotion<T, N> motion = relative<T, N>(motion_a, velocity_b);
+  using W = detail::Wide<T>;
+  const W reach = W(a.radii().maxCoeff()) * (1 + 2 * W(options.tolerance) + W(1e-9)) *
+                  (sizeof(T) < sizeof(double) ? W(1 + 1e-6) : W(1));
+  MeshContact<T, N> failed{detail::unanswered_contact<T, N>(), -1};
+  detail::for_each_swept<T, N>(b, a.center().template cast<W>(), motion.velocity.template cast<W>(),
+                               Vec<W, N>::Constant(reach), W(t_max), [&](std::uint32_t k, W t_end) {
+    const Triangle<T, N> triangle = b.triangle(k);
+    const T coordinate = largest<T, N, 3>({triangle.vertex(0), triangle.vertex(1), triangle.vertex(2)});
+    const Contact<T, N> c = advance_at_rest<T, N>(a, motion, triangle, coordinate, T(t_end), options);
+    if (c.status == ContactStatus::did_not_converge && (failed.triangle < 0 || c.time < failed.contact.time))
+      failed = {c, k};
+    if (c.status != ContactStatus::hit) return t_end;
+    if (out.triangle < 0 || c.time < out.contact.time || (c.time == out.contact.time && k < out.triangle)) {
+      out.contact = c;
+      out.triangle = k;
+    }
+    return W(out.contact.time);
+  });
+  if (failed.triangle >= 0 && (out.triangle < 0 || !(out.contact.time < failed.contact.time))) out = failed;
+  out.contact = in_world<T, N>(out.contact, velocity_b);
+  return out;
+}
+
+#define ELLIPSECT_INSTANTIATE(T, N)                                                                                    \
+  template Contact<T, N> first_contact<T, N>(const Ellipsoid<T, N>&, const RigidMotion<T, N>&, const HalfSpace<T, N>&, \
+                                             const VecArg<T, N>&, T, const Options&) noexcept;                         \
+  template Contact<T, N> first_contact<T, N>(const Ellipsoid<T, N>&, const RigidMotion<T, N>&, const Triangle<T, N>&,  \
+                                             const VecArg<T, N>&, T, const Options&) noexcept;                         \
+  template Contact<T, N> first_contact<T, N>(const Ellipsoid<T, N>&, const RigidMotion<T, N>&, const Box<T, N>&,       \
+                                             const VecArg<T, N>&, T, const Options&) noexcept;                         \
+  template Contact<T, N> first_contact<T, N>(const Ellipsoid<T, N>&, const RigidMotion<T, N>&, const Capsule<T, N>&,   \
+                                             const VecArg<T, N>&, T, const Options&) noexcept;                         \
+  template MeshContact<T, N> first_contact<T, N>(const Ellipsoid<T, N>&, const RigidMotion<T, N>&,                     \
+                                                 const TriangleMesh<T, N>&, const VecArg<T, N>&, T, const Options&) noexcept;
+ELLIPSECT_FOR_EACH_TYPE_AND_DIM(ELLIPSECT_INSTANTIATE)
+#undef ELLIPSECT_INSTANTIATE
+
+}  // namespace ellipsect
