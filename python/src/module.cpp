@@ -303,6 +303,38 @@ void def_results(py::module_& m, const char* suffix) {
       });
 }
 
+// Rigid motion (contact.hpp's RigidMotion): the angular velocity is a rate in 2D, a
+// 3-vector in 3D; None for a body that does not turn.
+template <int N>
+using AngularVelocity = std::optional<std::conditional_t<N == 2, double, Row<3>>>;
+
+template <int N>
+RigidMotion<double, N> motion(const Row<N>& v, const AngularVelocity<N>& w) {
+  RigidMotion<double, N> out{vec<N>(v)};
+  if (w) {
+    if constexpr (N == 2) out.angular_velocity = *w;
+    else out.angular_velocity = vec<3>(*w);
+  }
+  return out;
+}
+
+// first_contact of a body and a moving shape S (half_space.hpp, box.hpp, capsule.hpp,
+// triangle.hpp, mesh.hpp); with angular_velocity_a, the body in rigid motion (the shape does
+// not turn). `extra`: further pybind11 attributes (a call guard).
+template <int N, class S, class... Extra>
+void def_shape_contact(py::module_& m, const std::string& doc, const Extra&... extra) {
+  using E = Ellipsoid<double, N>;
+  m.def("first_contact",
+        [](const E& a, const Row<N>& va, const S& b, const Row<N>& vb, double t_max, const Options& o,
+           const AngularVelocity<N>& wa) {
+          if (!wa) return first_contact(a, vec<N>(va), b, vec<N>(vb), t_max, o);
+          return first_contact(a, motion<N>(va, wa), b, vec<N>(vb), t_max, o);
+        },
+        py::arg("a"), py::arg("velocity_a"), py::arg("b"), py::arg("velocity_b"), py::arg("t_max"),
+        py::arg("options") = Options{}, py::kw_only(), py::arg("angular_velocity_a") = py::none(),
+        (doc + " With angular_velocity_a, the body under rigid motion (contact.hpp).").c_str(), extra...);
+}
+
 // The scalar queries of both dimensions.
 template <int N>
 void def_queries(py::module_& m) {
@@ -311,31 +343,19 @@ void def_queries(py::module_& m) {
         py::arg("b"), py::arg("options") = Options{});
   m.def("overlap", py::overload_cast<const E&, const E&, const Options&>(&overlap<double, N>), py::arg("a"),
         py::arg("b"), py::arg("options") = Options{});
-  // Rigid motion (contact.hpp's RigidMotion): the angular velocity is a rate in 2D, a
-  // 3-vector in 3D; None for a body that does not turn.
-  using W = std::conditional_t<N == 2, double, Row<3>>;
-  using M = RigidMotion<double, N>;
-  auto motion = [](const Row<N>& v, const std::optional<W>& w) {
-    M out{vec<N>(v)};
-    if (w) {
-      if constexpr (N == 2) out.angular_velocity = *w;
-      else out.angular_velocity = vec<3>(*w);
-    }
-    return out;
-  };
   m.def("first_contact",
-        [motion](const E& a, const Row<N>& va, const E& b, const Row<N>& vb, double t_max, const Options& o,
-                 const std::optional<W>& wa, const std::optional<W>& wb) {
+        [](const E& a, const Row<N>& va, const E& b, const Row<N>& vb, double t_max, const Options& o,
+           const AngularVelocity<N>& wa, const AngularVelocity<N>& wb) {
           if (!wa && !wb) return first_contact(a, vec<N>(va), b, vec<N>(vb), t_max, o);
-          return first_contact(a, motion(va, wa), b, motion(vb, wb), t_max, o);
+          return first_contact(a, motion<N>(va, wa), b, motion<N>(vb, wb), t_max, o);
         },
         py::arg("a"), py::arg("velocity_a"), py::arg("b"), py::arg("velocity_b"), py::arg("t_max"),
         py::arg("options") = Options{}, py::kw_only(), py::arg("angular_velocity_a") = py::none(),
         py::arg("angular_velocity_b") = py::none(),
         "First contact in [0, t_max]; with an angular velocity, under rigid motion (contact.hpp).");
   m.def("body_at",
-        [motion](const E& body, const Row<N>& velocity, const std::optional<W>& angular_velocity, double t) {
-          return body_at(body, motion(velocity, angular_velocity), t);
+        [](const E& body, const Row<N>& velocity, const AngularVelocity<N>& angular_velocity, double t) {
+          return body_at(body, motion<N>(velocity, angular_velocity), t);
         },
         py::arg("body"), py::arg("velocity"), py::arg("angular_velocity"), py::arg("t"),
         "The body at time t of its rigid motion (contact.hpp).");
@@ -362,12 +382,7 @@ void def_queries(py::module_& m) {
         py::arg("b"), py::arg("options") = Options{});
   m.def("signed_distance", py::overload_cast<const E&, const H&, const Options&>(&signed_distance<double, N>),
         py::arg("a"), py::arg("b"), py::arg("options") = Options{});
-  m.def("first_contact",
-        [](const E& a, const Row<N>& va, const H& b, const Row<N>& vb, double t_max, const Options& o) {
-          return first_contact(a, vec<N>(va), b, vec<N>(vb), t_max, o);
-        },
-        py::arg("a"), py::arg("velocity_a"), py::arg("b"), py::arg("velocity_b"), py::arg("t_max"),
-        py::arg("options") = Options{}, "First contact of a body and a moving half-space in [0, t_max].");
+  def_shape_contact<N, H>(m, "First contact of a body and a moving half-space in [0, t_max].");
   m.def("collide_and_slide",
         [](const E& body, const Row<N>& displacement, const std::vector<H>& world, const Options& o) {
           py::gil_scoped_release release;
@@ -386,12 +401,7 @@ void def_queries(py::module_& m) {
         py::arg("b"), py::arg("options") = Options{});
   m.def("signed_distance", py::overload_cast<const E&, const Bx&, const Options&>(&signed_distance<double, N>),
         py::arg("a"), py::arg("b"), py::arg("options") = Options{});
-  m.def("first_contact",
-        [](const E& a, const Row<N>& va, const Bx& b, const Row<N>& vb, double t_max, const Options& o) {
-          return first_contact(a, vec<N>(va), b, vec<N>(vb), t_max, o);
-        },
-        py::arg("a"), py::arg("velocity_a"), py::arg("b"), py::arg("velocity_b"), py::arg("t_max"),
-        py::arg("options") = Options{}, "First contact of a body and a moving box in [0, t_max].");
+  def_shape_contact<N, Bx>(m, "First contact of a body and a moving box in [0, t_max].");
   // A body against a capsule (capsule.hpp).
   using Cp = Capsule<double, N>;
   m.def("classify", py::overload_cast<const E&, const Cp&, const Options&>(&classify<double, N>), py::arg("a"),
@@ -402,12 +412,7 @@ void def_queries(py::module_& m) {
         py::arg("b"), py::arg("options") = Options{});
   m.def("signed_distance", py::overload_cast<const E&, const Cp&, const Options&>(&signed_distance<double, N>),
         py::arg("a"), py::arg("b"), py::arg("options") = Options{});
-  m.def("first_contact",
-        [](const E& a, const Row<N>& va, const Cp& b, const Row<N>& vb, double t_max, const Options& o) {
-          return first_contact(a, vec<N>(va), b, vec<N>(vb), t_max, o);
-        },
-        py::arg("a"), py::arg("velocity_a"), py::arg("b"), py::arg("velocity_b"), py::arg("t_max"),
-        py::arg("options") = Options{}, "First contact of a body and a moving capsule in [0, t_max].");
+  def_shape_contact<N, Cp>(m, "First contact of a body and a moving capsule in [0, t_max].");
   // A body against a triangle (triangle.hpp) and a mesh (mesh.hpp).
   using Tr = Triangle<double, N>;
   using TM = TriangleMesh<double, N>;
@@ -431,12 +436,7 @@ void def_queries(py::module_& m) {
         },
         py::arg("a"), py::arg("b"), py::arg("options") = Options{});
   }
-  m.def("first_contact",
-        [](const E& a, const Row<N>& va, const Tr& b, const Row<N>& vb, double t_max, const Options& o) {
-          return first_contact(a, vec<N>(va), b, vec<N>(vb), t_max, o);
-        },
-        py::arg("a"), py::arg("velocity_a"), py::arg("b"), py::arg("velocity_b"), py::arg("t_max"),
-        py::arg("options") = Options{}, "First contact of a body and a moving triangle in [0, t_max].");
+  def_shape_contact<N, Tr>(m, "First contact of a body and a moving triangle in [0, t_max].");
   m.def("classify",
         [](const E& a, const TM& b, const Options& o) {
           py::gil_scoped_release release;
@@ -449,13 +449,8 @@ void def_queries(py::module_& m) {
           return overlap(a, b, o);
         },
         py::arg("a"), py::arg("b"), py::arg("options") = Options{});
-  m.def("first_contact",
-        [](const E& a, const Row<N>& va, const TM& b, const Row<N>& vb, double t_max, const Options& o) {
-          py::gil_scoped_release release;
-          return first_contact(a, vec<N>(va), b, vec<N>(vb), t_max, o);
-        },
-        py::arg("a"), py::arg("velocity_a"), py::arg("b"), py::arg("velocity_b"), py::arg("t_max"),
-        py::arg("options") = Options{}, "First contact of a body and a moving mesh in [0, t_max], with the triangle.");
+  def_shape_contact<N, TM>(m, "First contact of a body and a moving mesh in [0, t_max], with the triangle.",
+                           py::call_guard<py::gil_scoped_release>());
   m.def("collide_and_slide",
         [](const E& body, const Row<N>& displacement, const TM& world, const Options& o) {
           py::gil_scoped_release release;

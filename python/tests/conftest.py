@@ -58,3 +58,26 @@ def same_bits(x, y):
     """True when two float arrays are equal bit for bit (NaNs and signed zeros included)."""
     x, y = np.asarray(x, dtype=np.float64), np.asarray(y, dtype=np.float64)
     return x.shape == y.shape and np.array_equal(x.view(np.uint64), y.view(np.uint64))
+
+
+def floors(dim):
+    """The floor x_dim <= 0 as each shape, by name, its top at x_dim = 0 along the x axis from
+    -10 to 10 at least: a half-space, a box, a capsule (its segment along x), a triangle (2D: a
+    segment, as three collinear points) and a mesh of two triangles."""
+    if dim == 2:
+        return {
+            "half-space": ellipsect.HalfPlane([0, 0], [0, 1]),
+            "box": ellipsect.Box2([0, -1], [10, 1]),
+            "capsule": ellipsect.Capsule2([-10, -1], [10, -1], 1),
+            "triangle": ellipsect.Triangle2([-10, 0], [10, 0], [0, 0]),
+            "mesh": ellipsect.TriangleMesh2(np.array([[-10.0, -1], [10, -1], [10, 0], [-10, 0]]),
+                                            np.array([[0, 1, 2], [0, 2, 3]])),
+        }
+    return {
+        "half-space": ellipsect.HalfSpace([0, 0, 0], [0, 0, 1]),
+        "box": ellipsect.Box3([0, 0, -1], [10, 10, 1]),
+        "capsule": ellipsect.Capsule3([-10, 0, -1], [10, 0, -1], 1),
+        "triangle": ellipsect.Triangle3([-10, -10, 0], [10, -10, 0], [0, 10, 0]),
+        "mesh": ellipsect.TriangleMesh3(np.array([[-10.0, -10, 0], [10, -10, 0], [10, 10, 0], [-10, 10, 0]]),
+                                        np.array([[0, 1, 2], [0, 2, 3]])),
+    }

@@ -1,7 +1,10 @@
 """Bad arguments raise TypeError / ValueError naming the argument (and the row for values)."""
 
+import math
+
 import numpy as np
 import pytest
+from conftest import floors
 
 import ellipsect
 
@@ -84,3 +87,19 @@ def test_scalar_factories_name_the_field():
         ellipsect.Circle([0, 0], -1)
     with pytest.raises(ValueError, match="M"):
         ellipsect.Ellipse.from_quadric([0, 0], [[1, 0], [0, -1]])
+
+
+@pytest.mark.parametrize("dim", [2, 3])
+def test_angular_velocity_checks(dim):
+    # The body pair and every shape take angular_velocity_a alike: a rate in 2D, a 3-vector in
+    # 3D. A value of the wrong shape or kind matches no overload: pybind11's TypeError, which
+    # names the argument among those it was called with. A NaN is the library's invalid_input.
+    body = ellipsect.Ellipse if dim == 2 else ellipsect.Ellipsoid
+    a, v = body.ball(3 * np.eye(dim)[-1], 1), np.zeros(dim)
+    nan, wrong = (math.nan, [0.0, 1.0]) if dim == 2 else ([0.0, math.nan, 0.0], [0.0, 1.0])
+    for b in [body.ball(np.full(dim, 5.0), 1), *floors(dim).values()]:
+        bad = ellipsect.first_contact(a, v, b, v, 1.0, angular_velocity_a=nan)
+        assert getattr(bad, "contact", bad).status == ellipsect.ContactStatus.invalid_input
+        for w in (wrong, "fast", [0.0, "fast", 0.0]):
+            with pytest.raises(TypeError, match=r"(?s)incompatible function arguments.*kwargs: angular_velocity_a="):
+                ellipsect.first_contact(a, v, b, v, 1.0, angular_velocity_a=w)
