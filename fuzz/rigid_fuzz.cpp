@@ -1,6 +1,7 @@
 // Fuzz target `rigid`: first_contact under rigid motion and body_at on two bodies (2D or 3D,
-// double or float) and motions decoded from the input, checked against what contact.hpp
-// promises for every input:
+// double or float) and motions decoded from the input, and of the first body against a box,
+// half-space and capsule made from the second (moving at its velocity), checked against what
+// contact.hpp promises for every input:
 //   invalid_input exactly for a non-finite velocity or angular velocity, or a NaN or
 //   negative t_max; both angular velocities zero: the translational first_contact bit for
 //   bit; hit: time finite in (0, t_max], finite point, unit normal; touching_at_start: time
@@ -12,8 +13,11 @@
 //   input, else a body with the same radii, finite axes and the center moved by t * velocity.
 #include "fuzz_support.hpp"
 
+#include <ellipsect/box.hpp>
+#include <ellipsect/capsule.hpp>
 #include <ellipsect/contact.hpp>
 #include <ellipsect/distance.hpp>
+#include <ellipsect/half_space.hpp>
 
 namespace {
 
@@ -42,6 +46,48 @@ void check_body_at(const Ellipsoid<T, N>& body, const RigidMotion<T, N>& m, T t)
   }
 }
 
+// The promises above for one query: `query(options)` the rigid first contact, `linear()` the
+// translational one (asked where `still`: no party turns), `start` the distance's status at 0.
+template <class T, int N, class Query, class Linear>
+void check_contact(Query&& query, Linear&& linear, bool bad, bool still, DistanceStatus start, T t_max,
+                   const Options& capped) {
+  const Contact<T, N> c = query(Options{});
+  FUZZ_CHECK((c.status == ContactStatus::invalid_input) == bad, "invalid_input " << int(c.status));
+  if (bad) return;
+  if (still) {
+    const Contact<T, N> d = linear();
+    FUZZ_CHECK(c.status == d.status && same_bits(c.time, d.time) && same_bits_or_nan(c.point, d.point) &&
+                   same_bits_or_nan(c.normal, d.normal),
+               "zero spin differs from the translational answer");
+    return;
+  }
+  FUZZ_CHECK(c.iterations >= 0 && c.iterations <= Options{}.max_motion_steps, "iterations " << c.iterations);
+  FUZZ_CHECK((c.status == ContactStatus::overlapping_at_start) == (start == DistanceStatus::overlapping),
+             "overlapping_at_start " << int(c.status) << " vs start " << int(start));
+  switch (c.status) {
+    case ContactStatus::hit:
+      FUZZ_CHECK(std::isfinite(c.time) && c.time > T(0) && c.time <= t_max, "hit time " << c.time);
+      FUZZ_CHECK(all_finite(c.point), "hit point not finite");
+      FUZZ_CHECK(std::abs(c.normal.norm() - T(1)) <= unit_tolerance<T>, "normal not unit");
+      break;
+    case ContactStatus::touching_at_start: FUZZ_CHECK(c.time == T(0), "touching time " << c.time); break;
+    case ContactStatus::did_not_converge:
+      FUZZ_CHECK(c.time >= T(0) && c.time <= t_max, "lower bound " << c.time << " outside the window");
+      break;
+    default: break;
+  }
+  const Contact<T, N> k = query(capped);
+  FUZZ_CHECK(k.iterations <= capped.max_motion_steps, "capped iterations " << k.iterations);
+  if (k.status == ContactStatus::did_not_converge) {
+    FUZZ_CHECK(k.time >= T(0) && k.time <= t_max, "capped lower bound " << k.time);
+    if (c.status == ContactStatus::hit) FUZZ_CHECK(k.time <= c.time, "lower bound " << k.time << " after " << c.time);
+  } else if (!(k.status == c.status && same_bits(k.time, c.time))) {
+    // The cap reached inside the tangency band: a hit at an earlier time in the band.
+    FUZZ_CHECK(k.status == ContactStatus::hit && c.status == ContactStatus::hit && k.time <= c.time,
+               "capped answer " << int(k.status) << " at " << k.time << " vs " << int(c.status) << " at " << c.time);
+  }
+}
+
 template <class T, int N>
 void run(Bytes& in) {
   const auto a = read_body<T, N>(in);
@@ -62,43 +108,29 @@ void run(Bytes& in) {
 
   check_body_at(*a, ma, t_max);
 
-  const Contact<T, N> c = first_contact(*a, ma, *b, mb, t_max);
-  const bool bad = !ma.velocity.allFinite() || !mb.velocity.allFinite() || !finite_spin(ma) || !finite_spin(mb) ||
-                   std::isnan(t_max) || t_max < T(0);
-  FUZZ_CHECK((c.status == ContactStatus::invalid_input) == bad, "invalid_input " << int(c.status));
-  if (bad) return;
-  if (zero_spin(ma) && zero_spin(mb)) {
-    const Contact<T, N> d = first_contact(*a, ma.velocity, *b, mb.velocity, t_max);
-    FUZZ_CHECK(c.status == d.status && same_bits(c.time, d.time) && same_bits_or_nan(c.point, d.point) &&
-                   same_bits_or_nan(c.normal, d.normal),
-               "zero spin differs from the translational answer");
-    return;
-  }
-  FUZZ_CHECK(c.iterations >= 0 && c.iterations <= Options{}.max_motion_steps, "iterations " << c.iterations);
-  const DistanceStatus start = distance(*a, *b).status;
-  FUZZ_CHECK((c.status == ContactStatus::overlapping_at_start) == (start == DistanceStatus::overlapping),
-             "overlapping_at_start " << int(c.status) << " vs start " << int(start));
-  switch (c.status) {
-    case ContactStatus::hit:
-      FUZZ_CHECK(std::isfinite(c.time) && c.time > T(0) && c.time <= t_max, "hit time " << c.time);
-      FUZZ_CHECK(all_finite(c.point), "hit point not finite");
-      FUZZ_CHECK(std::abs(c.normal.norm() - T(1)) <= unit_tolerance<T>, "normal not unit");
-      break;
-    case ContactStatus::touching_at_start: FUZZ_CHECK(c.time == T(0), "touching time " << c.time); break;
-    case ContactStatus::did_not_converge:
-      FUZZ_CHECK(c.time >= T(0) && c.time <= t_max, "lower bound " << c.time << " outside the window");
-      break;
-    default: break;
-  }
-  const Contact<T, N> k = first_contact(*a, ma, *b, mb, t_max, capped);
-  FUZZ_CHECK(k.iterations <= capped.max_motion_steps, "capped iterations " << k.iterations);
-  if (k.status == ContactStatus::did_not_converge) {
-    FUZZ_CHECK(k.time >= T(0) && k.time <= t_max, "capped lower bound " << k.time);
-    if (c.status == ContactStatus::hit) FUZZ_CHECK(k.time <= c.time, "lower bound " << k.time << " after " << c.time);
-  } else if (!(k.status == c.status && same_bits(k.time, c.time))) {
-    // The cap reached inside the tangency band: a hit at an earlier time in the band.
-    FUZZ_CHECK(k.status == ContactStatus::hit && c.status == ContactStatus::hit && k.time <= c.time,
-               "capped answer " << int(k.status) << " at " << k.time << " vs " << int(c.status) << " at " << c.time);
+  const bool bad_window = std::isnan(t_max) || t_max < T(0);
+  check_contact<T, N>([&](const Options& o) { return first_contact(*a, ma, *b, mb, t_max, o); },
+                      [&] { return first_contact(*a, ma.velocity, *b, mb.velocity, t_max); },
+                      !ma.velocity.allFinite() || !mb.velocity.allFinite() || !finite_spin(ma) || !finite_spin(mb) ||
+                          bad_window,
+                      zero_spin(ma) && zero_spin(mb), distance(*a, *b).status, t_max, capped);
+
+  // The partner's frame as shapes moving at its velocity: the box of its radii, the
+  // half-space below the plane through its center normal to its first axis, the capsule along
+  // that axis (its smallest radius); a shape beyond the type's range is skipped.
+  const bool bad = !ma.velocity.allFinite() || !mb.velocity.allFinite() || !finite_spin(ma) || bad_window;
+  const auto shape = [&](const auto& s) {
+    check_contact<T, N>([&](const Options& o) { return first_contact(*a, ma, s, mb.velocity, t_max, o); },
+                        [&] { return first_contact(*a, ma.velocity, s, mb.velocity, t_max); }, bad, zero_spin(ma),
+                        distance(*a, s).status, t_max, capped);
+  };
+  try {
+    const Vec<T, N> axis = b->axes().col(0);
+    shape(make_box<T, N>(b->center(), b->axes(), b->radii()));
+    shape(make_half_space<T, N>(b->center(), axis));
+    shape(make_capsule<T, N>(Vec<T, N>(b->center() - b->radii()[0] * axis), Vec<T, N>(b->center() + b->radii()[0] * axis),
+                             b->radii().minCoeff()));
+  } catch (const InputError&) {
   }
 }
 

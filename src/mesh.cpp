@@ -149,38 +149,15 @@ bool overlap(const Ellipsoid<T, N>& a, const TriangleMesh<T, N>& b, const Option
 template <class T, int N>
 MeshContact<T, N> first_contact(const Ellipsoid<T, N>& a, const VecArg<T, N>& velocity_a, const TriangleMesh<T, N>& b,
                                 const VecArg<T, N>& velocity_b, T t_max, const Options& options) noexcept {
-  MeshContact<T, N> out{detail::unanswered_contact<T, N>(), -1};
-  if (!detail::valid_motion<T, N>(velocity_a, velocity_b, t_max)) return out;
-  const MeshRelation start = classify(a, b, options);
-  if (start.relation != Relation::separated) {
-    out.triangle = start.triangle;
-    // The triangle's own start answer: overlapping_at_start, or touching_at_start with its
-    // point and normal.
-    out.contact = first_contact(a, velocity_a, b.triangle(static_cast<std::size_t>(start.triangle)), velocity_b, t_max,
-                                options);
-    return out;
-  }
-  out.contact.status = ContactStatus::no_contact_in_window;
+  if (!detail::valid_motion<T, N>(velocity_a, velocity_b, t_max)) return {detail::unanswered_contact<T, N>(), -1};
   using W = detail::Wide<T>;
   const Vec<W, N> d = velocity_a.template cast<W>() - velocity_b.template cast<W>();
-  if (d == Vec<W, N>::Zero()) return out;
   // A triangle whose closed form failed its check (triangle.hpp: did_not_converge) leaves the
   // answer open from its time on: reported unless a hit comes first.
-  MeshContact<T, N> failed{detail::unanswered_contact<T, N>(), -1};
-  detail::for_each_swept<T, N>(b, a.center().template cast<W>(), d, detail::half_extents(a, options.tolerance), W(t_max),
-                               [&](std::uint32_t k, W t_end) {
-    const Contact<T, N> c = first_contact(a, velocity_a, b.triangle(k), velocity_b, T(t_end), options);
-    if (c.status == ContactStatus::did_not_converge && (failed.triangle < 0 || c.time < failed.contact.time))
-      failed = {c, k};
-    if (c.status != ContactStatus::hit) return t_end;
-    if (out.triangle < 0 || c.time < out.contact.time || (c.time == out.contact.time && k < out.triangle)) {
-      out.contact = c;
-      out.triangle = k;
-    }
-    return W(out.contact.time);
+  return detail::mesh_contact<T, N>(a, b, options, d, detail::half_extents(a, options.tolerance), t_max,
+                                    d == Vec<W, N>::Zero(), [&](std::uint32_t k, T t_end) {
+    return first_contact(a, velocity_a, b.triangle(k), velocity_b, t_end, options);
   });
-  if (failed.triangle >= 0 && (out.triangle < 0 || !(out.contact.time < failed.contact.time))) return failed;
-  return out;
 }
 
 template <class T, int N>

@@ -175,42 +175,18 @@ template <class T, int N>
 MeshContact<T, N> first_contact(const Ellipsoid<T, N>& a, const RigidMotion<T, N>& motion_a,
                                 const TriangleMesh<T, N>& b, const VecArg<T, N>& velocity_b, T t_max,
                                 const Options& options) noexcept {
-  MeshContact<T, N> out{detail::unanswered_contact<T, N>(), -1};
-  if (!valid_rigid<T, N>(motion_a, velocity_b, t_max)) return out;
+  if (!valid_rigid<T, N>(motion_a, velocity_b, t_max)) return {detail::unanswered_contact<T, N>(), -1};
   if (magnitude<N>(motion_a.angular_velocity) == R(0)) return first_contact(a, motion_a.velocity, b, velocity_b, t_max, options);
-  const MeshRelation start = classify(a, b, options);
-  if (start.relation != Relation::separated) {
-    out.triangle = start.triangle;
-    out.contact = first_contact(a, motion_a, b.triangle(static_cast<std::size_t>(start.triangle)), velocity_b, t_max,
-                                options);
-    return out;
-  }
-  out.contact.status = ContactStatus::no_contact_in_window;
   // The candidates: triangles whose boxes the body's bounding ball (radius R, grown by the
-  // tangency band and 1e-9) meets along its center's path relative to the mesh; each
-  // triangle's own advancement, the earliest hit first (ties: the lowest index).
-  const RigidMotion<T, N> motion = relative<T, N>(motion_a, velocity_b);
+  // tangency band and 1e-9) meets along its center's path relative to the mesh; each by its
+  // own advancement.
   using W = detail::Wide<T>;
   const W reach = W(a.radii().maxCoeff()) * (1 + 2 * W(options.tolerance) + W(1e-9)) *
                   (sizeof(T) < sizeof(double) ? W(1 + 1e-6) : W(1));
-  MeshContact<T, N> failed{detail::unanswered_contact<T, N>(), -1};
-  detail::for_each_swept<T, N>(b, a.center().template cast<W>(), motion.velocity.template cast<W>(),
-                               Vec<W, N>::Constant(reach), W(t_max), [&](std::uint32_t k, W t_end) {
-    const Triangle<T, N> triangle = b.triangle(k);
-    const T coordinate = largest<T, N, 3>({triangle.vertex(0), triangle.vertex(1), triangle.vertex(2)});
-    const Contact<T, N> c = advance_at_rest<T, N>(a, motion, triangle, coordinate, T(t_end), options);
-    if (c.status == ContactStatus::did_not_converge && (failed.triangle < 0 || c.time < failed.contact.time))
-      failed = {c, k};
-    if (c.status != ContactStatus::hit) return t_end;
-    if (out.triangle < 0 || c.time < out.contact.time || (c.time == out.contact.time && k < out.triangle)) {
-      out.contact = c;
-      out.triangle = k;
-    }
-    return W(out.contact.time);
+  return detail::mesh_contact<T, N>(a, b, options, (motion_a.velocity - velocity_b).template cast<W>(),
+                                    Vec<W, N>::Constant(reach), t_max, false, [&](std::uint32_t k, T t_end) {
+    return first_contact(a, motion_a, b.triangle(k), velocity_b, t_end, options);
   });
-  if (failed.triangle >= 0 && (out.triangle < 0 || !(out.contact.time < failed.contact.time))) out = failed;
-  out.contact = in_world<T, N>(out.contact, velocity_b);
-  return out;
 }
 
 #define ELLIPSECT_INSTANTIATE(T, N)                                                                                    \

@@ -1,9 +1,11 @@
 // Walks of a mesh's box hierarchy (mesh.hpp): the triangles whose boxes, grown by a body's
-// half-extents, meet a box or a swept segment. Conservative: boxes are grown by 1e-9 of
+// half-extents, meet a box or a swept segment; and first contact over them. Conservative: boxes are grown by 1e-9 of
 // their size, so rounding never drops a triangle the exact tests would reach.
 #pragma once
 
 #include <ellipsect/mesh.hpp>
+
+#include "contact_start.hpp"
 
 #include <algorithm>
 #include <array>
@@ -167,6 +169,41 @@ void for_each_swept(const TriangleMesh<T, N>& mesh, const Vec<Wide<T>, N>& c, co
     if (n == 2 && children[0].first < children[1].first) std::swap(children[0], children[1]);
     for (int k = 0; k < n; ++k) stack[top++] = children[k];  // the nearer one on top
   }
+}
+
+// first_contact against a mesh from its triangles' (mesh.hpp): the start relation's triangle
+// gives the start answer, answer(k, t_max); else the earliest hit, answer(k, t_end), over the
+// triangles whose boxes grown by h the segment c + t d meets (ties: the lowest index), or the
+// earliest did_not_converge where no hit comes before it. `still`: nothing moves relative to
+// the mesh, so a separated body never meets it.
+template <class T, int N, class Answer>
+MeshContact<T, N> mesh_contact(const Ellipsoid<T, N>& a, const TriangleMesh<T, N>& mesh, const Options& options,
+                               const Vec<Wide<T>, N>& d, const Vec<Wide<T>, N>& h, T t_max, bool still,
+                               Answer&& answer) {
+  MeshContact<T, N> out;
+  const MeshRelation start = classify(a, mesh, options);
+  if (start.relation != Relation::separated) {
+    // The triangle's own start answer: overlapping_at_start, or touching_at_start with its
+    // point and normal.
+    return {answer(static_cast<std::uint32_t>(start.triangle), t_max), start.triangle};
+  }
+  out.contact = unanswered_contact<T, N>();
+  out.contact.status = ContactStatus::no_contact_in_window;
+  if (still) return out;
+  MeshContact<T, N> failed{out.contact, -1};
+  for_each_swept<T, N>(mesh, a.center().template cast<Wide<T>>(), d, h, Wide<T>(t_max), [&](std::uint32_t k, Wide<T> t_end) {
+    const Contact<T, N> c = answer(k, T(t_end));
+    if (c.status == ContactStatus::did_not_converge && (failed.triangle < 0 || c.time < failed.contact.time))
+      failed = {c, k};
+    if (c.status != ContactStatus::hit) return t_end;
+    if (out.triangle < 0 || c.time < out.contact.time || (c.time == out.contact.time && k < out.triangle)) {
+      out.contact = c;
+      out.triangle = k;
+    }
+    return Wide<T>(out.contact.time);
+  });
+  if (failed.triangle >= 0 && (out.triangle < 0 || !(out.contact.time < failed.contact.time))) return failed;
+  return out;
 }
 
 }  // namespace ellipsect::detail
