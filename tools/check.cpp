@@ -641,16 +641,16 @@ PairResult<N> evaluate(const Body<N>& a, const Body<N>& b, const Window& window,
   PairResult<N> r;
   if (window.t0 == 0.0) {
     if (queries.relation) r.relation = classify(a.shape, b.shape);
-    if (queries.contact) r.contact = first_contact(a.shape, a.velocity, b.shape, b.velocity, window.t1);
+    if (queries.contact) r.contact = first_contact(a.shape, a.motion, b.shape, b.motion, window.t1);
     if (queries.distance) r.distance = signed_distance(a.shape, b.shape);
     return r;
   }
-  // Move both bodies to t0; search [t0, t1] as [0, t1 - t0] from there.
+  // Move (and turn) both bodies to t0; search [t0, t1] as [0, t1 - t0] from there.
   const Ellipsoid<double, N> a0 = shape_at<N>(a, window.t0, file), b0 = shape_at<N>(b, window.t0, file);
   if (queries.relation) r.relation = classify(a0, b0);
   if (queries.distance) r.distance = signed_distance(a0, b0);
   if (queries.contact) {
-    r.contact = first_contact(a0, a.velocity, b0, b.velocity, window.t1 - window.t0);
+    r.contact = first_contact(a0, a.motion, b0, b.motion, window.t1 - window.t0);
     r.contact.time += window.t0;
   }
   return r;
@@ -672,7 +672,7 @@ PairResult<N> evaluate(const Body<N>& a, const Obstacle<N>& b, const Window& win
             r.relation_triangle = m.triangle;
           }
           if (queries.contact) {
-            const MeshContact<double, N> m = first_contact(a0, a.velocity, shape, b.velocity, window.t1 - window.t0);
+            const MeshContact<double, N> m = first_contact(a0, a.motion, shape, b.velocity, window.t1 - window.t0);
             r.contact = m.contact;
             r.contact_triangle = m.triangle;
           }
@@ -683,7 +683,7 @@ PairResult<N> evaluate(const Body<N>& a, const Obstacle<N>& b, const Window& win
           }
         } else {
           if (queries.relation) r.relation = classify(a0, shape);
-          if (queries.contact) r.contact = first_contact(a0, a.velocity, shape, b.velocity, window.t1 - window.t0);
+          if (queries.contact) r.contact = first_contact(a0, a.motion, shape, b.velocity, window.t1 - window.t0);
           if (queries.distance) r.distance = signed_distance(a0, shape);
         }
       },

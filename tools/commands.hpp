@@ -35,9 +35,10 @@ struct PairResult {
 };
 
 // Evaluates one pair over the window: the relation and the signed distance at t0, and the
-// first contact in [t0, t1] (bodies move as center + t * velocity; the contact time is
-// absolute). A body moved beyond the range of double at t0 is BadInput naming the scene `file`
-// (shape_at).
+// first contact in [t0, t1] (bodies in rigid motion: the library's rigid first_contact, which
+// answers with the translational one, bit for bit, where neither body turns; the contact time
+// is absolute). A body moved or turned beyond the range of double at t0 is BadInput naming
+// the scene `file` (shape_at).
 template <int N>
 PairResult<N> evaluate(const Body<N>& a, const Body<N>& b, const Window& window, const Queries& queries,
                        const std::string& file);
@@ -50,7 +51,8 @@ PairResult<N> separated_result();
 // Evaluates a body against an obstacle as `evaluate` does two bodies, `b` given as at the
 // window start (obstacle_at(b, t0)): the relation and the signed distance at t0 and the
 // first contact in [t0, t1] (absolute time; the normal from the body towards the obstacle),
-// each from the library's query against that shape, with its triangle for meshes.
+// each from the library's query against that shape (the body in rigid motion, the obstacle
+// at its velocity), with its triangle for meshes.
 template <int N>
 PairResult<N> evaluate(const Body<N>& a, const Obstacle<N>& b_at_t0, const Window& window, const Queries& queries,
                        const std::string& file);

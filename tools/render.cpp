@@ -306,7 +306,7 @@ int render(const Input& in, const RenderOptions& opt, const Plane& plane) {
   // Bodies at T and their relations there.
   std::vector<Body<N>> at_t;
   at_t.reserve(n);
-  for (const auto& b : bodies) at_t.push_back(Body<N>{b.id, shape_at<N>(b, T, in.path), b.velocity});
+  for (const auto& b : bodies) at_t.push_back(Body<N>{b.id, shape_at<N>(b, T, in.path), b.motion});
   std::vector<Obstacle<N>> obstacles_at_t;
   for (const auto& o : set.obstacles) obstacles_at_t.push_back(obstacle_at<N>(o, T, in.path));
   std::vector<IndexPair> rel_pairs = set.pairs;
@@ -341,7 +341,7 @@ int render(const Input& in, const RenderOptions& opt, const Plane& plane) {
 
   // Geometry in the drawing plane.
   bool any_moving = false;
-  for (const auto& b : bodies) any_moving = any_moving || !b.velocity.isZero();
+  for (const auto& b : bodies) any_moving = any_moving || moves<N>(b);
   double t_end = w.t0;
   if (any_moving) {
     if (T > w.t0) {
@@ -356,10 +356,10 @@ int render(const Input& in, const RenderOptions& opt, const Plane& plane) {
   for (std::size_t i = 0; i < n; ++i) {
     shapes[i] = outline<N>(at_t[i].shape, plane);
     bounds.add(shapes[i]);
-    if (!bodies[i].velocity.isZero()) {
+    if (moves<N>(bodies[i])) {
       ghosts[i] = outline<N>(shape_at<N>(bodies[i], w.t0, in.path), plane);
       if (T != w.t0) bounds.add(ghosts[i]);
-      const Vec<double, N> c_end = bodies[i].shape.center() + bodies[i].velocity * t_end;
+      const Vec<double, N> c_end = bodies[i].shape.center() + bodies[i].motion.velocity * t_end;
       bounds.add(c_end[plane.u], c_end[plane.v]);
     }
   }
@@ -488,11 +488,11 @@ int render(const Input& in, const RenderOptions& opt, const Plane& plane) {
   // Start positions and paths.
   svg += "<g id=\"paths\">\n";
   for (std::size_t i = 0; i < n; ++i) {
-    if (bodies[i].velocity.isZero()) continue;
+    if (!moves<N>(bodies[i])) continue;
     const char* color = red[i] ? overlap_color : palette[i % palette_size];
     if (T != w.t0) svg += ellipse(ghosts[i], "start", bodies[i].id, "none", color, 0.0, "4 3");
-    const Vec<double, N> c0 = bodies[i].shape.center() + bodies[i].velocity * w.t0;
-    const Vec<double, N> c1 = bodies[i].shape.center() + bodies[i].velocity * t_end;
+    const Vec<double, N> c0 = bodies[i].shape.center() + bodies[i].motion.velocity * w.t0;
+    const Vec<double, N> c1 = bodies[i].shape.center() + bodies[i].motion.velocity * t_end;
     if ((c1 - c0).norm() * scale < 1.0) continue;
     svg += "<line class=\"path\" data-id=\"" + xml_escape(bodies[i].id) + "\" x1=\"" + fmt(sx(c0[plane.u])) +
            "\" y1=\"" + fmt(sy(c0[plane.v])) + "\" x2=\"" + fmt(sx(c1[plane.u])) + "\" y2=\"" +

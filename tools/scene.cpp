@@ -288,12 +288,32 @@ Orientation json_orientation(const JsonCtx& c, const json& jb, const std::string
   return o;
 }
 
+// A body's angular velocity at `path`: one number in 2D (radians per unit time,
+// counterclockwise), an array of 3 in 3D (the axis times the rate).
+template <int N>
+decltype(RigidMotion<double, N>::angular_velocity) json_angular_velocity(const JsonCtx& c, const json& j,
+                                                                         const std::string& path,
+                                                                         const std::string& dim_from) {
+  if constexpr (N == 2) {
+    if (j.is_array())
+      fail(c.at(path), "expected a number (a 2D body turns in its plane: radians per unit time, counterclockwise), "
+                       "got an array");
+    return json_number(c, j, path);
+  } else {
+    if (j.is_number())
+      fail(c.at(path), "expected an array of 3 numbers (a 3D body turns about an axis: the axis times the rate), "
+                       "got a number");
+    return json_vector<3>(c, j, path, dim_from.c_str());
+  }
+}
+
 template <int N>
 Body<N> json_body(const JsonCtx& c, const json& jb, std::size_t index, const std::string& dim_from) {
   const std::string path = "$.bodies[" + std::to_string(index) + "]";
   if (!jb.is_object()) fail(c.at(path), "expected an object, got " + describe_type(jb));
   check_keys(c, jb, path,
-             {"id", "center", "radii", "radius", "angle", "direction", "quaternion", "rotation", "velocity", "comment"});
+             {"id", "center", "radii", "radius", "angle", "direction", "quaternion", "rotation", "velocity",
+              "angular_velocity", "comment"});
   if (!jb.contains("id")) fail(c.at(path + ".id"), "missing (every body needs an id)");
   std::string id = json_id(c, jb["id"], path + ".id");
   if (!jb.contains("center")) fail(c.at(path + ".center"), "missing");
@@ -314,9 +334,12 @@ Body<N> json_body(const JsonCtx& c, const json& jb, std::size_t index, const std
     fail(c.at(path + ".radii"), "missing (give radii, or radius for a circle or sphere)");
   }
   const Orientation o = json_orientation<N>(c, jb, path, dim_from);
-  Vec<double, N> velocity = Vec<double, N>::Zero();
-  if (jb.contains("velocity")) velocity = json_vector<N>(c, jb["velocity"], path + ".velocity", dim_from.c_str());
-  return Body<N>{std::move(id), build_shape<N>(center, radii, o, [w = c.at(path)] { return w; }), velocity};
+  RigidMotion<double, N> motion;
+  if (jb.contains("velocity"))
+    motion.velocity = json_vector<N>(c, jb["velocity"], path + ".velocity", dim_from.c_str());
+  if (jb.contains("angular_velocity"))
+    motion.angular_velocity = json_angular_velocity<N>(c, jb["angular_velocity"], path + ".angular_velocity", dim_from);
+  return Body<N>{std::move(id), build_shape<N>(center, radii, o, [w = c.at(path)] { return w; }), motion};
 }
 
 // What an InputError says of its field, without the "ellipsect: <field>: " prefix.
@@ -514,7 +537,8 @@ Input open_json(const std::string& path) {
     in.dim = static_cast<int>(n);
   }
   for (std::size_t i = 0; i < bodies.size(); ++i)
-    if (bodies[i].is_object() && bodies[i].contains("velocity")) in.has_velocity = true;
+    if (bodies[i].is_object() && (bodies[i].contains("velocity") || bodies[i].contains("angular_velocity")))
+      in.has_velocity = true;
   if (j.contains("obstacles")) {
     const json& obstacles = j["obstacles"];
     if (!obstacles.is_array()) fail(c.at("$.obstacles"), "expected an array of obstacles, got " + describe_type(obstacles));
@@ -645,7 +669,8 @@ double row_number(const RowCtx& r, int col, const std::string& prefix, const cha
 template <int N>
 Body<N> row_body(const RowCtx& r, const BodyColumns<N>& m) {
   const std::string& p = m.prefix;
-  Vec<double, N> center, radii, velocity = Vec<double, N>::Zero();
+  Vec<double, N> center, radii;
+  RigidMotion<double, N> motion;
   for (int i = 0; i < N; ++i) {
     center[i] = row_number(r, m.center[i], p, axis_name<N>(i));
     radii[i] = row_number(r, m.radii[i], p, radius_names[i]);
@@ -658,7 +683,7 @@ Body<N> row_body(const RowCtx& r, const BodyColumns<N>& m) {
     fail(r.path + ":" + std::to_string(r.line) + ": columns " + p + "vx.." + p + velocity_names[N - 1],
          "give every velocity component or leave all empty");
   if (nv == N)
-    for (int i = 0; i < N; ++i) velocity[i] = row_number(r, m.velocity[i], p, velocity_names[i]);
+    for (int i = 0; i < N; ++i) motion.velocity[i] = row_number(r, m.velocity[i], p, velocity_names[i]);
   Orientation o;
   if constexpr (N == 2) {
     if (has_value(r, m.angle)) {
@@ -686,7 +711,7 @@ Body<N> row_body(const RowCtx& r, const BodyColumns<N>& m) {
     check_utf8(r.at(m.id, p + "id"), id);
   }
   return Body<N>{std::move(id),
-                 build_shape<N>(center, radii, o, [&r] { return r.path + ":" + std::to_string(r.line); }), velocity};
+                 build_shape<N>(center, radii, o, [&r] { return r.path + ":" + std::to_string(r.line); }), motion};
 }
 
 void split_row(const std::string& path, std::uint64_t line_number, std::string_view line, std::size_t expected,
@@ -770,9 +795,9 @@ std::unordered_map<std::string, std::uint32_t> id_index(const std::vector<Body<N
 
 template <int N>
 Ellipsoid<double, N> shape_at(const Body<N>& b, double t, const std::string& file) {
-  if (t == 0.0 || b.velocity.isZero()) return b.shape;
+  if (t == 0.0 || !moves<N>(b)) return b.shape;
   try {
-    return b.shape.translated(b.velocity * t);
+    return turns<N>(b) ? body_at<double, N>(b.shape, b.motion, t) : b.shape.translated(b.motion.velocity * t);
   } catch (const InputError& e) {
     throw BadInput(file + ": body " + b.id + " at t = " + number_string(t) + ": " + e.what());
   }

@@ -10,6 +10,7 @@
 #include <ellipsect/box.hpp>
 #include <ellipsect/broad_phase.hpp>
 #include <ellipsect/capsule.hpp>
+#include <ellipsect/contact.hpp>
 #include <ellipsect/half_space.hpp>
 #include <ellipsect/mesh.hpp>
 #include <ellipsect/shapes.hpp>
@@ -30,16 +31,34 @@ namespace ellipsect::cli {
 
 inline constexpr double infinity = std::numeric_limits<double>::infinity();
 
-// A body as read from a scene: its shape at time 0 and its constant velocity.
+// A body as read from a scene: its shape at time 0 and its rigid motion (contact.hpp): a
+// constant velocity and a constant angular velocity about its center (CSV bodies: zero).
 template <int N>
 struct Body {
   std::string id;  // empty for bodies of a pairs CSV without a_id / b_id columns
   Ellipsoid<double, N> shape;
-  Vec<double, N> velocity;
+  RigidMotion<double, N> motion;
 };
 
-// The body's shape at time t: moved by t * velocity. Throws BadInput naming the scene `file`
-// and the body where that leaves the range of double.
+// True when the body turns: a non-zero angular velocity.
+template <int N>
+bool turns(const Body<N>& b) {
+  if constexpr (N == 2) {
+    return b.motion.angular_velocity != 0.0;
+  } else {
+    return !b.motion.angular_velocity.isZero(0.0);
+  }
+}
+
+// True when the body moves or turns.
+template <int N>
+bool moves(const Body<N>& b) {
+  return !b.motion.velocity.isZero() || turns<N>(b);
+}
+
+// The body's shape at time t: moved by t * velocity and, when it turns, turned about its
+// center (the library's body_at). Throws BadInput naming the scene `file` and the body where
+// that leaves the range of double.
 template <int N>
 Ellipsoid<double, N> shape_at(const Body<N>& b, double t, const std::string& file);
 
@@ -80,7 +99,7 @@ struct Input {
   std::string path;
   InputKind kind = InputKind::json;
   int dim = 0;
-  bool has_velocity = false;  // some body has a velocity (field or column)
+  bool has_velocity = false;  // something moves: a velocity or angular velocity (field or column)
   bool window_given = false;  // the scene sets a time window
   Window window;
   std::string title;                 // JSON "title", else the file name

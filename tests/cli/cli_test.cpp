@@ -2027,6 +2027,342 @@ TEST(CliCapsules, BundledCapsuleScene) {
 }
 
 // ------------------------------------------------------------------------------------------
+// Turning bodies (angular_velocity): rigid motion
+// ------------------------------------------------------------------------------------------
+
+// A hit under rigid motion, to the accuracy the library states for it (contact.hpp: time
+// within 1e-12 relative, point within 1e-10 of the bodies' size, normal within 1e-9 rad),
+// with room to spare; `iterations` counts its advancement steps (at least one).
+void expect_rigid_hit(const json& contact, double time, const std::vector<double>& point,
+                      const std::vector<double>& normal) {
+  SCOPED_TRACE(contact.dump());
+  EXPECT_EQ(contact["status"], "hit");
+  EXPECT_NEAR(contact["time"].get<double>(), time, 1e-9 * std::max(1.0, time));
+  for (std::size_t i = 0; i < point.size(); ++i) {
+    EXPECT_NEAR(contact["point"][i].get<double>(), point[i], 1e-9);
+    EXPECT_NEAR(contact["normal"][i].get<double>(), normal[i], 1e-9);
+  }
+  EXPECT_GT(contact["iterations"].get<int>(), 0);
+}
+
+// The rotation, in degrees, of the drawn ellipse of class `cls` and id `id` in an SVG (the
+// outline's angle from the plane's first axis, negated: SVG's y axis points down).
+double drawn_rotation(const std::string& svg, const std::string& cls, const std::string& id) {
+  const std::string key = "<ellipse class=\"" + cls + "\" data-id=\"" + id + "\"";
+  const std::size_t at = svg.find(key);
+  if (at == std::string::npos) {
+    ADD_FAILURE() << "no " << key;
+    return std::numeric_limits<double>::quiet_NaN();
+  }
+  return std::stod(svg.substr(svg.find("rotate(", at) + 7));
+}
+
+// An ellipse's outline drawn at `degrees` (a half turn maps it onto itself), to the two
+// decimals the SVG is written with.
+void expect_drawn_at(double drawn, double degrees) { EXPECT_NEAR(std::remainder(drawn - degrees, 180.0), 0.0, 0.006); }
+
+// The turning rod: an ellipse of radii (2, 0.1) centered at (0, 1), at angle 0 at t = 0,
+// turning counterclockwise at 1 rad per unit time (no velocity: it turns in place) above the
+// floor y <= 0. At time t its axes are u = (cos t, sin t) and v = (-sin t, cos t); its support
+// along n = (0, -1), how far its lowest point lies below the center, is
+//     rho(t) = sqrt((2 u.n)^2 + (0.1 v.n)^2) = sqrt(4 sin^2 t + 0.01 cos^2 t),
+// which grows from 0.1 on [0, pi/2]. The rod touches the floor when rho = 1: with s = sin t,
+// 4 s^2 + 0.01 (1 - s^2) = 1, s^2 = 0.99 / 3.99, at t* = asin(sqrt(0.99 / 3.99)) (0.5214).
+// The lowest point is the center plus the support offset (4 (u.n) u + 0.01 (v.n) v) / rho =
+// -(4 s u + 0.01 c v) (c = cos t, rho = 1): x = -4 s c + 0.01 s c = -3.99 s c = -sqrt(2.97)
+// (s c = sqrt(0.99 * 3) / 3.99), y = 1 - rho = 0; the normal from the rod to the floor is
+// (0, -1). rho has period pi (a half turn maps the ellipse onto itself): after t = pi the rod
+// touches again at pi + t*, at the same point.
+// - slab: the floor as a box, [-5, 5] x [-1, 0], whose top edge holds that point: the same;
+// - mirror: the rod's mirror image in the line y = 0 at every time (center (0, -1), turning
+//   clockwise at -1): while the rod lies above the line its image lies below, and both reach
+//   it at t*, at the rod's lowest point: the same contact, normal (0, -1) from rod to mirror.
+const double rod_t = std::asin(std::sqrt(0.99 / 3.99));
+const double rod_x = -std::sqrt(2.97);
+const double pi = 3.14159265358979323846;
+
+const char* turning_rod_2d_scene = R"({
+  "time_window": [0, 10],
+  "bodies": [
+    {"id": "rod", "center": [0, 1], "radii": [2, 0.1], "angular_velocity": 1},
+    {"id": "mirror", "center": [0, -1], "radii": [2, 0.1], "angular_velocity": -1}
+  ],
+  "obstacles": [
+    {"id": "floor", "type": "half_space", "point": [0, 0], "normal": [0, 1]},
+    {"id": "slab", "type": "box", "center": [0, -0.5], "half_extents": [5, 0.5]}
+  ],
+  "pairs": [["rod", "floor"], ["rod", "slab"], ["rod", "mirror"]]
+})";
+
+TEST(CliTurning, RodTippingOntoAHalfPlaneABoxAndItsMirrorImage) {
+  const auto dir = work_dir();
+  write_file(dir / "rod.json", turning_rod_2d_scene);
+  // No body has a velocity: the angular velocities alone make the contact a default query.
+  const Outcome r = run_cli({"check", (dir / "rod.json").string()}, dir);
+  ASSERT_EQ(r.code, 0) << describe(r);
+  const json out = parse_json(r.out);
+  EXPECT_EQ(out["queries"], json::parse(R"(["relation", "contact"])"));
+  const json& res = out["results"];
+  ASSERT_EQ(res.size(), 3u);
+  for (const auto& rec : res) {
+    EXPECT_EQ(rec["relation"], "separated") << rec.dump();
+    expect_rigid_hit(rec["contact"], rod_t, {rod_x, 0}, {0, -1});
+  }
+  // At t = 0 the rod lies flat, its lowest point 0.9 above the floor and 1.8 above the mirror's
+  // highest.
+  const Outcome d = run_cli({"check", (dir / "rod.json").string(), "--query", "distance"}, dir);
+  ASSERT_EQ(d.code, 0) << describe(d);
+  const json dout = parse_json(d.out);
+  expect_distance(dout["results"][0]["distance"], "separated", 0.9, {0, 0.9}, {0, 0}, {0, -1});
+  expect_distance(dout["results"][2]["distance"], "separated", 1.8, {0, 0.9}, {0, -0.9}, {0, -1});
+  // CSV: the same contact.
+  const Outcome c = run_cli({"check", (dir / "rod.json").string(), "-f", "csv"}, dir);
+  ASSERT_EQ(c.code, 0) << describe(c);
+  const auto lines = split_lines(c.out);
+  ASSERT_EQ(lines.size(), 4u);
+  const auto row = split_csv_line(lines[1]);
+  EXPECT_EQ(row[4], "hit");
+  EXPECT_EQ(std::stod(row[5]), res[0]["contact"]["time"].get<double>());
+  EXPECT_EQ(row[10], std::to_string(res[0]["contact"]["iterations"].get<int>()));
+}
+
+// The rod of the 2D test in 3D: radii (2, 0.1, 0.1), centered at (0, 0, 1), angular velocity
+// (0, -1, 0): the turn by -t about y takes the first axis to (cos t, 0, sin t) and the third to
+// (-sin t, 0, cos t), and leaves the second along y, so the support along (0, 0, -1) is the
+// 2D rho(t): it touches the floor z <= 0 at t*, at (-sqrt(2.97), 0, 0), normal (0, 0, -1).
+// The floor as a box (its top face z = 0 over [-5, 5]^2) and as a mesh of two triangles over
+// the same square, split along its diagonal y = x: the point (y = 0 > x) lies in triangle 1.
+TEST(CliTurning, RodTippingOntoABoxAndAMeshIn3D) {
+  const auto dir = work_dir();
+  write_file(dir / "rod3.json", R"({
+    "bodies": [{"id": "rod", "center": [0, 0, 1], "radii": [2, 0.1, 0.1], "angular_velocity": [0, -1, 0]}],
+    "obstacles": [
+      {"id": "slab", "type": "box", "center": [0, 0, -0.5], "half_extents": [5, 5, 0.5]},
+      {"id": "floor", "type": "mesh", "vertices": [[-5, -5, 0], [5, -5, 0], [5, 5, 0], [-5, 5, 0]],
+       "triangles": [[0, 1, 2], [0, 2, 3]]}
+    ]})");
+  const Outcome r = run_cli({"check", (dir / "rod3.json").string()}, dir);
+  ASSERT_EQ(r.code, 0) << describe(r);
+  const json out = parse_json(r.out);
+  const json& res = out["results"];
+  ASSERT_EQ(res.size(), 2u);
+  for (const auto& rec : res) {
+    EXPECT_EQ(rec["relation"], "separated") << rec.dump();
+    expect_rigid_hit(rec["contact"], rod_t, {rod_x, 0, 0}, {0, 0, -1});
+  }
+  EXPECT_EQ(res[1]["contact"]["triangle"], 1);
+  EXPECT_TRUE(res[1]["relation_triangle"].is_null());
+}
+
+// Bodies that turn into themselves answer as their translational twins:
+// - 2D: a circle (r 1) at the origin spinning at 3 rad per unit time, and a circle (r 1)
+//   from (5, 0) at (-1, 0): centers 2 apart at t = 3, point (1, 0), normal (1, 0);
+// - 3D: an ellipsoid of radii (2, 0.5, 0.5) spinning about its first axis (angular velocity
+//   (5, 0, 0)), its two equal radii turning into each other, and a ball (r 1) from (6, 0, 0) at
+//   (-1, 0, 0): 6 - t = 2 + 1 at t = 3, point (2, 0, 0), normal (1, 0, 0).
+// And two turning rods: the 2D test's rod and mirror, listed without the obstacles.
+TEST(CliTurning, BodyPairsInRigidMotion) {
+  const auto dir = work_dir();
+  write_file(dir / "spin2.json", R"({"bodies": [
+    {"id": "spinning", "center": [0, 0], "radius": 1, "angular_velocity": 3},
+    {"id": "moving", "center": [5, 0], "radius": 1, "velocity": [-1, 0]}]})");
+  write_file(dir / "spin3.json", R"({"bodies": [
+    {"id": "spinner", "center": [0, 0, 0], "radii": [2, 0.5, 0.5], "angular_velocity": [5, 0, 0]},
+    {"id": "ball", "center": [6, 0, 0], "radius": 1, "velocity": [-1, 0, 0]}]})");
+  json rods = json::parse(turning_rod_2d_scene);
+  rods.erase("obstacles");
+  rods.erase("pairs");
+  write_file(dir / "rods.json", rods.dump());
+  const std::vector<std::tuple<std::string, double, std::vector<double>, std::vector<double>>> cases = {
+      {"spin2.json", 3.0, {1, 0}, {1, 0}},
+      {"spin3.json", 3.0, {2, 0, 0}, {1, 0, 0}},
+      {"rods.json", rod_t, {rod_x, 0}, {0, -1}}};
+  for (const auto& [file, time, point, normal] : cases) {
+    SCOPED_TRACE(file);
+    const Outcome r = run_cli({"check", (dir / file).string()}, dir);
+    ASSERT_EQ(r.code, 0) << describe(r);
+    const json out = parse_json(r.out);
+    ASSERT_EQ(out["results"].size(), 1u);
+    EXPECT_EQ(out["results"][0]["relation"], "separated");
+    expect_rigid_hit(out["results"][0]["contact"], time, point, normal);
+  }
+}
+
+// Windows that start later turn the bodies to their start (the 2D rod, closed forms above):
+// - t0 = 1: rho(1) = sqrt(4 sin^2 1 + 0.01 cos^2 1) (about 1.684) > 1: the rod reaches into
+//   the floor, the slab and its mirror image: overlapping at the start, signed distance to
+//   the floor 1 - rho(1), normal (0, -1);
+// - t0 = 0.25 < t*: apart, the gap 1 - rho(0.25), the contact still at t*;
+// - t0 = pi: the rod is flat again, 0.9 above the floor; the next contact at pi + t*.
+// Drawn at t = 1 the rod is red and turned by 1 rad; at its first contact by t* from its
+// start outline, drawn flat.
+TEST(CliTurning, LaterWindowStartsTurnTheBodies) {
+  const auto dir = work_dir();
+  write_file(dir / "rod.json", turning_rod_2d_scene);
+  const auto rho = [](double t) {
+    return std::sqrt(4 * std::sin(t) * std::sin(t) + 0.01 * std::cos(t) * std::cos(t));
+  };
+  const std::string scene = (dir / "rod.json").string();
+  const auto check = [&](const std::string& t0) {
+    const Outcome r = run_cli({"check", scene, "--window", t0, "10", "--query", "relation,contact,distance"}, dir);
+    EXPECT_EQ(r.code, 0) << describe(r);
+    return parse_json(r.out)["results"];
+  };
+  const json at1 = check("1");
+  ASSERT_EQ(at1.size(), 3u);
+  for (const auto& rec : at1) {
+    EXPECT_EQ(rec["relation"], "overlapping") << rec.dump();
+    EXPECT_EQ(rec["contact"]["status"], "overlapping_at_start") << rec.dump();
+    EXPECT_EQ(rec["contact"]["time"], 1) << rec.dump();
+    EXPECT_EQ(rec["distance"]["status"], "overlapping") << rec.dump();
+  }
+  EXPECT_NEAR(at1[0]["distance"]["distance"].get<double>(), 1 - rho(1), 1e-12);
+  EXPECT_NEAR(at1[0]["distance"]["normal"][1].get<double>(), -1, 1e-12);
+  const json early = check("0.25");
+  ASSERT_EQ(early.size(), 3u);
+  EXPECT_EQ(early[0]["relation"], "separated");
+  EXPECT_NEAR(early[0]["distance"]["distance"].get<double>(), 1 - rho(0.25), 1e-12);
+  for (const auto& rec : early) expect_rigid_hit(rec["contact"], rod_t, {rod_x, 0}, {0, -1});
+  const json later = check("3.141592653589793");
+  ASSERT_EQ(later.size(), 3u);
+  EXPECT_NEAR(later[0]["distance"]["distance"].get<double>(), 0.9, 1e-12);
+  for (const auto& rec : later) {
+    EXPECT_EQ(rec["relation"], "separated") << rec.dump();
+    expect_rigid_hit(rec["contact"], pi + rod_t, {rod_x, 0}, {0, -1});
+  }
+
+  const Outcome p1 = run_cli({"render", scene, "--time", "1", "-o", (dir / "t1.svg").string()}, dir);
+  ASSERT_EQ(p1.code, 0) << describe(p1);
+  const SvgSummary s1 = read_svg(dir / "t1.svg");
+  EXPECT_EQ(s1.overlapping, 2);  // the rod and its mirror image
+  EXPECT_EQ(s1.obstacles_overlapping, 2);
+  expect_drawn_at(drawn_rotation(slurp(dir / "t1.svg"), "body overlapping", "rod"), -180 / pi);
+  const Outcome p = run_cli({"render", scene, "-o", (dir / "first.svg").string()}, dir);
+  ASSERT_EQ(p.code, 0) << describe(p);
+  const SvgSummary s = read_svg(dir / "first.svg");
+  EXPECT_NEAR(std::stod(s.attr("data-time")), rod_t, 1e-9);
+  EXPECT_EQ(s.starts, 2);  // turning in place: start outlines, no paths
+  EXPECT_EQ(s.paths, 0);
+  const std::string svg = slurp(dir / "first.svg");
+  expect_drawn_at(drawn_rotation(svg, "body", "rod"), -rod_t * 180 / pi);
+  expect_drawn_at(drawn_rotation(svg, "body", "mirror"), rod_t * 180 / pi);
+  expect_drawn_at(drawn_rotation(svg, "start", "rod"), 0);
+}
+
+// Adding a zero angular velocity to every body of the bundled moving scenes changes no
+// answer: the translational answers, bit for bit.
+TEST(CliTurning, ZeroAngularVelocitiesChangeNothing) {
+  const auto dir = work_dir();
+  for (const std::string file : {"swept_2d.json", "swept_3d.json", "grazing_2d.json", "obstacles_2d.json",
+                                 "obstacles_capsule.json"}) {
+    SCOPED_TRACE(file);
+    json scene = json::parse(slurp(scenes / file));
+    for (auto& b : scene["bodies"])
+      b["angular_velocity"] = b["center"].size() == 2 ? json(0) : json::parse("[0, 0, 0]");
+    write_file(dir / file, scene.dump());
+    for (const std::vector<std::string>& window : {std::vector<std::string>{}, {"--window", "0.5", "10"}}) {
+      std::vector<std::string> given = {"check", (scenes / file).string(), "--query", "relation,contact,distance"};
+      std::vector<std::string> zero = {"check", (dir / file).string(), "--query", "relation,contact,distance"};
+      given.insert(given.end(), window.begin(), window.end());
+      zero.insert(zero.end(), window.begin(), window.end());
+      const Outcome a = run_cli(given, dir), b = run_cli(zero, dir);
+      ASSERT_EQ(a.code, 0) << describe(a);
+      ASSERT_EQ(b.code, 0) << describe(b);
+      const json ja = parse_json(a.out), jb = parse_json(b.out);
+      EXPECT_EQ(ja["results"].dump(), jb["results"].dump());
+      EXPECT_EQ(ja["summary"], jb["summary"]);
+    }
+  }
+}
+
+TEST(CliTurning, MalformedAngularVelocitiesNameTheField) {
+  const auto dir = work_dir();
+  const std::string head2 = R"({"bodies": [{"id": "a", "center": [0, 0], "radius": 1, )";
+  const std::string head3 = R"({"bodies": [{"id": "a", "center": [0, 0, 0], "radius": 1, )";
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {head2 + R"("angular_velocity": [0, 1]}]})",
+       "$.bodies[0].angular_velocity: expected a number (a 2D body turns in its plane"},
+      {head2 + R"("angular_velocity": "fast"}]})", "$.bodies[0].angular_velocity: expected a number, got a string"},
+      {head2 + R"("angular_velocity": null}]})", "$.bodies[0].angular_velocity: expected a number, got null"},
+      {head3 + R"("angular_velocity": 1}]})",
+       "$.bodies[0].angular_velocity: expected an array of 3 numbers (a 3D body turns about an axis"},
+      {head3 + R"("angular_velocity": [0, 1]}]})",
+       "$.bodies[0].angular_velocity: has 2 components, but the scene is 3D"},
+      {head3 + R"("angular_velocity": [0, 1, 0, 0]}]})",
+       "$.bodies[0].angular_velocity: has 4 components, but the scene is 3D"},
+      {head3 + R"("angular_velocity": [0, "1", 0]}]})",
+       "$.bodies[0].angular_velocity[1]: expected a number, got a string"},
+      {head3 + R"("angular_velocity": {"x": 1}}]})",
+       "$.bodies[0].angular_velocity: expected an array of 3 numbers, got an object"},
+      {head2 + R"("angular_velocty": 1}]})", "$.bodies[0].angular_velocty: unknown key"},
+      // Obstacles never turn.
+      {head2 + R"("velocity": [0, -1]}], "obstacles": [{"id": "o", "type": "half_space", "point": [0, -5],
+                   "normal": [0, 1], "angular_velocity": 1}]})",
+       "$.obstacles[0].angular_velocity: unknown key"},
+  };
+  for (std::size_t k = 0; k < cases.size(); ++k)
+    expect_bad_input({"bad" + std::to_string(k) + ".json", cases[k].first, {cases[k].second}}, dir);
+  // Non-finite: JSON has no NaN, and 1e999 is rejected where it is read.
+  expect_bad_input({"huge.json", head3 + R"("angular_velocity": [0, 1e999, 0]}]})",
+                    {"huge.json:1:", "number 1e999 is out of range"}}, dir);
+  // Turned by an angle beyond the range of double at the window start t0 = 2 (1e308 rad per
+  // unit time): bad input naming the scene, the body and t0, with a body or an obstacle.
+  const std::string turning = R"({"time_window": [2, 3],
+    "bodies": [{"id": "a", "center": [0, 0], "radius": 1, "angular_velocity": 1e308}, {"id": "b", "center": [5, 0], "radius": 1}],
+    "obstacles": [{"id": "floor", "type": "half_space", "point": [0, -5], "normal": [0, 1]}], )";
+  expect_bad_input({"body_pair.json", turning + R"("pairs": [["a", "b"]]})",
+                    {"body_pair.json: body a at t = 2: ", "turns the body by an angle beyond the range"}}, dir);
+  expect_bad_input({"body_obstacle.json", turning + R"("pairs": [["a", "floor"]]})",
+                    {"body_obstacle.json: body a at t = 2: ", "turns the body by an angle beyond the range"}}, dir);
+}
+
+// The bundled scene (all pairs: 6 body pairs, then each of the 4 bodies against the ground and
+// the crate), closed forms:
+// - rod: the 3D rod above, tipping onto the ground at t*;
+// - plank (radii 1.5, 0.2, 0.2) falls at 1 from (6, 0, 2) spinning about the vertical (angular
+//   velocity (0, 0, 2)), which turns its first two axes in the horizontal plane and leaves its
+//   third: its lowest point stays below its center, at (6, 0, 1.8 - t); it meets the crate's
+//   top z = 0.5 (over [5, 7] x [-1, 1]) at t = 1.3 and the ground at t = 1.8 (each pair on its
+//   own), normal (0, 0, -1);
+// - spinner (radii 2, 0.5, 0.5) at (0, 6, 3) spins about its first axis, keeping its shape;
+//   the ball (r 0.5) from (6, 6, 3) at (-1, 0, 0) meets its tip (2, 6, 3) when 6 - t = 2.5, at
+//   t = 3.5, normal (1, 0, 0);
+// - nothing else meets: the bodies' bounding balls (radius 2 about the rod and the spinner, 1.5
+//   about the plank, 0.5 about the ball) stay further apart than their radii, the spinner and
+//   the ball 2.5 above the ground, the rod 5 from the crate.
+// Drawn onto the xz plane at the first contact (t*), the rod's outline is turned by t*.
+TEST(CliTurning, BundledTurningScene) {
+  const auto dir = work_dir();
+  const fs::path scene = scenes / "turning_rod.json";
+  const Outcome r = run_cli({"check", scene.string()}, dir);
+  ASSERT_EQ(r.code, 0) << describe(r);
+  const json out = parse_json(r.out);
+  const json& res = out["results"];
+  ASSERT_EQ(res.size(), 6u + 4u * 2u);
+  for (const auto& rec : res) EXPECT_EQ(rec["relation"], "separated") << rec.dump();
+  EXPECT_EQ(res[5]["a"], "spinner");
+  EXPECT_EQ(res[5]["b"], "ball");
+  expect_rigid_hit(res[5]["contact"], 3.5, {2, 6, 3}, {1, 0, 0});
+  EXPECT_EQ(res[6]["a"], "rod");
+  EXPECT_EQ(res[6]["b"], "ground");
+  expect_rigid_hit(res[6]["contact"], rod_t, {rod_x, 0, 0}, {0, 0, -1});
+  EXPECT_EQ(res[8]["a"], "plank");
+  EXPECT_EQ(res[8]["b"], "ground");
+  expect_rigid_hit(res[8]["contact"], 1.8, {6, 0, 0}, {0, 0, -1});
+  EXPECT_EQ(res[9]["b"], "crate");
+  expect_rigid_hit(res[9]["contact"], 1.3, {6, 0, 0.5}, {0, 0, -1});
+  EXPECT_EQ(out["summary"]["contact"]["hit"], 4);
+  EXPECT_EQ(out["summary"]["contact"]["no_contact_in_window"], 10);
+  const Outcome p = run_cli({"render", scene.string(), "--plane", "xz", "-o", (dir / "turning.svg").string()}, dir);
+  ASSERT_EQ(p.code, 0) << describe(p);
+  const SvgSummary s = read_svg(dir / "turning.svg");
+  EXPECT_NEAR(std::stod(s.attr("data-time")), rod_t, 1e-9);
+  EXPECT_EQ(s.bodies, 4);
+  EXPECT_EQ(s.overlapping, 0);
+  expect_drawn_at(drawn_rotation(slurp(dir / "turning.svg"), "body", "rod"), -rod_t * 180 / pi);
+}
+
+// ------------------------------------------------------------------------------------------
 // Bench
 // ------------------------------------------------------------------------------------------
 
