@@ -70,7 +70,8 @@
 // stratum's function being concave there. Each root by Newton within its bracket (at most 100
 // steps, bisection where a step leaves it; the extreme roots on 1 - q^(-1/2), q the secular
 // sum, nearly linear there). The status is classify's, which is asked only where |G| <=
-// (tolerance + 1e-9) R + 1e-12 max_k |v_k - c| (R the largest radius): beyond that the
+// (tolerance + 1e-9) R + 1e-12 max_k |v_k - c| (R the largest radius) or where the vertices
+// lie beyond 1e12 smallest radii from the center (classify's stated range): elsewhere the
 // relative gap is beyond the tolerance on the same side (the body scaled by d about its center
 // moves its boundary by at most |d - 1| R). Accuracy (tests/property/
 // polytope_distance_property_test.cpp, against a 50-digit search of the sphere stratum by

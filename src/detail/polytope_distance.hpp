@@ -349,7 +349,10 @@ Distance<T, N> polytope_signed_distance(const Ellipsoid<T, N>& body, std::span<c
   for (const auto& v : vertices) spread = std::max(spread, (v - body.center()).template cast<W>().norm());
   const W radius = W(body.radii().maxCoeff());
   const W band = (W(options.tolerance) + W(1e-9)) * radius + W(1e-12) * spread;
-  const Relation relation = !(band < std::numeric_limits<W>::infinity()) ? classify()
+  // Beyond 1e12 radii across, classify's relation is the one stated (triangle.hpp's range),
+  // and the status follows it.
+  const bool resolved = spread <= W(1e12) * W(body.radii().minCoeff()) && band < std::numeric_limits<W>::infinity();
+  const Relation relation = !resolved ? classify()
                             : W(s.gap) > band                         ? Relation::separated
                             : W(s.gap) < -band                        ? Relation::overlapping
                                                                       : classify();

@@ -26,7 +26,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <type_traits>
 
 namespace ellipsect::detail {
@@ -92,14 +91,10 @@ int time_exponent(const Scale& scale, const Vec<T, N>& velocity_a, const Vec<T, 
   }
 }
 
-// A vector times 2^k (exact where the result is normal): one product by 2^k where that is a
-// normal number (correctly rounded, so equal to ldexp's), ldexp otherwise.
+// A vector times 2^k (exact where the result is normal).
 template <class D>
 Vec<typename D::Scalar, D::RowsAtCompileTime> times_pow2(const Eigen::MatrixBase<D>& v, int k) noexcept {
-  using S = typename D::Scalar;
-  if (k >= std::numeric_limits<S>::min_exponent - 1 && k < std::numeric_limits<S>::max_exponent)
-    return v * std::ldexp(S(1), k);
-  Vec<S, D::RowsAtCompileTime> out;
+  Vec<typename D::Scalar, D::RowsAtCompileTime> out;
   for (int i = 0; i < D::RowsAtCompileTime; ++i) out[i] = std::ldexp(v[i], k);
   return out;
 }
