@@ -91,13 +91,11 @@ R support(const Ellipsoid<T, N>& body, const Vec<R, N>& n, Vec<R, N>& offset) no
 // |omega x n| (R, r the largest and smallest radius).
 template <class T, int N>
 struct Turning {
-  const Ellipsoid<T, N>& body;
   const RigidMotion<T, N>& motion;
   R big, small, sweep, spin, speed, center;
 
   Turning(const Ellipsoid<T, N>& b, const RigidMotion<T, N>& m) noexcept
-      : body(b),
-        motion(m),
+      : motion(m),
         big(R(b.radii().maxCoeff())),
         small(R(b.radii().minCoeff())),
         sweep(std::min(big, (big - small) * (big + small) / (2 * small))),
