@@ -41,9 +41,10 @@ inline std::shared_ptr<fcl::CollisionObjectd> fcl_object(const Ellipsoid3<double
 // quaternion (for fcl::collide and fcl::distance on geometries and transforms).
 inline fcl::Ellipsoidd fcl_shape(const Pose3& p) { return fcl::Ellipsoidd(p.radii[0], p.radii[1], p.radii[2]); }
 
-// Two shapes moving from their poses at t = 0 (a0, b0) to those at t = window (a1, b1).
+// Two shapes (bodies, or a body and a box, capsule or triangle model) moving from their
+// poses at t = 0 (a0, b0) to those at t = window (a1, b1).
 struct FclMotion {
-  std::shared_ptr<fcl::Ellipsoidd> a, b;
+  std::shared_ptr<fcl::CollisionGeometryd> a, b;
   fcl::Transform3d a0, a1, b0, b1;
   double window;
 };
