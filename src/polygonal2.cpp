@@ -149,18 +149,29 @@ Outcome bisect(const Disk<T>& d, Pt<T> c0, Pt<T> c2, int max_level) noexcept {
 // Axis-aligned ellipse (w, h) with the center folded into the first quadrant (the ellipse
 // is symmetric about both axes, so its point nearest to the center stays there): level 0
 // is the edge (w, 0) -> (0, h) of the inscribed rhombus and the box [0, w] x [0, h].
-// A radius that underflowed to 0 (an ellipse far smaller than the offset) leaves a
-// degenerate rhombus, whose edge's line contains points outside it: "inside" also needs
-// the center within the box [0, w] x [0, h] (implied otherwise).
 template <class T>
 bool level_zero_collides(const Disk<T>& d, T w, T h) noexcept {
   T side;
-  return meets_segment(d, {w, 0}, {0, h}, side) ||  // an edge, or the center inside
-         (side >= T(0) && d.p.x <= w && d.p.y <= h);
+  return meets_segment(d, {w, 0}, {0, h}, side) || side >= T(0);  // an edge, or the center inside
+}
+
+// An ellipse within eps_T of the scene's size (the scaled scene's is in [1, 2)) lies inside
+// the rounding allowance rho of its center (rho >= 32 eps_T there), and its squared sizes
+// would underflow (a float ellipse of radius 3e-23 at 1.4 from a unit circle read as a
+// collision): it is tested as its center, exactly, at level 0.
+template <class T>
+bool point_like(T w, T h) noexcept {
+  return std::max(w, h) <= std::numeric_limits<T>::epsilon();
+}
+
+template <class T>
+Outcome point_test(const Disk<T>& d) noexcept {
+  return {dot(d.p, d.p) <= d.rr ? Verdict::collision : Verdict::no_collision, 0, 0};
 }
 
 template <class T>
 Outcome quadrant_test(const Disk<T>& d, T w, T h, int max_level) noexcept {
+  if (point_like(w, h)) return point_test(d);
   if (level_zero_collides(d, w, h)) return {Verdict::collision, 0, 0};
   // Missing the rhombus, the disk meets the enclosing triangle iff it meets the box.
   const T dx = std::max(d.p.x - w, T(0)), dy = std::max(d.p.y - h, T(0));
@@ -214,6 +225,7 @@ bool meets_cover(const Disk<T>& d, Pt<T> c0, Pt<T> c2, int t) noexcept {
 
 template <class T>
 Outcome cover_test(const Disk<T>& d, T w, T h, int max_level) noexcept {
+  if (point_like(w, h)) return point_test(d);
   if (level_zero_collides(d, w, h)) return {Verdict::collision, 0, 0};
   struct Node {
     Pt<T> c0, c2;

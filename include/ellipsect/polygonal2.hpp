@@ -48,7 +48,9 @@
 //
 // Contract. Every result is collision, no_collision, undecided (max_level used up: never a
 // guess) or invalid_input (max_level outside [0, niemitalo_max_level]; band NaN). Circles
-// are validated once, by make_circle.
+// are validated once, by make_circle. An ellipse whose major radius is at most eps_T of
+// the scene's size (the largest of the offset's coordinates, the radii) lies within rho of
+// its center, and polygonal_overlap and circle_cover_overlap test it as that point (level 0).
 //
 // Accuracy (tested against the 50-digit reference, tests/property/niemitalo_property_test.cpp,
 // on the scenario categories with aspect ratios to 1e4, near tangency, containment and

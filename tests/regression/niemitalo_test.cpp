@@ -254,6 +254,36 @@ TEST(NiemitaloRegression, TinyEllipseFarFromCircleIsApart) {
   EXPECT_EQ(polygonal_overlap(e, touching, 5).verdict, Verdict::collision);
 }
 
+// Fuzzing (the CI mutation run): polygonal_overlap answered `collision` (band [-inf, 1.1e-5])
+// for a float circle of radius 2.7e-23 centered 2.7e-23 from the origin, against the unit
+// circle about (1, 1), 0.41 away. The scene is scaled by 1, so the tiny ellipse's squared
+// sizes fell below float's smallest subnormal: the rhombus edge's length^2 and the center's
+// squared distance to its line both rounded to 2^-148, and the edge test's early exit
+// (farther from the line than r) failed. An ellipse within eps_T of the scene's size lies
+// within the rounding allowance of its center and is now tested as that point. Expected
+// from geometry: the gap is sqrt(2) - 1 less at most 2 * 2.7e-23 * sqrt(2).
+TEST(NiemitaloRegression, FloatEllipseBelowRoundingFarFromCircleIsApart) {
+  const float v = -0x1.09d9dap-75f, r = 0x1.09d9dap-75f;
+  const auto e = make_ellipse<float>({v, v}, 0.0f, {r, r});
+  const auto c = make_circle<float>({1, 1}, 1);
+  const double gap = std::sqrt(2.0) - 1;
+  for (int n : {0, 5, 28}) {
+    for (const auto& x : {polygonal_overlap(e, c, n), circle_cover_overlap(e, c, n)}) {
+      EXPECT_EQ(x.verdict, Verdict::no_collision) << n;
+      EXPECT_LE(x.gap_lo, gap) << n;
+      EXPECT_EQ(x.level, 0) << n;
+    }
+  }
+  // Moved into the circle's disk, the tiny ellipse collides.
+  const auto inside = make_ellipse<float>({0.5f, 0.75f}, 0.0f, {r, r});
+  EXPECT_EQ(polygonal_overlap(inside, c, 5).verdict, Verdict::collision);
+  EXPECT_EQ(circle_cover_overlap(inside, c, 5).verdict, Verdict::collision);
+  // Just above eps_T of the scene, the polygon test runs as before: a float ellipse of radius
+  // 2^-20 at the origin against the same circle, apart by about 0.41.
+  const auto small = make_ellipse<float>({0, 0}, 0.0f, {0x1p-20f, 0x1p-21f});
+  EXPECT_EQ(polygonal_overlap(small, c, 5).verdict, Verdict::no_collision);
+}
+
 // Fuzzing (the CI mutation run): two equal circles of subnormal radius 3.3e-316 at the same
 // center (1 + eps, -5) answered no_collision with the band [0, inf]. The scene's size is
 // below the smallest normal double, which no finite power of two brings into [1, 2) (the
