@@ -11,9 +11,15 @@
 //     overlapping   some triangle overlapping or inside the body, or (3D) the body's center
 //                   inside the box;
 //     touching      otherwise some triangle touching; separated otherwise.
+// Most pairs are settled before the triangles, in the box's frame: separated where a slab of
+// the box, or the plane through its point nearest the body's center, keeps the body off by
+// more than the tangency band; overlapping where that center is inside the box, or that
+// point inside the body shrunk by the band (the same relation, only cheaper).
 // first_contact: the start relation as classify's; a separated body first meets the box on
 // its boundary, so the hit is the earliest of the triangles' (closed form, triangle.hpp),
-// with their accuracy. The box answered for is the convex hull of its corners as computed
+// with their accuracy; in 3D it skips the faces that cannot hold the first contact (those
+// facing away from the relative velocity, or whose plane the body lies inside of at the
+// start). The box answered for is the convex hull of its corners as computed
 // (center +- half extents along the axes, rounded to T: within a few ulps of the center's
 // magnitude of the stored box).
 #pragma once

@@ -332,12 +332,23 @@ Distance<T, N> distance_of(const Support<T, N>& s, T grow, Relation relation) no
   return out;
 }
 
+// The band of a gap G between a body and a polytope (in W) outside which G alone decides
+// classify's relation. Scaled by d about its center the body moves its boundary by at most
+// |d - 1| R (R its largest radius), so G > tolerance R means a relative gap d - 1 >
+// tolerance (separated) and G < -tolerance R one below -tolerance (overlapping or
+// contained); 1e-9 R and 1e-12 of the spread (the vertices' distances from the center) are
+// left for the rounding of G and of classify's relation, and 16 ulps of T of R and of the
+// largest coordinate for what T's rounding leaves open (axes orthonormal to a few ulps, a
+// box's four face corners coplanar to a few ulps of their magnitude: two routes may read
+// such a body and polytope differently by that much).
+template <class T, class W>
+W status_band(const Options& options, W radius, W spread, W coordinate) noexcept {
+  return (W(options.tolerance) + W(1e-9)) * radius + W(1e-12) * spread +
+         W(16) * W(std::numeric_limits<T>::epsilon()) * (radius + coordinate);
+}
+
 // The signed distance with classify's relation as status, `classify()` asked only where the
-// gap G leaves it in doubt. Scaled by d about its center the body moves its boundary by at
-// most |d - 1| R (R its largest radius), so G > tolerance R means a relative gap d - 1 >
-// tolerance (separated) and G < -tolerance R one below -tolerance (overlapping or contained:
-// overlapping as a distance status); 1e-9 R and 1e-12 of the vertices' distances from the
-// center are left for the rounding of G and of classify's relation.
+// gap leaves it in doubt (status_band).
 template <class T, int N, class Classify>
 Distance<T, N> polytope_signed_distance(const Ellipsoid<T, N>& body, std::span<const Vec<T, N>> vertices,
                                         std::span<const std::array<int, 2>> edges,
@@ -345,10 +356,13 @@ Distance<T, N> polytope_signed_distance(const Ellipsoid<T, N>& body, std::span<c
                                         Classify&& classify, Near near = {}) noexcept {
   const Support<T, N> s = polytope_support<T, N>(body, vertices, edges, faces, near);
   using W = std::conditional_t<(sizeof(T) < sizeof(double)), double, T>;
-  W spread = 0;
-  for (const auto& v : vertices) spread = std::max(spread, (v - body.center()).template cast<W>().norm());
+  W spread = 0, coordinate = W(max_abs(body.center()));
+  for (const auto& v : vertices) {
+    spread = std::max(spread, (v - body.center()).template cast<W>().norm());
+    coordinate = std::max(coordinate, W(max_abs(v)));
+  }
   const W radius = W(body.radii().maxCoeff());
-  const W band = (W(options.tolerance) + W(1e-9)) * radius + W(1e-12) * spread;
+  const W band = status_band<T>(options, radius, spread, coordinate);
   // Beyond 1e12 radii across, classify's relation is the one stated (triangle.hpp's range),
   // and the status follows it.
   const bool resolved = spread <= W(1e12) * W(body.radii().minCoeff()) && band < std::numeric_limits<W>::infinity();
