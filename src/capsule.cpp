@@ -45,8 +45,13 @@ int by_spheres(const Ellipsoid<T, N>& a, const Capsule<T, N>& b) noexcept {
   return 0;
 }
 
+// classify's relation from the support maxima `s` of a and b's segment: the spheres' test
+// first (where it is surely apart, T's rounding of `s` may still read a touch), then the gap.
 template <class T, int N>
-Relation relation_of(const detail::Support<T, N>& s, T radius, const Options& options) noexcept {
+Relation relation_of(const Ellipsoid<T, N>& a, const Capsule<T, N>& b, const detail::Support<T, N>& s,
+                     const Options& options) noexcept {
+  if (options.tolerance < 1e-9 && by_spheres(a, b) > 0) return Relation::separated;
+  const T radius = b.radius();
   const T band = T(options.tolerance) * s.radius;
   const T gap = s.gap - radius;
   if (gap > band) return Relation::separated;
@@ -60,8 +65,7 @@ Relation relation_of(const detail::Support<T, N>& s, T radius, const Options& op
 
 template <class T, int N>
 Relation classify(const Ellipsoid<T, N>& a, const Capsule<T, N>& b, const Options& options) noexcept {
-  if (options.tolerance < 1e-9 && by_spheres(a, b) > 0) return Relation::separated;
-  return relation_of(support_of<T, N>(a, b, Vec<T, N>::Zero()), b.radius(), options);
+  return relation_of(a, b, support_of<T, N>(a, b, Vec<T, N>::Zero()), options);
 }
 
 template <class T, int N>
@@ -76,7 +80,7 @@ bool overlap(const Ellipsoid<T, N>& a, const Capsule<T, N>& b, const Options& op
 template <class T, int N>
 Distance<T, N> signed_distance(const Ellipsoid<T, N>& a, const Capsule<T, N>& b, const Options& options) noexcept {
   const detail::Support<T, N> s = support_of<T, N>(a, b, Vec<T, N>::Zero());
-  return detail::distance_of(s, b.radius(), relation_of(s, b.radius(), options));
+  return detail::distance_of(s, b.radius(), relation_of(a, b, s, options));
 }
 
 template <class T, int N>
@@ -90,7 +94,7 @@ Contact<T, N> first_contact(const Ellipsoid<T, N>& a, const VecArg<T, N>& veloci
   Contact<T, N> out = detail::unanswered_contact<T, N>();
   if (!detail::valid_motion<T, N>(velocity_a, velocity_b, t_max)) return out;
   detail::Support<T, N> s = support_of<T, N>(a, b, Vec<T, N>::Zero());
-  const Relation start = relation_of(s, b.radius(), options);
+  const Relation start = relation_of(a, b, s, options);
   if (start != Relation::separated) {
     out.time = 0;
     if (start != Relation::touching) {

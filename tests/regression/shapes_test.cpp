@@ -1,6 +1,9 @@
 // Regressions of the queries against shapes (half_space.hpp, triangle.hpp, box.hpp,
 // capsule.hpp), each named after its case.
 #include <ellipsect/box.hpp>
+#include <ellipsect/capsule.hpp>
+#include <ellipsect/classify.hpp>
+#include <ellipsect/contact.hpp>
 #include <ellipsect/distance.hpp>
 
 #include <gtest/gtest.h>
@@ -35,6 +38,29 @@ TEST(ShapesRegression, BoxSignedDistanceStatusFloatFaceCornersOffPlane) {
                                                        : DistanceStatus::overlapping);
   // Whatever the status, the body's face lies within float's rounding of the box's.
   EXPECT_LE(std::abs(d.distance), 1e-5f);
+}
+
+// A float body of radii (3, 2, 1) at the origin against the capsule of radius 1 along y from
+// (4, y0, z0) to (4, y0 + 2, z0), y0 = 0x1.01p-12, z0 = 0x1.e5e4p-13: the body's x-extreme
+// (3, 0, 0) is 1 from (4, 0, 0), and the curvature radii there (4/3 in y, 1/3 in z) put the
+// true gap at about y0^2 / (2 (1 + 4/3)) + z0^2 / (2 (1 + 1/3)) = 3.3e-8, under one ulp of
+// float at 4. classify said separated (the body's bounding ball is 1.9e-6 from the capsule),
+// signed_distance touching from the float support gap; first_contact began from the latter.
+// All three now read the same relation.
+TEST(ShapesRegression, CapsuleFloatGapBelowOneUlpSameStatusEverywhere) {
+  const auto a = make_ellipsoid<float>({0, 0, 0}, Mat<float, 3>::Identity(), {3, 2, 1});
+  const Vec<float, 3> c{4, 0x1.00101p+0f, 0x1.e5e4p-13f}, y{0, 1, 0};
+  const auto capsule = make_capsule<float, 3>(Vec<float, 3>(c - y), Vec<float, 3>(c + y), 1);
+  // The bounding ball of radius 3 is |(4, y0, z0)| - 4 = 1.9e-6 from the segment: separated.
+  EXPECT_EQ(classify(a, capsule), Relation::separated);
+  const Distance<float, 3> d = signed_distance(a, capsule);
+  EXPECT_EQ(d.status, DistanceStatus::separated);
+  EXPECT_GE(d.distance, 0.0f);
+  EXPECT_LE(d.distance, 1e-6f);
+  const Contact<float, 3> hit = first_contact(a, Vec<float, 3>{1, 0, 0}, capsule, Vec<float, 3>{0, 0, 0}, 1.0f);
+  EXPECT_EQ(hit.status, ContactStatus::hit);
+  EXPECT_GE(hit.time, 0.0f);
+  EXPECT_LE(hit.time, 1e-6f);  // the gap, 3.3e-8, closed at speed 1
 }
 
 }  // namespace
