@@ -51,6 +51,10 @@
 // BM_overlap3_cached/*  batch overlap over 1 << 14 pairs (the random cases cycled, static;
 //                       16 chunks: two threads), 4.5 MB of columns, in the L3 cache
 // BM_overlap3_large/*   the same over 1 << 20 pairs, 285 MB, streamed from memory
+// BM_overlap3_cached/ellipsect_gpu/random, BM_overlap3_large/ellipsect_gpu/random
+//                       the same through overlap_on_gpu (gpu.hpp; the filter on the GPU, the
+//                       pairs it leaves open on every core; columns copied to the device in
+//                       each call); registered only where a CUDA device is present
 // BM_overlap3_filter/random  the SIMD certificate pass alone over the 1024 random pairs
 //                             (counter undecided: the share left to the exact path)
 // BM_overlap3_simd/TARGET/random
@@ -78,6 +82,7 @@
 #include <ellipsect/batch.hpp>
 #include <ellipsect/classify.hpp>
 #include <ellipsect/contact.hpp>
+#include <ellipsect/gpu.hpp>
 
 #include "bench/bench_support.hpp"
 #include "detail/batch_kernels.hpp"
@@ -102,6 +107,7 @@
 #include <memory>
 #include <optional>
 #include <span>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -327,7 +333,7 @@ void contact_batch(benchmark::State& state, int k, int threads) {
 
 // The random cases cycled to `size` pairs (static: no motion).
 template <std::size_t size>
-void overlap_cycled(benchmark::State& state, int threads) {
+void overlap_cycled(benchmark::State& state, int threads, bool gpu) {
   static const auto cycled = [] {
     std::pair<Pairs<double, 3>, Truth<bool>> out;
     out.first.reserve(size);
@@ -338,7 +344,10 @@ void overlap_cycled(benchmark::State& state, int threads) {
     }
     return out;
   }();
-  run_batch<bool>(state, cycled.second, cycled.first, threads, batch_overlap);
+  if (!gpu) return run_batch<bool>(state, cycled.second, cycled.first, threads, batch_overlap);
+  run_batch<bool>(state, cycled.second, cycled.first, threads, [](const auto& p, auto out, const BatchOptions& o) {
+    if (overlap_on_gpu(p, out, o) != Backend::gpu) throw std::runtime_error("overlap_on_gpu: answered on the CPU");
+  });
 }
 
 // The vector certificate pass alone (no scalar fallback, no thread), on the random pairs:
@@ -507,10 +516,14 @@ void register_all() {
     add("BM_first_contact3/fcl_naive_linear" + cat, fcl_contact, k, fcl::CCDM_LINEAR);
 #endif
   }
-  add("BM_overlap3_cached/ellipsect_batch_1thread/random", overlap_cycled<cached_size>, 1);
-  add("BM_overlap3_cached/ellipsect_batch_allcores/random", overlap_cycled<cached_size>, 0)->UseRealTime();
-  add("BM_overlap3_large/ellipsect_batch_1thread/random", overlap_cycled<large_size>, 1);
-  add("BM_overlap3_large/ellipsect_batch_allcores/random", overlap_cycled<large_size>, 0)->UseRealTime();
+  add("BM_overlap3_cached/ellipsect_batch_1thread/random", overlap_cycled<cached_size>, 1, false);
+  add("BM_overlap3_cached/ellipsect_batch_allcores/random", overlap_cycled<cached_size>, 0, false)->UseRealTime();
+  add("BM_overlap3_large/ellipsect_batch_1thread/random", overlap_cycled<large_size>, 1, false);
+  add("BM_overlap3_large/ellipsect_batch_allcores/random", overlap_cycled<large_size>, 0, false)->UseRealTime();
+  if (gpu_info().devices > 0) {
+    add("BM_overlap3_cached/ellipsect_gpu/random", overlap_cycled<cached_size>, 0, true)->UseRealTime();
+    add("BM_overlap3_large/ellipsect_gpu/random", overlap_cycled<large_size>, 0, true)->UseRealTime();
+  }
   for (const auto& target : simd_targets()) add("BM_overlap3_simd/" + target + "/random", overlap_simd, target);
   benchmark::RegisterBenchmark("BM_overlap3_filter/random", overlap_filter);
 }

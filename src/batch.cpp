@@ -1,7 +1,9 @@
 // Batch queries (include/ellipsect/batch.hpp): the SIMD certificate filter on chunks of
 // pairs, the scalar function on the pairs it leaves open, chunks shared among threads.
 #include <ellipsect/batch.hpp>
+#include <ellipsect/gpu.hpp>
 
+#include "detail/batch_gpu.hpp"
 #include "detail/batch_kernels.hpp"
 #include "detail/certificates-inl.hpp"
 #include "detail/instantiate.hpp"
@@ -109,19 +111,58 @@ void for_each_chunk(std::size_t n, int threads, const Work& work) {
   run();
 }
 
-// The filter on each chunk; `answer(i, code)` writes pair i's result from its code
-// (0: undecided, the scalar function answers).
-template <class T, int N, class Answer>
-void run_batch(const Pairs<T, N>& pairs, std::size_t out_size, detail::BatchQuery query, const BatchOptions& options,
-               const Answer& answer) {
-  if (out_size != pairs.size()) throw std::invalid_argument("ellipsect: out.size() must equal the number of pairs");
+template <class T, int N>
+std::array<const double*, Pairs<T, N>::columns> columns_of(const Pairs<T, N>& pairs) {
   std::array<const double*, Pairs<T, N>::columns> columns;
   for (int k = 0; k < Pairs<T, N>::columns; ++k) columns[static_cast<std::size_t>(k)] = pairs.column(k);
+  return columns;
+}
+
+void require_size(std::size_t out_size, std::size_t pairs) {
+  if (out_size != pairs) throw std::invalid_argument("ellipsect: out.size() must equal the number of pairs");
+}
+
+// `answer(i, code)` writes pair i's result from its code (0: undecided, the scalar function
+// answers) on each chunk; the codes are `given` (all pairs') or the filter's on the chunk.
+template <class T, int N, class Answer>
+void run_batch(const Pairs<T, N>& pairs, std::size_t out_size, detail::BatchQuery query, const BatchOptions& options,
+               const Answer& answer, const signed char* given = nullptr) {
+  require_size(out_size, pairs.size());
+  const auto columns = columns_of(pairs);
   for_each_chunk(pairs.size(), options.threads, [&](std::size_t begin, std::size_t end) {
     std::array<signed char, chunk> codes;
-    detail::certify_pairs(N, query, columns.data(), begin, end, options.query.tolerance, codes.data());
-    for (std::size_t i = begin; i < end; ++i) answer(i, codes[i - begin]);
+    const signed char* code = given ? given + begin : codes.data();
+    if (!given) detail::certify_pairs(N, query, columns.data(), begin, end, options.query.tolerance, codes.data());
+    for (std::size_t i = begin; i < end; ++i) answer(i, code[i - begin]);
   });
+}
+
+// run_batch with the codes from the GPU where it gives them.
+template <class T, int N, class Answer>
+Backend run_on_gpu(const Pairs<T, N>& pairs, std::size_t out_size, detail::BatchQuery query,
+                   const BatchOptions& options, const Answer& answer) {
+  require_size(out_size, pairs.size());
+  std::vector<signed char> codes(pairs.size());
+  const bool on_gpu = detail::certify_pairs_gpu(N, query, columns_of(pairs).data(), pairs.size(),
+                                                options.query.tolerance, codes.data());
+  run_batch(pairs, out_size, query, options, answer, on_gpu ? codes.data() : nullptr);
+  return on_gpu ? Backend::gpu : Backend::cpu;
+}
+
+template <class T, int N>
+auto overlap_answer(const Pairs<T, N>& pairs, std::span<bool> out, const BatchOptions& options) {
+  return [&pairs, out, &options](std::size_t i, signed char code) {
+    out[i] = code != 0 ? code > 0 : overlap(pairs.a(i), pairs.b(i), options.query);
+  };
+}
+
+template <class T, int N>
+auto classify_answer(const Pairs<T, N>& pairs, std::span<Relation> out, const BatchOptions& options) {
+  return [&pairs, out, &options](std::size_t i, signed char code) {
+    out[i] = code < 0   ? Relation::separated
+             : code > 0 ? Relation::overlapping
+                        : classify(pairs.a(i), pairs.b(i), options.query);
+  };
 }
 
 template <class T, int N>
@@ -137,19 +178,30 @@ Pairs<T, N> pairs_of(std::span<const Ellipsoid<T, N>> a, std::span<const Ellipso
 
 template <class T, int N>
 void overlap(const Pairs<T, N>& pairs, std::span<bool> out, const BatchOptions& options) {
-  run_batch(pairs, out.size(), detail::BatchQuery::overlap, options, [&](std::size_t i, signed char code) {
-    out[i] = code != 0 ? code > 0 : overlap(pairs.a(i), pairs.b(i), options.query);
-  });
+  run_batch(pairs, out.size(), detail::BatchQuery::overlap, options, overlap_answer(pairs, out, options));
 }
 
 template <class T, int N>
 void classify(const Pairs<T, N>& pairs, std::span<Relation> out, const BatchOptions& options) {
-  run_batch(pairs, out.size(), detail::BatchQuery::classify, options, [&](std::size_t i, signed char code) {
-    out[i] = code < 0   ? Relation::separated
-             : code > 0 ? Relation::overlapping
-                        : classify(pairs.a(i), pairs.b(i), options.query);
-  });
+  run_batch(pairs, out.size(), detail::BatchQuery::classify, options, classify_answer(pairs, out, options));
 }
+
+template <class T, int N>
+Backend overlap_on_gpu(const Pairs<T, N>& pairs, std::span<bool> out, const BatchOptions& options) {
+  return run_on_gpu(pairs, out.size(), detail::BatchQuery::overlap, options, overlap_answer(pairs, out, options));
+}
+
+template <class T, int N>
+Backend classify_on_gpu(const Pairs<T, N>& pairs, std::span<Relation> out, const BatchOptions& options) {
+  return run_on_gpu(pairs, out.size(), detail::BatchQuery::classify, options, classify_answer(pairs, out, options));
+}
+
+GpuInfo gpu_info() {
+  const detail::GpuDevice device = detail::gpu_device();
+  return {detail::gpu_built, device.count, device.name};
+}
+
+std::string_view to_string(Backend b) noexcept { return b == Backend::gpu ? "gpu" : "cpu"; }
 
 template <class T, int N>
 void first_contact(const Pairs<T, N>& pairs, std::span<Contact<T, N>> out, const BatchOptions& options) {
@@ -197,6 +249,8 @@ void first_contact(std::span<const Ellipsoid<T, N>> a, std::span<const Vec<T, N>
   template class Pairs<T, N>;                                                                                    \
   template void overlap<T, N>(const Pairs<T, N>&, std::span<bool>, const BatchOptions&);                         \
   template void classify<T, N>(const Pairs<T, N>&, std::span<Relation>, const BatchOptions&);                    \
+  template Backend overlap_on_gpu<T, N>(const Pairs<T, N>&, std::span<bool>, const BatchOptions&);               \
+  template Backend classify_on_gpu<T, N>(const Pairs<T, N>&, std::span<Relation>, const BatchOptions&);          \
   template void first_contact<T, N>(const Pairs<T, N>&, std::span<Contact<T, N>>, const BatchOptions&);          \
   template void overlap<T, N>(std::span<const Ellipsoid<T, N>>, std::span<const Ellipsoid<T, N>>,                \
                               std::span<bool>, const BatchOptions&);                                             \

@@ -9,6 +9,7 @@
 #include <ellipsect/contact.hpp>
 #include <ellipsect/contact_function.hpp>
 #include <ellipsect/distance.hpp>
+#include <ellipsect/gpu.hpp>
 #include <ellipsect/half_space.hpp>
 #include <ellipsect/slide.hpp>
 #include <ellipsect/intersect2.hpp>

@@ -309,6 +309,24 @@ void def_batch_queries(py::module_& m) {
           return classify_array(pairs.size(), [&](std::span<Relation> out) { classify(pairs, out, {o, threads}); });
         },
         py::arg("pairs"), py::arg("options") = Options{}, py::arg("threads") = 0);
+  m.def("overlap_on_gpu",
+        [](const P& pairs, const Options& o, int threads) {
+          Backend backend{};
+          auto out = overlap_array(pairs.size(),
+                                   [&](std::span<bool> s) { backend = overlap_on_gpu(pairs, s, {o, threads}); });
+          return py::make_tuple(out, std::string(to_string(backend)));
+        },
+        py::arg("pairs"), py::arg("options") = Options{}, py::arg("threads") = 0,
+        "overlap(pairs) with the filter on a CUDA GPU (gpu.hpp): (flags, 'gpu' or 'cpu', where it ran).");
+  m.def("classify_on_gpu",
+        [](const P& pairs, const Options& o, int threads) {
+          Backend backend{};
+          auto out = classify_array(pairs.size(),
+                                    [&](std::span<Relation> s) { backend = classify_on_gpu(pairs, s, {o, threads}); });
+          return py::make_tuple(out, std::string(to_string(backend)));
+        },
+        py::arg("pairs"), py::arg("options") = Options{}, py::arg("threads") = 0,
+        "classify(pairs) with the filter on a CUDA GPU (gpu.hpp): (relations, 'gpu' or 'cpu', where it ran).");
   m.def("first_contact",
         [](const B& a, py::handle velocity_a, const B& b, py::handle velocity_b, py::handle t_max, const Options& o,
            int threads) {
@@ -476,6 +494,17 @@ void def_batch(py::module_& m) {
       .def(py::pickle(&state_of<3>, [](const py::tuple& t) { return make_ellipsoids(t[0], t[1], py::none(), t[2]); }));
   def_batch_queries<2>(m);
   def_batch_queries<3>(m);
+  m.def(
+      "gpu_info",
+      [] {
+        const GpuInfo info = gpu_info();
+        py::dict d;
+        d["built"] = info.built;
+        d["devices"] = info.devices;
+        d["name"] = info.name;
+        return d;
+      },
+      "{'built': the library holds the CUDA path, 'devices': CUDA devices present, 'name': the current one's}.");
   def_earliest_contact<2>(m);
   def_earliest_contact<3>(m);
   def_areas(m);

@@ -186,3 +186,19 @@ def test_earliest_contact_equals_the_pairwise_minimum(dim):
     bad[4, 0] = np.nan
     with pytest.raises(ValueError, match=r"motions\[4\].velocity"):
         ellipsect.earliest_contact(bodies, bad, 5.0)
+
+
+@pytest.mark.parametrize("dim", [2, 3])
+def test_gpu_entry_points_equal_batch(dim):
+    a, _ = MAKERS[dim](300, seed=11)
+    b, _ = MAKERS[dim](300, seed=12)
+    p = ellipsect.pairs(a, b)
+    info = ellipsect.gpu_info()
+    expected = "gpu" if info["built"] and info["devices"] > 0 else "cpu"
+    flags, on = ellipsect.overlap_on_gpu(p)
+    relations, on_classify = ellipsect.classify_on_gpu(p)
+    assert on == on_classify == expected
+    assert flags.dtype == np.bool_ and relations.dtype == np.int8
+    assert flags.tolist() == ellipsect.overlap(p).tolist()
+    assert relations.tolist() == ellipsect.classify(p).tolist()
+    assert 0 < flags.sum() < len(flags)

@@ -27,7 +27,10 @@
 // A certified answer is therefore the one the exact path gives (the property tests check
 // both against the 50-digit reference).
 //
-// Highway's per-target include guard: the file is compiled once per SIMD target.
+// Highway's per-target include guard: the file is compiled once per SIMD target. nvcc
+// (batch_gpu.cu) compiles it once, without Highway, for V = double on the GPU: one pair per
+// thread, the operations of the scalar code (built with --fmad=false; division and square
+// root correctly rounded, nvcc's default).
 #if defined(ELLIPSECT_CERTIFICATES_INL_) == defined(HWY_TARGET_TOGGLE)
 #ifdef ELLIPSECT_CERTIFICATES_INL_
 #undef ELLIPSECT_CERTIFICATES_INL_
@@ -39,74 +42,84 @@
 
 #include "axes.hpp"
 
-#include <hwy/highway.h>
-
 #include <cmath>
 #include <limits>
 #include <type_traits>
 #include <utility>
 
+#ifdef __CUDACC__
+#define ELLIPSECT_LANE __host__ __device__ inline
+#define ELLIPSECT_LANE_NAMESPACE cuda
+#else
+#include <hwy/highway.h>
+#define ELLIPSECT_LANE HWY_INLINE
+#define ELLIPSECT_LANE_NAMESPACE HWY_NAMESPACE
 HWY_BEFORE_NAMESPACE();
-namespace ellipsect::detail::HWY_NAMESPACE {
+#endif
+namespace ellipsect::detail::ELLIPSECT_LANE_NAMESPACE {
 
 // Scalar twins of the Highway operations, so one template serves both. Max and Min follow
 // the x86 instructions (the second operand when unordered).
-HWY_INLINE double Sqrt(double x) { return std::sqrt(x); }
-HWY_INLINE double Max(double a, double b) { return a > b ? a : b; }
-HWY_INLINE double Min(double a, double b) { return a < b ? a : b; }
-HWY_INLINE bool Lt(double a, double b) { return a < b; }
-HWY_INLINE bool Le(double a, double b) { return a <= b; }
-HWY_INLINE bool Gt(double a, double b) { return a > b; }
-HWY_INLINE bool Ge(double a, double b) { return a >= b; }
-HWY_INLINE bool IsFinite(double x) { return std::isfinite(x); }
-HWY_INLINE double Abs(double x) { return std::abs(x); }
-HWY_INLINE bool And(bool a, bool b) { return a && b; }
-HWY_INLINE bool Or(bool a, bool b) { return a || b; }
-HWY_INLINE bool AndNot(bool not_a, bool b) { return !not_a && b; }
-HWY_INLINE bool Not(bool a) { return !a; }
-HWY_INLINE double IfThenElse(bool m, double yes, double no) { return m ? yes : no; }
+ELLIPSECT_LANE double Sqrt(double x) { return std::sqrt(x); }
+ELLIPSECT_LANE double Max(double a, double b) { return a > b ? a : b; }
+ELLIPSECT_LANE double Min(double a, double b) { return a < b ? a : b; }
+ELLIPSECT_LANE bool Lt(double a, double b) { return a < b; }
+ELLIPSECT_LANE bool Le(double a, double b) { return a <= b; }
+ELLIPSECT_LANE bool Gt(double a, double b) { return a > b; }
+ELLIPSECT_LANE bool Ge(double a, double b) { return a >= b; }
+ELLIPSECT_LANE bool IsFinite(double x) { return std::isfinite(x); }
+ELLIPSECT_LANE double Abs(double x) { return std::abs(x); }
+ELLIPSECT_LANE bool And(bool a, bool b) { return a && b; }
+ELLIPSECT_LANE bool Or(bool a, bool b) { return a || b; }
+ELLIPSECT_LANE bool AndNot(bool not_a, bool b) { return !not_a && b; }
+ELLIPSECT_LANE bool Not(bool a) { return !a; }
+ELLIPSECT_LANE double IfThenElse(bool m, double yes, double no) { return m ? yes : no; }
 
 template <class V>
-HWY_INLINE V Splat(double x) {
+ELLIPSECT_LANE V Splat(double x) {
   if constexpr (std::is_same_v<V, double>) {
     return x;
   } else {
+#ifndef __CUDACC__
     return hwy::HWY_NAMESPACE::Set(hwy::HWY_NAMESPACE::DFromV<V>(), x);
+#endif
   }
 }
 
 template <class V, class M>
-HWY_INLINE bool all_lanes(M m) {
+ELLIPSECT_LANE bool all_lanes(M m) {
   if constexpr (std::is_same_v<V, double>) {
     return m;
   } else {
+#ifndef __CUDACC__
     return hwy::HWY_NAMESPACE::AllTrue(hwy::HWY_NAMESPACE::DFromV<V>(), m);
+#endif
   }
 }
 
 template <class V, int N>
-HWY_INLINE V dot(const V* x, const V* y) {
+ELLIPSECT_LANE V dot(const V* x, const V* y) {
   V s = x[0] * y[0];
   for (int i = 1; i < N; ++i) s = s + x[i] * y[i];
   return s;
 }
 
 template <class V, int N>
-HWY_INLINE V largest(const V* r) {
+ELLIPSECT_LANE V largest(const V* r) {
   V m = r[0];
   for (int i = 1; i < N; ++i) m = Max(m, r[i]);
   return m;
 }
 
 template <class V, int N>
-HWY_INLINE V smallest(const V* r) {
+ELLIPSECT_LANE V smallest(const V* r) {
   V m = r[0];
   for (int i = 1; i < N; ++i) m = Min(m, r[i]);
   return m;
 }
 
 template <class V, int N>
-HWY_INLINE void times(const V (&s)[N][N], const V* w, V* g) {
+ELLIPSECT_LANE void times(const V (&s)[N][N], const V* w, V* g) {
   for (int i = 0; i < N; ++i) g[i] = dot<V, N>(s[i], w);
 }
 
@@ -151,7 +164,7 @@ BodyLanes<double, N> lanes_of(const Ellipsoid<T, N>& e, Fill fill) noexcept {
 
 // The body's quadric at offset w from its center, w^T M w.
 template <class V, int N>
-HWY_INLINE V level(const BodyLanes<V, N>& b, const V* w) {
+ELLIPSECT_LANE V level(const BodyLanes<V, N>& b, const V* w) {
   V mw[N];
   times<V, N>(b.m, w, mw);
   return dot<V, N>(w, mw);
@@ -185,7 +198,7 @@ struct PerramWertheim {
   // The determinant and the pivots must be normal numbers: a subnormal one has lost digits
   // and its reciprocal may overflow (3D balls 1e107 apart in size have det(C) ~ 1e-313, and
   // an infinite F would certify separation).
-  HWY_INLINE void factor(const V (&sa)[N][N], const V (&sb)[N][N]) {
+  ELLIPSECT_LANE void factor(const V (&sa)[N][N], const V (&sb)[N][N]) {
     const V one = Splat<V>(1), zero = Splat<V>(0), tiny = Splat<V>(std::numeric_limits<double>::min());
     V c[N][N];
     for (int i = 0; i < N; ++i)
@@ -230,7 +243,7 @@ struct PerramWertheim {
   }
 
   // x = C^-1 rhs.
-  HWY_INLINE void solve(const V* rhs, V* x) const {
+  ELLIPSECT_LANE void solve(const V* rhs, V* x) const {
     V xc[N];
     if (solver != Solver::ldlt)
       for (int i = 0; i < N; ++i) xc[i] = dot<V, N>(adj[i], rhs) * inv_det;
@@ -252,7 +265,7 @@ struct PerramWertheim {
 
   // The Newton iterate: l - F'/F'' and m + F'/F'' (F'' from z = C^-1 (Sb - Sa) y:
   // A' = -2 (Sa y).z, B' = -2 (Sb y).z), or (l, m) where it leaves (0, 1) or F'' >= 0.
-  HWY_INLINE void newton(V& l_next, V& m_next) const {
+  ELLIPSECT_LANE void newton(V& l_next, V& m_next) const {
     const V zero = Splat<V>(0), two = Splat<V>(2);
     V d[N], z[N];
     for (int i = 0; i < N; ++i) d[i] = sy_b[i] - sy_a[i];
@@ -267,7 +280,7 @@ struct PerramWertheim {
 };
 
 template <class V, int N, class Mask>
-HWY_INLINE PerramWertheim<V, N> perram_wertheim(const V (&sa)[N][N], const V (&sb)[N][N], const V* r, V l, V m,
+ELLIPSECT_LANE PerramWertheim<V, N> perram_wertheim(const V (&sa)[N][N], const V (&sb)[N][N], const V* r, V l, V m,
                                                 Solver solver, Mask closed) {
   PerramWertheim<V, N> p;
   p.solver = solver;
@@ -289,13 +302,13 @@ HWY_INLINE PerramWertheim<V, N> perram_wertheim(const V (&sa)[N][N], const V (&s
 
 // Circumscribed-ball reach of the pair, with the band and the 1e-9 rounding margin.
 template <class V, int N>
-HWY_INLINE V outer_reach(const BodyLanes<V, N>& a, const BodyLanes<V, N>& b, V tol) {
+ELLIPSECT_LANE V outer_reach(const BodyLanes<V, N>& a, const BodyLanes<V, N>& b, V tol) {
   return (a.rmax + b.rmax) * (Splat<V>(1) + Splat<V>(2) * tol + Splat<V>(1e-9));
 }
 
 // The circumscribed balls are apart; the inscribed balls meet (both with a 1e-9 margin).
 template <class V, int N>
-HWY_INLINE auto ball_tests(const BodyLanes<V, N>& a, const BodyLanes<V, N>& b, V tol) {
+ELLIPSECT_LANE auto ball_tests(const BodyLanes<V, N>& a, const BodyLanes<V, N>& b, V tol) {
   V r[N];
   for (int i = 0; i < N; ++i) r[i] = b.c[i] - a.c[i];
   const V d2 = dot<V, N>(r, r);
@@ -313,7 +326,7 @@ inline constexpr int newton_steps = 3;
 // most; a lane's code does not depend on the other lanes, nor on whether the rounds are
 // run at once or after a first call with none (the rounds start from the same iterate).
 template <class V, int N, bool containment, int rounds = newton_steps>
-HWY_INLINE V certify(const BodyLanes<V, N>& a, const BodyLanes<V, N>& b, V tol) {
+ELLIPSECT_LANE V certify(const BodyLanes<V, N>& a, const BodyLanes<V, N>& b, V tol) {
   const V one = Splat<V>(1), zero = Splat<V>(0), minus_one = zero - one;
   V r[N];
   for (int i = 0; i < N; ++i) r[i] = b.c[i] - a.c[i];
@@ -375,19 +388,19 @@ HWY_INLINE V certify(const BodyLanes<V, N>& a, const BodyLanes<V, N>& b, V tol) 
 }
 
 template <class V, int N, int rounds = newton_steps>
-HWY_INLINE V overlap_code(const BodyLanes<V, N>& a, const BodyLanes<V, N>& b, V tol) {
+ELLIPSECT_LANE V overlap_code(const BodyLanes<V, N>& a, const BodyLanes<V, N>& b, V tol) {
   return certify<V, N, false, rounds>(a, b, tol);
 }
 
 template <class V, int N, int rounds = newton_steps>
-HWY_INLINE V classify_code(const BodyLanes<V, N>& a, const BodyLanes<V, N>& b, V tol) {
+ELLIPSECT_LANE V classify_code(const BodyLanes<V, N>& a, const BodyLanes<V, N>& b, V tol) {
   return certify<V, N, true, rounds>(a, b, tol);
 }
 
 // +1 when the velocities and t_max are valid and the circumscribed balls stay apart over
 // [0, t_max] (first_contact: no contact in the window), else 0.
 template <class V, int N>
-HWY_INLINE V swept_code(const BodyLanes<V, N>& a, const V* va, const BodyLanes<V, N>& b, const V* vb, V t_max,
+ELLIPSECT_LANE V swept_code(const BodyLanes<V, N>& a, const V* va, const BodyLanes<V, N>& b, const V* vb, V t_max,
                         V tol) {
   const V one = Splat<V>(1), zero = Splat<V>(0);
   V c0[N], v[N];
@@ -425,7 +438,9 @@ double certificate_code(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b, doub
   return certify<double, N, containment>(lanes_of(a, fill), lanes_of(b, fill), tol);
 }
 
-}  // namespace ellipsect::detail::HWY_NAMESPACE
+}  // namespace ellipsect::detail::ELLIPSECT_LANE_NAMESPACE
+#ifndef __CUDACC__
 HWY_AFTER_NAMESPACE();
+#endif
 
 #endif  // per-target include guard

@@ -1,0 +1,79 @@
+// The GPU entry points (gpu.hpp) answer as the scalar functions do, pair for pair, on every
+// scenario category, on the GPU where one is present and on the CPU path where not; and
+// they say which one answered.
+#include <ellipsect/gpu.hpp>
+
+#include "scenarios/scenarios.hpp"
+
+#include <gtest/gtest.h>
+
+#include <memory>
+#include <stdexcept>
+
+namespace {
+
+using namespace ellipsect;
+
+template <class T, int N>
+Pairs<T, N> scenario_pairs(int per_category) {
+  Pairs<T, N> pairs;
+  for (const auto category : scenarios::all_categories)
+    for (int i = 0; i < per_category; ++i) {
+      const auto c = scenarios::make_case<N>(category, 9100 + std::uint64_t(i));
+      pairs.push_back(Ellipsoid<T, N>::from_axes(c.a.center().template cast<T>(), c.a.axes().template cast<T>(),
+                                                 c.a.radii().template cast<T>()),
+                      Ellipsoid<T, N>::from_axes(c.b.center().template cast<T>(), c.b.axes().template cast<T>(),
+                                                 c.b.radii().template cast<T>()));
+    }
+  return pairs;
+}
+
+// The backend a call must report: the GPU exactly where the library holds the CUDA path
+// and a device is present.
+Backend expected_backend() {
+  const GpuInfo info = gpu_info();
+  return info.built && info.devices > 0 ? Backend::gpu : Backend::cpu;
+}
+
+template <class T, int N>
+void expect_equals_scalar(int per_category) {
+  const Pairs<T, N> pairs = scenario_pairs<T, N>(per_category);
+  const std::size_t n = pairs.size();
+  const auto overlaps = std::make_unique<bool[]>(n);
+  const auto relations = std::make_unique<Relation[]>(n);
+  EXPECT_EQ(overlap_on_gpu(pairs, std::span<bool>(overlaps.get(), n)), expected_backend());
+  EXPECT_EQ(classify_on_gpu(pairs, std::span<Relation>(relations.get(), n)), expected_backend());
+  for (std::size_t i = 0; i < n; ++i) {
+    EXPECT_EQ(overlaps[i], overlap(pairs.a(i), pairs.b(i))) << "pair " << i;
+    EXPECT_EQ(relations[i], classify(pairs.a(i), pairs.b(i))) << "pair " << i;
+  }
+}
+
+TEST(Gpu, InfoIsConsistent) {
+  const GpuInfo info = gpu_info();
+  if (!info.built) {
+    EXPECT_EQ(info.devices, 0);
+  }
+  if (info.devices == 0) {
+    EXPECT_EQ(info.name, "");
+  }
+  EXPECT_GE(info.devices, 0);
+  EXPECT_EQ(to_string(Backend::gpu), "gpu");
+  EXPECT_EQ(to_string(Backend::cpu), "cpu");
+}
+
+TEST(Gpu, EqualsScalar3D) { expect_equals_scalar<double, 3>(40); }
+TEST(Gpu, EqualsScalar2D) { expect_equals_scalar<double, 2>(40); }
+TEST(Gpu, EqualsScalarInFloat) { expect_equals_scalar<float, 3>(20); }
+
+TEST(Gpu, EmptyAndMismatchedSizes) {
+  const Pairs<double, 3> none;
+  EXPECT_EQ(overlap_on_gpu(none, std::span<bool>()), expected_backend());
+  const Pairs<double, 3> some = scenario_pairs<double, 3>(1);  // one per category
+  bool out[1];
+  Relation rel[1];
+  EXPECT_THROW(overlap_on_gpu(some, std::span<bool>(out, 1)), std::invalid_argument);
+  EXPECT_THROW(classify_on_gpu(some, std::span<Relation>(rel, 1)), std::invalid_argument);
+}
+
+}  // namespace
