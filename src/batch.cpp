@@ -13,8 +13,15 @@
 #include <array>
 #include <atomic>
 #include <cmath>
+#include <condition_variable>
+#include <cstdint>
+#include <functional>
+#include <limits>
+#include <mutex>
 #include <stdexcept>
 #include <thread>
+
+#include <unistd.h>
 
 namespace ellipsect {
 
@@ -91,24 +98,93 @@ Vec<T, N> Pairs<T, N>::velocity_b(std::size_t i) const {
 namespace {
 
 constexpr std::size_t chunk = 1024;           // pairs per unit of work (a thread takes whole chunks)
-constexpr std::size_t chunks_per_thread = 8;  // at least ~100 us of work per thread started
+constexpr std::size_t chunks_per_thread = 8;  // at least ~100 us of work per thread asked for
 
-// Calls work(begin, end) on every chunk of [0, n), on up to `threads` threads (0: all).
+// Worker threads kept between calls, one per hardware thread beyond the caller's, started
+// on first use. Starting threads on each call cost about 100 us (a third of a 16,384-pair
+// overlap on 2 cores). One call holds the pool at a time; a call that finds it held runs
+// its work on its own thread. The caller runs the work too, and when it is done, workers
+// that have not woken up yet are no longer waited for (the work is shared through an atomic
+// counter, so there is nothing left for them): a call never waits for a wake-up. In a
+// forked child, where the workers do not exist, calls run alone without touching the pool.
+class Workers {
+public:
+  static Workers& get() {
+    static Workers* const pool = new Workers();  // never destroyed: workers wait in it until exit
+    return *pool;
+  }
+
+  // work() on the caller and on up to `extra` workers; returns once every one that began has returned.
+  template <class Work>
+  void run(std::size_t extra, const Work& work) {
+    if (extra == 0 || getpid() != owner_) return work();
+    std::unique_lock busy(busy_, std::try_to_lock);
+    if (!busy) return work();
+    const std::function<void()> job = [&work] { work(); };
+    {
+      std::lock_guard lock(mutex_);
+      job_ = &job;
+      wanted_ = std::min(extra, threads_);
+      taken_ = 0;
+      ++generation_;
+    }
+    wake_.notify_all();
+    struct Join {  // also where work() throws: the workers hold references to it
+      Workers& pool;
+      ~Join() {
+        std::unique_lock lock(pool.mutex_);
+        pool.wanted_ = pool.taken_;  // those not yet awake stay out
+        pool.done_.wait(lock, [&] { return pool.running_ == 0; });
+      }
+    } join{*this};
+    work();
+  }
+
+private:
+  Workers() : owner_(getpid()), threads_(std::max(1u, std::thread::hardware_concurrency()) - 1) {
+    for (std::size_t i = 0; i < threads_; ++i) std::thread([this] { loop(); }).detach();
+  }
+
+  void loop() {
+    std::uint64_t seen = 0;
+    std::unique_lock lock(mutex_);
+    for (;;) {
+      wake_.wait(lock, [&] { return generation_ != seen; });
+      seen = generation_;
+      if (taken_ >= wanted_) continue;
+      ++taken_;
+      ++running_;
+      const std::function<void()>* job = job_;
+      lock.unlock();
+      (*job)();
+      lock.lock();
+      if (--running_ == 0) done_.notify_all();
+    }
+  }
+
+  const pid_t owner_;  // the process whose threads these are
+  const std::size_t threads_;
+  std::mutex busy_;   // held by the call using the pool
+  std::mutex mutex_;  // guards the fields below
+  std::condition_variable wake_, done_;
+  std::uint64_t generation_ = 0;
+  std::size_t wanted_ = 0, taken_ = 0, running_ = 0;
+  const std::function<void()>* job_ = nullptr;
+};
+
+// Calls work(begin, end) on every chunk of [0, n), on up to `threads` threads (0: all
+// hardware threads; at most the pool and the caller).
 template <class Work>
 void for_each_chunk(std::size_t n, int threads, const Work& work) {
   const std::size_t chunks = (n + chunk - 1) / chunk;
-  static const unsigned hardware = std::max(1u, std::thread::hardware_concurrency());  // reads sysfs: ~8 us
-  std::size_t workers = threads > 0 ? std::size_t(threads) : hardware;
-  workers = std::min(workers, (chunks + chunks_per_thread - 1) / chunks_per_thread);
+  const std::size_t wanted = std::min(threads > 0 ? std::size_t(threads) : std::numeric_limits<std::size_t>::max(),
+                                      (chunks + chunks_per_thread - 1) / chunks_per_thread);
   std::atomic<std::size_t> next{0};
   auto run = [&] {
     for (std::size_t c; (c = next.fetch_add(1)) < chunks;) work(c * chunk, std::min(n, (c + 1) * chunk));
   };
-  if (workers <= 1) return run();
-  std::vector<std::jthread> pool;
-  pool.reserve(workers - 1);
-  for (std::size_t w = 1; w < workers; ++w) pool.emplace_back(run);
-  run();
+  if (wanted <= 1) return run();
+  Workers::get().run(wanted - 1, run);
 }
 
 template <class T, int N>

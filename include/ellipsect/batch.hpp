@@ -20,8 +20,9 @@
 // SSSE3, and a portable scalar fallback) and picks the widest one the CPU has at run
 // time; simd_targets() lists them and set_simd_target() pins one (tests, benchmarks).
 // Threads: pairs are cut into chunks of 1024 that threads take in turn (a thread per 8
-// chunks at most); each answer is written to its own slot, so the output never depends
-// on the thread count.
+// chunks at most, from a pool kept between calls; a call made while another holds the
+// pool, or in a forked child, runs on the calling thread); each answer is written to its
+// own slot, so the output never depends on the thread count.
 #pragma once
 
 #include <ellipsect/classify.hpp>

@@ -6,6 +6,7 @@
 #include "detail/certificates-inl.hpp"
 #include "scenarios/scenarios.hpp"
 #include "tests/support.hpp"
+#include "tests/unit/scenario_pairs.hpp"
 
 #include <gtest/gtest.h>
 
@@ -13,29 +14,16 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <thread>
+#include <vector>
+
+#include <sys/wait.h>
+#include <unistd.h>
 
 namespace {
 
 using namespace ellipsect;
-
-template <class T, int N>
-Ellipsoid<T, N> as(const Ellipsoid<double, N>& e) {
-  return Ellipsoid<T, N>::from_axes(e.center().template cast<T>(), e.axes().template cast<T>(),
-                                    e.radii().template cast<T>());
-}
-
-// Every category, `per_category` seeds each, plus a count that is no multiple of any
-// vector width (the padded tail).
-template <class T, int N>
-Pairs<T, N> scenario_pairs(int per_category) {
-  Pairs<T, N> pairs;
-  for (const auto category : scenarios::all_categories)
-    for (int i = 0; i < per_category; ++i) {
-      const auto c = scenarios::make_case<N>(category, 7000 + std::uint64_t(i));
-      pairs.push_back(as<T>(c.a), c.va.template cast<T>(), as<T>(c.b), c.vb.template cast<T>(), T(c.t_max));
-    }
-  return pairs;
-}
+using ellipsect::testing::scenario_pairs;
 
 template <class T>
 bool same_bits(T x, T y) {
@@ -159,6 +147,34 @@ TEST(Batch, IndependentOfThreadCount) {
     EXPECT_EQ(r, relations);
     for (std::size_t i = 0; i < n; ++i) expect_same(c[i], contacts[i], i);
   }
+}
+
+// Calls from several threads at once: one holds the worker pool, the others run alone;
+// every answer is the one-thread answer. A forked child runs without the pool.
+TEST(Batch, ConcurrentCallsAndForkedChild) {
+  const auto base = scenario_pairs<double, 3>(ellipsect::testing::cases(20));
+  Pairs<double, 3> pairs;
+  while (pairs.size() < 20000)
+    for (std::size_t i = 0; i < base.size(); ++i) pairs.push_back(base.a(i), base.b(i));
+  const std::size_t n = pairs.size();
+  auto run = [&](int threads) {
+    std::vector<Relation> relations(n);
+    classify(pairs, std::span<Relation>(relations), {.query = {}, .threads = threads});
+    return relations;
+  };
+  const auto expected = run(1);
+  std::vector<std::vector<Relation>> got(4);
+  {
+    std::vector<std::jthread> callers;
+    for (auto& g : got) callers.emplace_back([&] { g = run(0); });
+  }
+  for (const auto& g : got) EXPECT_EQ(g, expected);
+  const pid_t child = fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) _exit(run(0) == expected ? 0 : 1);
+  int status = 0;
+  ASSERT_EQ(waitpid(child, &status, 0), child);
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0);
 }
 
 TEST(Batch, ArrayOfStructsEntryPoints) {

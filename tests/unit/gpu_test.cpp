@@ -3,7 +3,7 @@
 // they say which one answered.
 #include <ellipsect/gpu.hpp>
 
-#include "scenarios/scenarios.hpp"
+#include "tests/unit/scenario_pairs.hpp"
 
 #include <gtest/gtest.h>
 
@@ -13,20 +13,7 @@
 namespace {
 
 using namespace ellipsect;
-
-template <class T, int N>
-Pairs<T, N> scenario_pairs(int per_category) {
-  Pairs<T, N> pairs;
-  for (const auto category : scenarios::all_categories)
-    for (int i = 0; i < per_category; ++i) {
-      const auto c = scenarios::make_case<N>(category, 9100 + std::uint64_t(i));
-      pairs.push_back(Ellipsoid<T, N>::from_axes(c.a.center().template cast<T>(), c.a.axes().template cast<T>(),
-                                                 c.a.radii().template cast<T>()),
-                      Ellipsoid<T, N>::from_axes(c.b.center().template cast<T>(), c.b.axes().template cast<T>(),
-                                                 c.b.radii().template cast<T>()));
-    }
-  return pairs;
-}
+using ellipsect::testing::scenario_pairs;
 
 // The backend a call must report: the GPU exactly where the library holds the CUDA path
 // and a device is present.
@@ -37,7 +24,7 @@ Backend expected_backend() {
 
 template <class T, int N>
 void expect_equals_scalar(int per_category) {
-  const Pairs<T, N> pairs = scenario_pairs<T, N>(per_category);
+  const Pairs<T, N> pairs = scenario_pairs<T, N>(per_category, 9100);
   const std::size_t n = pairs.size();
   const auto overlaps = std::make_unique<bool[]>(n);
   const auto relations = std::make_unique<Relation[]>(n);
@@ -69,7 +56,7 @@ TEST(Gpu, EqualsScalarInFloat) { expect_equals_scalar<float, 3>(20); }
 TEST(Gpu, EmptyAndMismatchedSizes) {
   const Pairs<double, 3> none;
   EXPECT_EQ(overlap_on_gpu(none, std::span<bool>()), expected_backend());
-  const Pairs<double, 3> some = scenario_pairs<double, 3>(1);  // one per category
+  const Pairs<double, 3> some = scenario_pairs<double, 3>(1, 9100);  // one per category
   bool out[1];
   Relation rel[1];
   EXPECT_THROW(overlap_on_gpu(some, std::span<bool>(out, 1)), std::invalid_argument);
