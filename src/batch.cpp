@@ -101,9 +101,9 @@ constexpr std::size_t chunk = 1024;           // pairs per unit of work (a threa
 constexpr std::size_t chunks_per_thread = 8;  // at least ~100 us of work per thread asked for
 
 // Worker threads kept between calls, one per hardware thread beyond the caller's, started
-// on first use. Starting threads on each call cost about 100 us (a third of a 16,384-pair
-// overlap on 2 cores). One call holds the pool at a time; a call that finds it held runs
-// its work on its own thread. The caller runs the work too, and when it is done, workers
+// on first use. Starting threads on each call cost about a fifth of a 16,384-pair overlap
+// on 2 cores (bench/RESULTS.md). One call holds the pool at a time; a call that finds it
+// held runs its work on its own thread. The caller runs the work too, and when it is done, workers
 // that have not woken up yet are no longer waited for (the work is shared through an atomic
 // counter, so there is nothing left for them): a call never waits for a wake-up. In a
 // forked child, where the workers do not exist, calls run alone without touching the pool.
