@@ -1,13 +1,16 @@
 // ns per query of Niemitalo's 2D methods next to the exact overlap, on the same pairs: the
 // seeded scenario mix (scenarios/scenarios.hpp, 256 pairs per category, 2560 in all), with
 // b replaced by the circle at its center with the geometric mean of its radii for the
-// ellipse-circle queries. /n is max_level. Timing and the per-query median: see
-// bench/bench_support.hpp.
+// ellipse-circle queries; and, for the ellipse-circle tests against the document's own code
+// (bench/niemitalo_document.hpp), 2560 near-tangent pairs (the circle touching a's boundary
+// at a random point, moved by +-1e-9 .. 1e-6 of its radius), where every level runs. /n is
+// max_level. Timing and the per-query median: see bench/bench_support.hpp.
 #include <ellipsect/classify.hpp>
 #include <ellipsect/polygonal2.hpp>
 #include <ellipsect/quartic2.hpp>
 
 #include "bench/bench_support.hpp"
+#include "bench/niemitalo_document.hpp"
 #include "scenarios/scenarios.hpp"
 
 #include <benchmark/benchmark.h>
@@ -47,9 +50,58 @@ const std::vector<Pair<T>>& pairs() {
   return all;
 }
 
+// The scenario mix's ellipses a, each with a circle of radius sqrt(r_b0 r_b1) placed
+// against it at a random boundary point, the gap +-1e-9 .. 1e-6 of the radius.
+template <class T>
+const std::vector<Pair<T>>& tangent_pairs() {
+  static const auto all = [] {
+    std::vector<Pair<T>> v;
+    scenarios::detail::Rng rng(910000);
+    for (const auto c : scenarios::all_categories)
+      for (int i = 0; i < cases_per_category; ++i) {
+        const auto s = scenarios::make_case<2>(c, 900000 + i);
+        const double r = std::sqrt(s.b.radii().prod());
+        const double gap = (i % 2 ? -1 : 1) * scenarios::detail::log_uniform(rng, 1e-9, 1e-6);
+        const Vec2<double> center = scenarios::detail::tangent_center<2>(
+            s.a, scenarios::detail::unit_vector<2>(rng), Mat2<double>::Identity(), Vec2<double>(r, r), gap);
+        const auto circle = make_circle<T>(center.cast<T>(), T(r));
+        v.push_back({as<T>(s.a), as<T>(s.b), circle, circle.ellipse()});
+      }
+    return v;
+  }();
+  return all;
+}
+
 template <class T, class Query>
 void cycle(benchmark::State& state, Query query) {
   ellipsect::bench::time_cases(state, pairs<T>(), query);
+}
+
+// The document's test takes an axis-aligned ellipse: the circle's center is turned into
+// a's axes inside the timed query.
+template <class T>
+bool document_collide(const ellipsect::bench::DocumentEllipseCircle<T>& test, const Pair<T>& p) {
+  const Vec2<T> local = p.a.axes().transpose() * (p.circle.center() - p.a.center());
+  return test.collide(T(0), T(0), p.a.radii()[0], p.a.radii()[1], local.x(), local.y(), p.circle.radius());
+}
+
+template <class T>
+void BM_document_circle(benchmark::State& state) {
+  const ellipsect::bench::DocumentEllipseCircle<T> test(static_cast<int>(state.range(0)));
+  cycle<T>(state, [&test](const Pair<T>& p) { return document_collide(test, p); });
+}
+
+template <class T>
+void BM_polygonal_circle_tangent(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  ellipsect::bench::time_cases(state, tangent_pairs<T>(),
+                               [n](const Pair<T>& p) { return polygonal_overlap(p.a, p.circle, n).verdict; });
+}
+
+template <class T>
+void BM_document_circle_tangent(benchmark::State& state) {
+  const ellipsect::bench::DocumentEllipseCircle<T> test(static_cast<int>(state.range(0)));
+  ellipsect::bench::time_cases(state, tangent_pairs<T>(), [&test](const Pair<T>& p) { return document_collide(test, p); });
 }
 
 template <class T>
@@ -100,6 +152,12 @@ void BM_overlap_ellipses(benchmark::State& state) {
 
 BENCHMARK(BM_polygonal_circle<double>)->DenseRange(1, 10);
 BENCHMARK(BM_polygonal_circle<float>)->DenseRange(1, 10);
+BENCHMARK(BM_document_circle<double>)->DenseRange(1, 10);
+BENCHMARK(BM_document_circle<float>)->DenseRange(1, 10);
+BENCHMARK(BM_polygonal_circle_tangent<double>)->DenseRange(1, 10);
+BENCHMARK(BM_polygonal_circle_tangent<float>)->DenseRange(1, 10);
+BENCHMARK(BM_document_circle_tangent<double>)->DenseRange(1, 10);
+BENCHMARK(BM_document_circle_tangent<float>)->DenseRange(1, 10);
 BENCHMARK(BM_circle_cover<double>)->DenseRange(1, 10);
 BENCHMARK(BM_closed_form_circle<double>);
 BENCHMARK(BM_closed_form_circle<float>);

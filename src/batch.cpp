@@ -217,12 +217,17 @@ void run_batch(const Pairs<T, N>& pairs, std::size_t out_size, detail::BatchQuer
 template <class T, int N, class Answer>
 Backend run_on_gpu(const Pairs<T, N>& pairs, std::size_t out_size, detail::BatchQuery query,
                    const BatchOptions& options, const Answer& answer) {
-  require_size(out_size, pairs.size());
-  std::vector<signed char> codes(pairs.size());
-  const bool on_gpu = detail::certify_pairs_gpu(N, query, columns_of(pairs).data(), pairs.size(),
-                                                options.query.tolerance, codes.data());
-  run_batch(pairs, out_size, query, options, answer, on_gpu ? codes.data() : nullptr);
-  return on_gpu ? Backend::gpu : Backend::cpu;
+  if constexpr (detail::gpu_built) {
+    require_size(out_size, pairs.size());  // before the device's work
+    std::vector<signed char> codes(pairs.size());
+    const bool on_gpu = detail::certify_pairs_gpu(N, query, columns_of(pairs).data(), pairs.size(),
+                                                  options.query.tolerance, codes.data());
+    run_batch(pairs, out_size, query, options, answer, on_gpu ? codes.data() : nullptr);
+    return on_gpu ? Backend::gpu : Backend::cpu;
+  } else {
+    run_batch(pairs, out_size, query, options, answer);
+    return Backend::cpu;
+  }
 }
 
 template <class T, int N>

@@ -1,12 +1,12 @@
 // Niemitalo's polygon bisection (docs/niemitalo.md). Differences from the document's code:
 //
 // * Out of levels is `undecided`, with the certified band of the signed gap, never `false`.
-// * The choice between the two sub-triangles tests each one exactly (center inside, or an
-//   outer edge within reach). The document's shortcuts (a center on the inner side of a
-//   new chord counts as a collision; a sub-triangle is chosen by projections onto the
-//   tangent at the new vertex) hold in the circle's frame but not after the stretch of
-//   the non-parallel ellipse-ellipse test, where they report collisions between separated
-//   ellipses (tests/unit/polygonal2_test.cpp has one).
+// * The document's bisection shortcuts (a center on the inner side of a new chord counts
+//   as a collision; a sub-triangle is chosen by projections onto the tangent at the new
+//   vertex) are exact in the folded frame of an axis-aligned ellipse (bisect_folded, with
+//   touching counted as meeting), but not after the stretch of the non-parallel
+//   ellipse-ellipse test, where they report collisions between separated ellipses
+//   (tests/unit/polygonal2_test.cpp has one): there both sub-triangles are tested exactly.
 // * Level 0 of the non-parallel test checks all four edges: the document checks the two
 //   on the circle's side of the first semi-diameter, but the nearest edge can be one of
 //   the other two when the stretched semi-diameters are far from perpendicular.
@@ -146,6 +146,56 @@ Outcome bisect(const Disk<T>& d, Pt<T> c0, Pt<T> c2, int max_level) noexcept {
   return {Verdict::undecided, max_level, max_level};
 }
 
+// The disk meets the chord from c1 to c1 + e, given that it misses both ends, or its
+// center is within the chord's extent on the side `inner` (+1: left of e, -1: right).
+template <class T>
+bool meets_chord_or_inside(const Disk<T>& d, Pt<T> u, Pt<T> e, T inner) noexcept {
+  const T proj = dot(u, e), len2 = dot(e, e);
+  if (proj < T(0) || proj > len2) return false;
+  const T side = inner * cross(e, u);
+  return side >= T(0) || side * side <= d.rr * len2;
+}
+
+// The bisection of quadrant_test: the arc (c0, c2) of an axis-aligned ellipse in the first
+// quadrant, where both coordinates are monotonic along the arc, and the disk's center p in
+// that quadrant. The disk meets the live triangle (c0, V, c2) and misses the polygon of
+// level t - 1. There the document's iteration is exact (docs/niemitalo.md, "The folded
+// bisection"):
+// * p within a new chord's extent and on its inner side lies in the polygon (whose part in
+//   the quadrant is closed under decreasing either coordinate); with c1 tested, this and
+//   the two chords cover the triangle (c0, c1, c2), whose angle at c1 is obtuse.
+// * Otherwise, with t3 = c3 - c1 along the tangent at c1: a disk wholly beyond that
+//   tangent misses both sub-triangles; else p projecting into [c1, c3] means the disk
+//   meets (c0, c3, c1), beyond c3 it does iff p projects onto the tangent at c0 on c0's
+//   side of c3 (or contains c3); the same with c4 and c2 on the other side.
+template <class T>
+[[gnu::always_inline]] inline Outcome bisect_folded(const Disk<T>& d, Pt<T> c0, Pt<T> c2, int max_level) noexcept {
+  const auto& k = detail::niemitalo_coefficients<T>();
+  for (int t = 1; t <= max_level; ++t) {
+    const Pt<T> c1 = k.inner[t] * (c0 + c2);
+    const Pt<T> u = d.p - c1;
+    if (dot(u, u) <= d.rr || meets_chord_or_inside(d, u, c2 - c1, T(1)) || meets_chord_or_inside(d, u, c0 - c1, T(-1)))
+      return {Verdict::collision, t, t};
+    const Pt<T> c3 = k.outer[t] * (c0 + c1);
+    const Pt<T> c4 = (c1 - c3) + c1;
+    const Pt<T> p3 = d.p - c3, p4 = d.p - c4, t3 = c3 - c1;
+    const T side = cross(t3, u), len2 = dot(t3, t3), proj = dot(u, t3);
+    if (dot(p3, p3) <= d.rr)
+      c2 = c1;
+    else if (dot(p4, p4) <= d.rr)
+      c0 = c1;
+    else if (side > T(0) && side * side > d.rr * len2)
+      return {Verdict::no_collision, t, t};
+    else if (proj > T(0) && (proj <= len2 || dot(p3, c0 - c3) >= T(0)))
+      c2 = c1;
+    else if (proj <= T(0) && (-proj <= len2 || dot(p4, c2 - c4) >= T(0)))
+      c0 = c1;
+    else
+      return {Verdict::no_collision, t, t};
+  }
+  return {Verdict::undecided, max_level, max_level};
+}
+
 // Axis-aligned ellipse (w, h) with the center folded into the first quadrant (the ellipse
 // is symmetric about both axes, so its point nearest to the center stays there): level 0
 // is the edge (w, 0) -> (0, h) of the inscribed rhombus and the box [0, w] x [0, h].
@@ -170,13 +220,13 @@ Outcome point_test(const Disk<T>& d) noexcept {
 }
 
 template <class T>
-Outcome quadrant_test(const Disk<T>& d, T w, T h, int max_level) noexcept {
+[[gnu::always_inline]] inline Outcome quadrant_test(const Disk<T>& d, T w, T h, int max_level) noexcept {
   if (point_like(w, h)) return point_test(d);
   if (level_zero_collides(d, w, h)) return {Verdict::collision, 0, 0};
   // Missing the rhombus, the disk meets the enclosing triangle iff it meets the box.
   const T dx = std::max(d.p.x - w, T(0)), dy = std::max(d.p.y - h, T(0));
   if (dx * dx + dy * dy > d.rr) return {Verdict::no_collision, 0, 0};
-  return bisect(d, {w, 0}, {0, h}, max_level);
+  return bisect_folded(d, {w, 0}, {0, h}, max_level);
 }
 
 // General position: conjugate semi-diameters u, v (counter-clockwise); level 0 is the
@@ -259,11 +309,13 @@ Outcome cover_test(const Disk<T>& d, T w, T h, int max_level) noexcept {
 bool valid_level(int max_level) noexcept { return max_level >= 0 && max_level <= niemitalo_max_level; }
 
 // The result in world units: `major` is the major radius of the ellipse whose polygons were
-// built, `size` = |offset_x| + |offset_y| + major + R (see polygonal2.hpp, "The band").
+// built, `scaled_size` = s (|offset_x| + |offset_y| + major + R) (see polygonal2.hpp, "The
+// band") in the frame scaled by the power of two s, where it cannot overflow (the world
+// sum overflowed for a float ellipse of radius 3.7e38: rho = inf).
 template <class T>
-PolygonalOverlap<T> with_band(const Outcome& o, T major, T size, bool cover) noexcept {
+PolygonalOverlap<T> with_band(const Outcome& o, T major, T scaled_size, T s, bool cover) noexcept {
   constexpr T inf = std::numeric_limits<T>::infinity();
-  const T rho = T(16 * (o.level + 2)) * std::numeric_limits<T>::epsilon() * size;
+  const T rho = T(16 * (o.level + 2)) * std::numeric_limits<T>::epsilon() * scaled_size / s;
   if (o.verdict == Verdict::collision) return {o.verdict, o.level, o.iterations, -inf, rho};
   if (o.verdict == Verdict::no_collision) return {o.verdict, o.level, o.iterations, -rho, inf};
   const auto& k = detail::niemitalo_coefficients<T>();
@@ -427,16 +479,26 @@ SegmentCircle segment_circle(const VecArg<T, 2>& a, const VecArg<T, 2>& b, const
           side > T(0) ? Side::left : side < T(0) ? Side::right : Side::on_line};
 }
 
-template <class T>
-PolygonalOverlap<T> polygonal_overlap(const Ellipse2<T>& ellipse, const Circle<T>& circle, int max_level) noexcept {
+// The folded ellipse-circle tests (quadrant_test, cover_test) in world units.
+template <bool cover, class T>
+PolygonalOverlap<T> folded_overlap(const Ellipse2<T>& ellipse, const Circle<T>& circle, int max_level) noexcept {
   if (!valid_level(max_level)) return {};
   const T major = ellipse.radii().maxCoeff();
-  if (tiny_scene<T>(ellipse.center(), circle.center(), major, circle.radius()))
-    return shrunk_back(polygonal_overlap(blown_up(ellipse, ellipse.center()), blown_up(circle, ellipse.center()), max_level));
-  const T s = scene_scale<T>(ellipse.center(), circle.center(), major, circle.radius());
-  const Outcome o = quadrant_test(folded_disk(ellipse, circle, s), s * ellipse.radii()[0], s * ellipse.radii()[1],
-                                  max_level);
-  return with_band(o, major, band_size<T>(circle.center() - ellipse.center(), major, circle.radius()), false);
+  const T half = scene_half_size<T>(ellipse.center(), circle.center(), major, circle.radius());
+  if (half < std::numeric_limits<T>::min()) [[unlikely]]
+    return shrunk_back(folded_overlap<cover>(blown_up(ellipse, ellipse.center()), blown_up(circle, ellipse.center()),
+                                             max_level));
+  const T s = T(0.5) * unit_scale(half);
+  const Disk<T> d = folded_disk(ellipse, circle, s);
+  const T w = s * ellipse.radii()[0], h = s * ellipse.radii()[1];
+  const Outcome o = cover ? cover_test(d, w, h, max_level) : quadrant_test(d, w, h, max_level);
+  const Vec2<T> offset = s * circle.center() - s * ellipse.center();
+  return with_band(o, major, band_size<T>(offset, s * major, s * circle.radius()), s, cover);
+}
+
+template <class T>
+PolygonalOverlap<T> polygonal_overlap(const Ellipse2<T>& ellipse, const Circle<T>& circle, int max_level) noexcept {
+  return folded_overlap<false>(ellipse, circle, max_level);
 }
 
 template <class T>
@@ -478,19 +540,12 @@ PolygonalOverlap<T> polygonal_overlap(const Ellipse2<T>& a, const Ellipse2<T>& b
   }
   // The band is a's (the polygons are a's, mapped by an invertible linear map).
   const T major = a.radii().maxCoeff();
-  return with_band(o, major, band_size<T>(b.center() - a.center(), major, b.radii().maxCoeff()), false);
+  return with_band(o, major, band_size<T>(offset, s * major, s * b.radii().maxCoeff()), s, false);
 }
 
 template <class T>
 PolygonalOverlap<T> circle_cover_overlap(const Ellipse2<T>& ellipse, const Circle<T>& circle, int max_level) noexcept {
-  if (!valid_level(max_level)) return {};
-  const T major = ellipse.radii().maxCoeff();
-  if (tiny_scene<T>(ellipse.center(), circle.center(), major, circle.radius()))
-    return shrunk_back(circle_cover_overlap(blown_up(ellipse, ellipse.center()), blown_up(circle, ellipse.center()), max_level));
-  const T s = scene_scale<T>(ellipse.center(), circle.center(), major, circle.radius());
-  const Outcome o = cover_test(folded_disk(ellipse, circle, s), s * ellipse.radii()[0], s * ellipse.radii()[1],
-                               max_level);
-  return with_band(o, major, band_size<T>(circle.center() - ellipse.center(), major, circle.radius()), true);
+  return folded_overlap<true>(ellipse, circle, max_level);
 }
 
 template <class T>

@@ -291,6 +291,21 @@ TEST(NiemitaloRegression, FloatEllipseBelowRoundingFarFromCircleIsApart) {
 // run moved to the first body's center and scaled by 2^1023, exactly, with the band scaled
 // back. Expected from geometry: same center, so they collide, with a gap band holding
 // -2 r (the signed distance of two coincident circles of radius r).
+// The band's size |offset_x| + |offset_y| + major + R was summed in world units, where it
+// overflowed for a float ellipse of radius 3.7e38 (fuzz input
+// polygonal_band_size_overflows_float_radius_3.7e38): rho = inf, and the same scene scaled
+// by 2^-11 had a finite band. It is now summed in the scaled frame.
+TEST(NiemitaloRegression, BandOfAFloatSceneNearTheTopOfTheRangeIsFinite) {
+  const float big = 0x1.cp+127f;
+  const auto e = make_ellipse<float>({-1.0f, -big}, 0.0f, {big, big});
+  const auto c = make_circle<float>(Vec2<float>(0, 0), 0.0f);  // on e's rim
+  for (const auto& x : {polygonal_overlap(e, c, 19), circle_cover_overlap(e, c, 19), polygonal_overlap(e, e, 19)}) {
+    EXPECT_EQ(x.verdict, Verdict::collision);
+    EXPECT_TRUE(std::isfinite(x.gap_hi)) << x.gap_hi;
+    EXPECT_GT(x.gap_hi, 0.0f);
+  }
+}
+
 TEST(NiemitaloRegression, SubnormalCirclesAtTheSameCenterCollide) {
   const double r = 0x0.0000000fdfdfdp-1022;
   const Vec2<double> center(0x1.0000000000001p+0, -5);
