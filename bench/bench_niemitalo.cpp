@@ -50,8 +50,8 @@ const std::vector<Pair<T>>& pairs() {
   return all;
 }
 
-// The scenario mix's ellipses a, each with a circle of radius sqrt(r_b0 r_b1) placed
-// against it at a random boundary point, the gap +-1e-9 .. 1e-6 of the radius.
+// The scenario mix's ellipses a, each with a circle of radius sqrt(r_b0 r_b1), and b itself,
+// placed against it at one random boundary point, the gap +-1e-9 .. 1e-6 of the radius.
 template <class T>
 const std::vector<Pair<T>>& tangent_pairs() {
   static const auto all = [] {
@@ -62,10 +62,13 @@ const std::vector<Pair<T>>& tangent_pairs() {
         const auto s = scenarios::make_case<2>(c, 900000 + i);
         const double r = std::sqrt(s.b.radii().prod());
         const double gap = (i % 2 ? -1 : 1) * scenarios::detail::log_uniform(rng, 1e-9, 1e-6);
-        const Vec2<double> center = scenarios::detail::tangent_center<2>(
-            s.a, scenarios::detail::unit_vector<2>(rng), Mat2<double>::Identity(), Vec2<double>(r, r), gap);
+        const Vec2<double> u = scenarios::detail::unit_vector<2>(rng);
+        const Vec2<double> center =
+            scenarios::detail::tangent_center<2>(s.a, u, Mat2<double>::Identity(), Vec2<double>(r, r), gap);
+        const auto b = Ellipse2<double>::from_axes(
+            scenarios::detail::tangent_center<2>(s.a, u, s.b.axes(), s.b.radii(), gap), s.b.axes(), s.b.radii());
         const auto circle = make_circle<T>(center.cast<T>(), T(r));
-        v.push_back({as<T>(s.a), as<T>(s.b), circle, circle.ellipse()});
+        v.push_back({as<T>(s.a), as<T>(b), circle, circle.ellipse()});
       }
     return v;
   }();
@@ -80,14 +83,43 @@ void cycle(benchmark::State& state, Query query) {
 // The document's test takes an axis-aligned ellipse: the circle's center is turned into
 // a's axes inside the timed query.
 template <class T>
-bool document_collide(const ellipsect::bench::DocumentEllipseCircle<T>& test, const Pair<T>& p) {
+bool document_collide(const ellipsect::bench::DocumentTests<T>& test, const Pair<T>& p) {
   const Vec2<T> local = p.a.axes().transpose() * (p.circle.center() - p.a.center());
   return test.collide(T(0), T(0), p.a.radii()[0], p.a.radii()[1], local.x(), local.y(), p.circle.radius());
 }
 
+// The document's ellipse-ellipse test takes each ellipse as its first radius vector and the
+// ratio of the second radius to the first.
+template <class T>
+bool document_collide_ellipses(const ellipsect::bench::DocumentTests<T>& test, const Pair<T>& p) {
+  const Vec2<T> wa = p.a.radii()[0] * p.a.axes().col(0), wb = p.b.radii()[0] * p.b.axes().col(0);
+  return test.collide(p.a.center().x(), p.a.center().y(), wa.x(), wa.y(), p.a.radii()[1] / p.a.radii()[0],
+                      p.b.center().x(), p.b.center().y(), wb.x(), wb.y(), p.b.radii()[1] / p.b.radii()[0]);
+}
+
+template <class T>
+void BM_document_ellipses(benchmark::State& state) {
+  const ellipsect::bench::DocumentTests<T> test(static_cast<int>(state.range(0)));
+  cycle<T>(state, [&test](const Pair<T>& p) { return document_collide_ellipses(test, p); });
+}
+
+template <class T>
+void BM_polygonal_ellipses_tangent(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  ellipsect::bench::time_cases(state, tangent_pairs<T>(),
+                               [n](const Pair<T>& p) { return polygonal_overlap(p.a, p.b, n).verdict; });
+}
+
+template <class T>
+void BM_document_ellipses_tangent(benchmark::State& state) {
+  const ellipsect::bench::DocumentTests<T> test(static_cast<int>(state.range(0)));
+  ellipsect::bench::time_cases(state, tangent_pairs<T>(),
+                               [&test](const Pair<T>& p) { return document_collide_ellipses(test, p); });
+}
+
 template <class T>
 void BM_document_circle(benchmark::State& state) {
-  const ellipsect::bench::DocumentEllipseCircle<T> test(static_cast<int>(state.range(0)));
+  const ellipsect::bench::DocumentTests<T> test(static_cast<int>(state.range(0)));
   cycle<T>(state, [&test](const Pair<T>& p) { return document_collide(test, p); });
 }
 
@@ -100,7 +132,7 @@ void BM_polygonal_circle_tangent(benchmark::State& state) {
 
 template <class T>
 void BM_document_circle_tangent(benchmark::State& state) {
-  const ellipsect::bench::DocumentEllipseCircle<T> test(static_cast<int>(state.range(0)));
+  const ellipsect::bench::DocumentTests<T> test(static_cast<int>(state.range(0)));
   ellipsect::bench::time_cases(state, tangent_pairs<T>(), [&test](const Pair<T>& p) { return document_collide(test, p); });
 }
 
@@ -167,6 +199,9 @@ BENCHMARK(BM_overlap_circle<double>);
 BENCHMARK(BM_overlap_circle<float>);
 BENCHMARK(BM_polygonal_ellipses<double>)->DenseRange(1, 10);
 BENCHMARK(BM_polygonal_ellipses<float>)->DenseRange(1, 10);
+BENCHMARK(BM_document_ellipses<double>)->DenseRange(1, 10);
+BENCHMARK(BM_polygonal_ellipses_tangent<double>)->DenseRange(1, 10);
+BENCHMARK(BM_document_ellipses_tangent<double>)->DenseRange(1, 10);
 BENCHMARK(BM_overlap_ellipses<double>);
 BENCHMARK(BM_overlap_ellipses<float>);
 

@@ -1,8 +1,9 @@
-// A faithful port of the ellipse-circle test of Niemitalo's document (2012, public domain;
-// docs/niemitalo.md): `iterate` and the axis-aligned `collide(x0, y0, w, h, x1, y1, r)`,
-// templated on the scalar and with the coefficient tables in std::vector. Only the
-// benchmark uses it, as the peer of polygonal_overlap: it returns false when out of
-// iterations and chooses sub-triangles by the document's shortcuts.
+// A faithful port of the collision tests of Niemitalo's document (2012, public domain;
+// docs/niemitalo.md): `iterate`, the axis-aligned ellipse-circle `collide(x0, y0, w, h, x1,
+// y1, r)` and the ellipse-ellipse `collide(x0, y0, wx0, wy0, hw0, x1, y1, wx1, wy1, hw1)`
+// with its float intermediates, templated on the scalar and with the coefficient tables in
+// std::vector. Only the benchmark uses it, as the peer of polygonal_overlap: it returns
+// false when out of iterations and chooses sub-triangles by the document's shortcuts.
 #pragma once
 
 #include <cmath>
@@ -11,14 +12,82 @@
 namespace ellipsect::bench {
 
 template <class T>
-class DocumentEllipseCircle {
+class DocumentTests {
  public:
-  explicit DocumentEllipseCircle(int max_iterations) : max_iterations_(max_iterations) {
+  explicit DocumentTests(int max_iterations) : max_iterations_(max_iterations) {
     for (int t = 0; t <= max_iterations; ++t) {
       const int nodes = 4 << t;
       inner_.push_back(T(0.5 / std::cos(4 * std::acos(0.0) / nodes)));
       outer_.push_back(T(0.5 / (std::cos(2 * std::acos(0.0) / nodes) * std::cos(2 * std::acos(0.0) / nodes))));
     }
+  }
+
+  // Ellipses "0" and "1": ellipse at (x, y) with the radius vector (wx, wy) and the other
+  // radius perpendicular to it, hw times as long.
+  bool collide(T x0, T y0, T wx0, T wy0, T hw0, T x1, T y1, T wx1, T wy1, T hw1) const {
+    float rr = hw1 * hw1 * (wx1 * wx1 + wy1 * wy1) * (wx1 * wx1 + wy1 * wy1) * (wx1 * wx1 + wy1 * wy1);
+    float x = hw1 * wx1 * (wy1 * (y1 - y0) + wx1 * (x1 - x0)) - wy1 * (wx1 * (y1 - y0) - wy1 * (x1 - x0));
+    float y = hw1 * wy1 * (wy1 * (y1 - y0) + wx1 * (x1 - x0)) + wx1 * (wx1 * (y1 - y0) - wy1 * (x1 - x0));
+    float temp = wx0;
+    wx0 = hw1 * wx1 * (wy1 * wy0 + wx1 * wx0) - wy1 * (wx1 * wy0 - wy1 * wx0);
+    float temp2 = wy0;
+    wy0 = hw1 * wy1 * (wy1 * wy0 + wx1 * temp) + wx1 * (wx1 * wy0 - wy1 * temp);
+    float hx0 = hw1 * wx1 * (wy1 * (temp * hw0) - wx1 * temp2 * hw0) - wy1 * (wx1 * (temp * hw0) + wy1 * temp2 * hw0);
+    float hy0 = hw1 * wy1 * (wy1 * (temp * hw0) - wx1 * temp2 * hw0) + wx1 * (wx1 * (temp * hw0) + wy1 * temp2 * hw0);
+    if (wx0 * y - wy0 * x < 0) {
+      x = -x;
+      y = -y;
+    }
+    if ((wx0 - x) * (wx0 - x) + (wy0 - y) * (wy0 - y) <= rr) return true;
+    if ((wx0 + x) * (wx0 + x) + (wy0 + y) * (wy0 + y) <= rr) return true;
+    if ((hx0 - x) * (hx0 - x) + (hy0 - y) * (hy0 - y) <= rr) return true;
+    if ((hx0 + x) * (hx0 + x) + (hy0 + y) * (hy0 + y) <= rr) return true;
+    if (x * (hy0 - wy0) + y * (wx0 - hx0) <= hy0 * wx0 - hx0 * wy0 &&
+        y * (wx0 + hx0) - x * (wy0 + hy0) <= hy0 * wx0 - hx0 * wy0)
+      return true;
+    if (x * (wx0 - hx0) - y * (hy0 - wy0) > hx0 * (wx0 - hx0) - hy0 * (hy0 - wy0) &&
+        x * (wx0 - hx0) - y * (hy0 - wy0) < wx0 * (wx0 - hx0) - wy0 * (hy0 - wy0) &&
+        (x * (hy0 - wy0) + y * (wx0 - hx0) - hy0 * wx0 + hx0 * wy0) *
+                (x * (hy0 - wy0) + y * (wx0 - hx0) - hy0 * wx0 + hx0 * wy0) <=
+            rr * ((wx0 - hx0) * (wx0 - hx0) + (wy0 - hy0) * (wy0 - hy0)))
+      return true;
+    if (x * (wx0 + hx0) + y * (wy0 + hy0) > -wx0 * (wx0 + hx0) - wy0 * (wy0 + hy0) &&
+        x * (wx0 + hx0) + y * (wy0 + hy0) < hx0 * (wx0 + hx0) + hy0 * (wy0 + hy0) &&
+        (y * (wx0 + hx0) - x * (wy0 + hy0) - hy0 * wx0 + hx0 * wy0) *
+                (y * (wx0 + hx0) - x * (wy0 + hy0) - hy0 * wx0 + hx0 * wy0) <=
+            rr * ((wx0 + hx0) * (wx0 + hx0) + (wy0 + hy0) * (wy0 + hy0)))
+      return true;
+    if ((hx0 - wx0 - x) * (hx0 - wx0 - x) + (hy0 - wy0 - y) * (hy0 - wy0 - y) <= rr)
+      return iterate(x, y, hx0, hy0, -wx0, -wy0, rr);
+    if ((hx0 + wx0 - x) * (hx0 + wx0 - x) + (hy0 + wy0 - y) * (hy0 + wy0 - y) <= rr)
+      return iterate(x, y, wx0, wy0, hx0, hy0, rr);
+    if ((wx0 - hx0 - x) * (wx0 - hx0 - x) + (wy0 - hy0 - y) * (wy0 - hy0 - y) <= rr)
+      return iterate(x, y, -hx0, -hy0, wx0, wy0, rr);
+    if ((-wx0 - hx0 - x) * (-wx0 - hx0 - x) + (-wy0 - hy0 - y) * (-wy0 - hy0 - y) <= rr)
+      return iterate(x, y, -wx0, -wy0, -hx0, -hy0, rr);
+    if (wx0 * y - wy0 * x < wx0 * hy0 - wy0 * hx0 && std::abs(hx0 * y - hy0 * x) < hy0 * wx0 - hx0 * wy0) {
+      if (hx0 * y - hy0 * x > 0) return iterate(x, y, hx0, hy0, -wx0, -wy0, rr);
+      return iterate(x, y, wx0, wy0, hx0, hy0, rr);
+    }
+    if (wx0 * x + wy0 * y > wx0 * (hx0 - wx0) + wy0 * (hy0 - wy0) &&
+        wx0 * x + wy0 * y < wx0 * (hx0 + wx0) + wy0 * (hy0 + wy0) &&
+        (wx0 * y - wy0 * x - hy0 * wx0 + hx0 * wy0) * (wx0 * y - wy0 * x - hy0 * wx0 + hx0 * wy0) <
+            rr * (wx0 * wx0 + wy0 * wy0)) {
+      if (wx0 * x + wy0 * y > wx0 * hx0 + wy0 * hy0) return iterate(x, y, wx0, wy0, hx0, hy0, rr);
+      return iterate(x, y, hx0, hy0, -wx0, -wy0, rr);
+    }
+    if (hx0 * y - hy0 * x < 0) {
+      x = -x;
+      y = -y;
+    }
+    if (hx0 * x + hy0 * y > -hx0 * (wx0 + hx0) - hy0 * (wy0 + hy0) &&
+        hx0 * x + hy0 * y < hx0 * (hx0 - wx0) + hy0 * (hy0 - wy0) &&
+        (hx0 * y - hy0 * x - hy0 * wx0 + hx0 * wy0) * (hx0 * y - hy0 * x - hy0 * wx0 + hx0 * wy0) <
+            rr * (hx0 * hx0 + hy0 * hy0)) {
+      if (hx0 * x + hy0 * y > -hx0 * wx0 - hy0 * wy0) return iterate(x, y, hx0, hy0, -wx0, -wy0, rr);
+      return iterate(x, y, -wx0, -wy0, -hx0, -hy0, rr);
+    }
+    return false;
   }
 
   // Ellipse of horizontal radius w and vertical radius h at (x0, y0), circle of radius r at (x1, y1).

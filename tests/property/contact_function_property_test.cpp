@@ -74,9 +74,15 @@ template <int N>
 void check_consistent_with_classify(const scenarios::Case<N>& c, double f) {
   const double mu = std::sqrt(f);
   const Relation rel = classify(c.a, c.b);
-  if (mu > 1 + band) ASSERT_EQ(rel, Relation::separated) << describe(c);
-  if (mu < 1 - band) ASSERT_TRUE(rel != Relation::separated && rel != Relation::touching) << describe(c);
-  if (rel == Relation::touching) ASSERT_LE(std::abs(mu - 1), band) << describe(c);
+  if (mu > 1 + band) {
+    ASSERT_EQ(rel, Relation::separated) << describe(c);
+  }
+  if (mu < 1 - band) {
+    ASSERT_TRUE(rel != Relation::separated && rel != Relation::touching) << describe(c);
+  }
+  if (rel == Relation::touching) {
+    ASSERT_LE(std::abs(mu - 1), band) << describe(c);
+  }
 }
 
 template <int N>

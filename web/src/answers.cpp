@@ -38,10 +38,21 @@ std::vector<double> list(const std::vector<Vec2<double>>& vs) {
 
 std::string label(std::string_view s) { return std::string(s); }
 
+// prefix + k, as "w3" (appended, not `indexed("w", k)`, where GCC 12 warns falsely
+// of an overlapping memcpy).
+std::string indexed(std::string_view prefix, int k) {
+  std::string out(prefix);
+  out += std::to_string(k);
+  return out;
+}
+
 // Indices as a label: "3,0,12".
 std::string indices(const std::vector<int>& ks) {
   std::string out;
-  for (const int k : ks) out += (out.empty() ? "" : ",") + std::to_string(k);
+  for (const int k : ks) {
+    if (!out.empty()) out += ',';
+    out += std::to_string(k);
+  }
   return out;
 }
 
@@ -109,8 +120,8 @@ Answer polygonal(const Params& p) {
   out.emplace_back("drawn_levels", double(levels + 1));
   for (int n = 0; n <= levels; ++n) {
     const NiemitaloPolygons<double> poly = niemitalo_polygons(a, n);
-    out.emplace_back("inscribed." + std::to_string(n), list(poly.inscribed));
-    out.emplace_back("circumscribed." + std::to_string(n), list(poly.circumscribed));
+    out.emplace_back(indexed("inscribed.", n), list(poly.inscribed));
+    out.emplace_back(indexed("circumscribed.", n), list(poly.circumscribed));
   }
   return out;
 }
@@ -180,7 +191,7 @@ Answer slide(const Params& p) {
   const auto e = ellipse(p, "e");
   std::vector<HalfSpace<double, 2>> world;
   for (int k = 0; k < static_cast<int>(get(p, "walls")); ++k) {
-    const std::string w = "w" + std::to_string(k);
+    const std::string w = indexed("w", k);
     world.push_back(make_half_space<double, 2>(point(p, w + ".px", w + ".py"), point(p, w + ".nx", w + ".ny")));
   }
   const Vec2<double> displacement = point(p, "tx", "ty") - e.center();
@@ -212,13 +223,13 @@ Answer mesh_slide(const Params& p) {
   const auto e = ellipse(p, "e");
   std::vector<double> vertices;
   for (int k = 0; k < static_cast<int>(get(p, "vertices")); ++k) {
-    const std::string v = "v" + std::to_string(k);
+    const std::string v = indexed("v", k);
     vertices.insert(vertices.end(), {get(p, v + ".x"), get(p, v + ".y")});
   }
   std::vector<std::int64_t> triangles;
   for (int k = 0; k < static_cast<int>(get(p, "triangles")); ++k)
     for (const char* corner : {".a", ".b", ".c"})
-      triangles.push_back(static_cast<std::int64_t>(get(p, "t" + std::to_string(k) + corner)));
+      triangles.push_back(static_cast<std::int64_t>(get(p, indexed("t", k) + corner)));
   const auto mesh = TriangleMesh<double, 2>::from_arrays(vertices, triangles);
   const Vec2<double> displacement = point(p, "tx", "ty") - e.center();
   const Slide<double, 2> s = collide_and_slide(e, displacement, mesh);
