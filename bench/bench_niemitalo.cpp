@@ -97,61 +97,63 @@ bool document_collide_ellipses(const ellipsect::bench::DocumentTests<T>& test, c
                       p.b.center().x(), p.b.center().y(), wb.x(), wb.y(), p.b.radii()[1] / p.b.radii()[0]);
 }
 
+// The document's test with max_iterations = n (the benchmark's argument), and
+// polygonal_overlap at max_level = n, on `cases`.
+template <class T, class Collide>
+void time_document(benchmark::State& state, const std::vector<Pair<T>>& cases, Collide collide) {
+  const ellipsect::bench::DocumentTests<T> test(static_cast<int>(state.range(0)));
+  ellipsect::bench::time_cases(state, cases, [&](const Pair<T>& p) { return collide(test, p); });
+}
+
+template <class T, class Query>
+void time_levels(benchmark::State& state, const std::vector<Pair<T>>& cases, Query query) {
+  const int n = static_cast<int>(state.range(0));
+  ellipsect::bench::time_cases(state, cases, [&](const Pair<T>& p) { return query(p, n).verdict; });
+}
+
 template <class T>
 void BM_document_ellipses(benchmark::State& state) {
-  const ellipsect::bench::DocumentTests<T> test(static_cast<int>(state.range(0)));
-  cycle<T>(state, [&test](const Pair<T>& p) { return document_collide_ellipses(test, p); });
+  time_document(state, pairs<T>(), document_collide_ellipses<T>);
 }
 
 template <class T>
 void BM_polygonal_ellipses_tangent(benchmark::State& state) {
-  const int n = static_cast<int>(state.range(0));
-  ellipsect::bench::time_cases(state, tangent_pairs<T>(),
-                               [n](const Pair<T>& p) { return polygonal_overlap(p.a, p.b, n).verdict; });
+  time_levels(state, tangent_pairs<T>(), [](const Pair<T>& p, int n) { return polygonal_overlap(p.a, p.b, n); });
 }
 
 template <class T>
 void BM_document_ellipses_tangent(benchmark::State& state) {
-  const ellipsect::bench::DocumentTests<T> test(static_cast<int>(state.range(0)));
-  ellipsect::bench::time_cases(state, tangent_pairs<T>(),
-                               [&test](const Pair<T>& p) { return document_collide_ellipses(test, p); });
+  time_document(state, tangent_pairs<T>(), document_collide_ellipses<T>);
 }
 
 template <class T>
 void BM_document_circle(benchmark::State& state) {
-  const ellipsect::bench::DocumentTests<T> test(static_cast<int>(state.range(0)));
-  cycle<T>(state, [&test](const Pair<T>& p) { return document_collide(test, p); });
+  time_document(state, pairs<T>(), document_collide<T>);
 }
 
 template <class T>
 void BM_polygonal_circle_tangent(benchmark::State& state) {
-  const int n = static_cast<int>(state.range(0));
-  ellipsect::bench::time_cases(state, tangent_pairs<T>(),
-                               [n](const Pair<T>& p) { return polygonal_overlap(p.a, p.circle, n).verdict; });
+  time_levels(state, tangent_pairs<T>(), [](const Pair<T>& p, int n) { return polygonal_overlap(p.a, p.circle, n); });
 }
 
 template <class T>
 void BM_document_circle_tangent(benchmark::State& state) {
-  const ellipsect::bench::DocumentTests<T> test(static_cast<int>(state.range(0)));
-  ellipsect::bench::time_cases(state, tangent_pairs<T>(), [&test](const Pair<T>& p) { return document_collide(test, p); });
+  time_document(state, tangent_pairs<T>(), document_collide<T>);
 }
 
 template <class T>
 void BM_polygonal_circle(benchmark::State& state) {
-  const int n = static_cast<int>(state.range(0));
-  cycle<T>(state, [n](const Pair<T>& p) { return polygonal_overlap(p.a, p.circle, n).verdict; });
+  time_levels(state, pairs<T>(), [](const Pair<T>& p, int n) { return polygonal_overlap(p.a, p.circle, n); });
 }
 
 template <class T>
 void BM_circle_cover(benchmark::State& state) {
-  const int n = static_cast<int>(state.range(0));
-  cycle<T>(state, [n](const Pair<T>& p) { return circle_cover_overlap(p.a, p.circle, n).verdict; });
+  time_levels(state, pairs<T>(), [](const Pair<T>& p, int n) { return circle_cover_overlap(p.a, p.circle, n); });
 }
 
 template <class T>
 void BM_polygonal_ellipses(benchmark::State& state) {
-  const int n = static_cast<int>(state.range(0));
-  cycle<T>(state, [n](const Pair<T>& p) { return polygonal_overlap(p.a, p.b, n).verdict; });
+  time_levels(state, pairs<T>(), [](const Pair<T>& p, int n) { return polygonal_overlap(p.a, p.b, n); });
 }
 
 // The closed forms answer the same ellipse-circle question: collision when the center is

@@ -4,12 +4,11 @@
 // * The document's bisection shortcuts (a center on the inner side of a new chord counts
 //   as a collision; a sub-triangle is chosen by projections onto the tangent at the new
 //   vertex) are exact in the folded frame of an axis-aligned ellipse (bisect_folded, with
-//   touching counted as meeting), but not after the stretch of the non-parallel
-//   ellipse-ellipse test, where they report collisions between separated ellipses
-//   (tests/unit/polygonal2_test.cpp has one): there both sub-triangles are tested exactly.
-// * Level 0 of the non-parallel test checks all four edges: the document checks the two
-//   on the circle's side of the first semi-diameter, but the nearest edge can be one of
-//   the other two when the stretched semi-diameters are far from perpendicular.
+//   touching counted as meeting), but not on the conjugate semi-diameters that the
+//   document's non-parallel ellipse-ellipse test bisects, where they report collisions
+//   between separated ellipses (tests/unit/polygonal2_test.cpp has one). There ellipsect
+//   finds the stretched ellipse's own axes (principal_frame: square roots and a division)
+//   and runs the folded test in them.
 // * Everything runs in T (the document mixes float into the double non-parallel test,
 //   which overflows for scenes of size 1e6), on inputs scaled by a power of two.
 // * The non-parallel stretch omits the document's final rotation back (an isometry, so
@@ -117,35 +116,6 @@ bool inside(Pt<T> p, Pt<T> a, Pt<T> b, Pt<T> c) noexcept {
   return cross(b - a, p - a) >= T(0) && cross(c - b, p - b) >= T(0) && cross(a - c, p - c) >= T(0);
 }
 
-// The disk meets the counter-clockwise triangle (a, corner, c) whose edge (c, a), a chord
-// of the inscribed polygon, it is known to miss.
-template <class T>
-bool meets_outer(const Disk<T>& d, Pt<T> a, Pt<T> corner, Pt<T> c) noexcept {
-  return inside(d.p, a, corner, c) || meets_segment(d, a, corner) || meets_segment(d, corner, c);
-}
-
-// Bisection of the enclosing triangle of the arc (c0, c2), which the disk meets while
-// missing its chord. The disk meets at most one of the two sub-triangles: the inscribed
-// polygon plus the two is convex, so a disk meeting both would cross a chord or contain c1.
-template <class T>
-Outcome bisect(const Disk<T>& d, Pt<T> c0, Pt<T> c2, int max_level) noexcept {
-  const auto& k = detail::niemitalo_coefficients<T>();
-  for (int t = 1; t <= max_level; ++t) {
-    const Pt<T> c1 = k.inner[t] * (c0 + c2);
-    if (meets_segment(d, c0, c1) || meets_segment(d, c1, c2) || inside(d.p, c0, c1, c2))
-      return {Verdict::collision, t, t};
-    const Pt<T> c3 = k.outer[t] * (c0 + c1);  // tangents at c0 and c1 meet here
-    const Pt<T> c4 = (c1 - c3) + c1;          // tangents at c1 and c2 (c1 is the midpoint)
-    if (meets_outer(d, c0, c3, c1))
-      c2 = c1;
-    else if (meets_outer(d, c1, c4, c2))
-      c0 = c1;
-    else
-      return {Verdict::no_collision, t, t};
-  }
-  return {Verdict::undecided, max_level, max_level};
-}
-
 // The disk meets the chord from c1 to c1 + e, given that it misses both ends, or its
 // center is within the chord's extent on the side `inner` (+1: left of e, -1: right).
 template <class T>
@@ -229,34 +199,29 @@ template <class T>
   return bisect_folded(d, {w, 0}, {0, h}, max_level);
 }
 
-// General position: conjugate semi-diameters u, v (counter-clockwise); level 0 is the
-// quadrilateral u, v, -u, -v and four triangles with corners +-u +-v. First the disk
-// against the enclosing parallelogram's two slabs (the counterpart of the axis-aligned
-// box): the slab along v has its edges det(u, v) / |v| from the center, so the disk misses
-// it when |cross(p, v)| - det > r |v|. Then the disk meets the quadrilateral when it meets
-// an edge or its center is on the inner side of all four.
+// The folded frame of the ellipse with conjugate semi-diameters u, v: its semi-axes w >= h
+// and the disk's center p turned into its axes and folded. The shape matrix u u^T + v v^T =
+// [[a, b], [b, c]] has eigenvalues m +- g (m = (a + c) / 2, g = |((a - c) / 2, b)|); the
+// larger, w^2, has the eigenvector (w^2 - c, b) when a >= c, else (b, w^2 - a), both free
+// of cancellation; h = |cross(u, v)| / w (w h is the area's factor), whose rounding is
+// eps |u| |v| / w <= eps w absolute. A circle (g = 0) keeps the x axis.
 template <class T>
-bool misses_slab(const Disk<T>& d, T cross_p, T det, Pt<T> along) noexcept {
-  const T excess = std::abs(cross_p) - det;
-  return excess > T(0) && excess * excess > d.rr * dot(along, along);
-}
+struct Folded {
+  Disk<T> d;
+  T w, h;
+};
 
 template <class T>
-Outcome general_test(const Disk<T>& d, Pt<T> u, Pt<T> v, int max_level) noexcept {
-  const T det = cross(u, v);
-  if (misses_slab(d, cross(d.p, v), det, v) || misses_slab(d, cross(u, d.p), det, u))
-    return {Verdict::no_collision, 0, 0};
-  const std::array<std::array<Pt<T>, 2>, 4> arcs{{{u, v}, {v, -u}, {-u, -v}, {-v, u}}};
-  bool in = true;
-  for (const auto& [c0, c2] : arcs) {
-    T side;
-    if (meets_segment(d, c0, c2, side)) return {Verdict::collision, 0, 0};
-    in = in && side >= T(0);
-  }
-  if (in) return {Verdict::collision, 0, 0};
-  for (const auto& [c0, c2] : arcs)  // at most one is met: the argument of bisect
-    if (meets_outer(d, c0, c0 + c2, c2)) return bisect(d, c0, c2, max_level);
-  return {Verdict::no_collision, 0, 0};
+Folded<T> principal_frame(const Disk<T>& d, Pt<T> u, Pt<T> v) noexcept {
+  const T a = u.x * u.x + v.x * v.x, b = u.x * u.y + v.x * v.y, c = u.y * u.y + v.y * v.y;
+  const T half_gap = T(0.5) * (a - c);
+  const T g = std::sqrt(half_gap * half_gap + b * b);
+  const T w2 = T(0.5) * (a + c) + g;
+  Pt<T> e = a >= c ? Pt<T>{w2 - c, b} : Pt<T>{b, w2 - a};
+  const T len = std::sqrt(dot(e, e));
+  e = len > T(0) ? (T(1) / len) * e : Pt<T>{T(1), T(0)};
+  const T w = std::sqrt(w2);
+  return {{{std::abs(dot(e, d.p)), std::abs(cross(e, d.p))}, d.rr}, w, std::abs(cross(u, v)) / w};
 }
 
 // The disk around the arc (c0, c2) of level t: center the chord's midpoint m, radius^2 the
@@ -527,16 +492,27 @@ PolygonalOverlap<T> polygonal_overlap(const Ellipse2<T>& a, const Ellipse2<T>& b
     o = quadrant_test(Disk<T>{{local.x() * hb, local.y() * wb}, r * r}, ra[0] * hb, ra[1] * wb, max_level);
   } else {
     // Rotation-stretch: A = diag(h_b, w_b) Q_b^T makes b the circle of radius w_b h_b; a's
-    // semi-axes become two conjugate semi-diameters u, v (ordered counter-clockwise).
+    // semi-axes become two conjugate semi-diameters u, v, and the folded test runs in the
+    // axes of the ellipse they span.
     const Vec2<T> stretch(rb[1], rb[0]);
     const Mat2<T> to_b = qb.transpose();
     const Vec2<T> p = stretch.cwiseProduct(to_b * offset);
     const Vec2<T> u = stretch.cwiseProduct(to_b * (ra[0] * qa.col(0)));
     const Vec2<T> v = stretch.cwiseProduct(to_b * (ra[1] * qa.col(1)));
-    const Pt<T> pu{u.x(), u.y()}, pv{v.x(), v.y()};
     const T r = rb[0] * rbs[1];
     const Disk<T> d{{p.x(), p.y()}, r * r};
-    o = cross(pu, pv) >= T(0) ? general_test(d, pu, pv, max_level) : general_test(d, pv, pu, max_level);
+    // Level 0 without the axes where it can: the disk holds a's center, or it misses the
+    // circle through the corners of a's bounding box in its axes (squared radius w^2 + h^2
+    // = |u|^2 + |v|^2), which the box test would find too.
+    const T d2 = dot(d.p, d.p), corner2 = u.squaredNorm() + v.squaredNorm(), excess = d2 - d.rr - corner2;
+    if (d2 <= d.rr)
+      o = {Verdict::collision, 0, 0};
+    else if (excess > T(0) && excess * excess > T(4) * d.rr * corner2)
+      o = {Verdict::no_collision, 0, 0};
+    else {
+      const Folded<T> f = principal_frame<T>(d, {u.x(), u.y()}, {v.x(), v.y()});
+      o = quadrant_test(f.d, f.w, f.h, max_level);
+    }
   }
   // The band is a's (the polygons are a's, mapped by an invertible linear map).
   const T major = a.radii().maxCoeff();

@@ -1,4 +1,4 @@
-// Niemitalo's division-free 2D tests (O. Niemitalo, "Ellipse-circle and ellipse-ellipse
+// Niemitalo's polygonal 2D tests (O. Niemitalo, "Ellipse-circle and ellipse-ellipse
 // collision detection"; derivations and measurements in docs/niemitalo.md).
 //
 // segment_circle: translate so the segment starts at the origin, multiply by the
@@ -6,13 +6,15 @@
 //
 // polygonal_overlap: the ellipse is sandwiched between an inscribed polygon (vertices on
 //   the ellipse) and a circumscribed one; their edges form triangles that enclose the
-//   ellipse's rim. Level 0 is the quadrilateral of two conjugate semi-diameters and its
-//   enclosing parallelogram. A circle that meets the inscribed polygon collides; one that
+//   ellipse's rim. Level 0 is the rhombus of the semi-axes and its enclosing rectangle.
+//   A circle that meets the inscribed polygon collides; one that
 //   meets no triangle does not; otherwise the one triangle it meets (there is never more
 //   than one) is bisected: a new vertex on the ellipse, two smaller triangles. Each
 //   level doubles the number of sides; at level n the polygon has 2^(n+2).
 //   For two ellipses, b is first stretched into a circle (parallel axes: the document's
-//   coordinate scaling; otherwise a rotation-stretch matrix, still division-free).
+//   coordinate scaling; otherwise a rotation-stretch matrix, after which the stretched
+//   ellipse's own axes are found: two square roots for its semi-axes and its direction,
+//   and two divisions).
 //
 // circle_cover_overlap: the document's circle variant, for an ellipse and a circle: each
 //   arc between neighbouring vertices is enclosed by a disk (center the chord's
@@ -20,8 +22,9 @@
 //   triangle's outer corner) instead of a triangle; neighbouring disks overlap, so a
 //   query may follow more than one arc (depth first, at most 2^(n+1) - 1 bisections).
 //
-// Arithmetic. Only +, -, * and comparisons on T run per query: no division, no square
-// root, no trigonometry. The per-level coefficients (1 / (2 cos(pi / 2^(t+1))), ...) are
+// Arithmetic. Only +, -, * and comparisons on T run per level: no division, no square
+// root, no trigonometry (once per query, the non-parallel ellipse-ellipse test finds the
+// stretched ellipse's axes as above). The per-level coefficients (1 / (2 cos(pi / 2^(t+1))), ...) are
 // tabulated once; inputs are scaled by an exact power of two (an exponent shift) so that
 // squared and fourth-power quantities stay in range; float runs in float.
 //
@@ -185,9 +188,11 @@ template <class T>
 T niemitalo_error_bound(const Ellipse2<T>& ellipse, int level) noexcept;
 
 // The sandwich of one level, for drawing and inspection: the polygons that
-// polygonal_overlap builds for this ellipse (for two ellipses: a's; the stretch maps them
-// to the test's frame), computed with the same coefficients, world frame. The tests bisect
-// only the triangles the circle meets; these are all of them.
+// polygonal_overlap builds for this ellipse (for two ellipses with parallel axes: a's, which
+// the stretch maps to the test's frame; with other axes the test builds the polygons of the
+// stretched ellipse's own axes, which are a's polygons of the same level at another
+// starting parameter, with the same bounds), computed with the same coefficients, world
+// frame. The tests bisect only the triangles the circle meets; these are all of them.
 template <class T>
 struct NiemitaloPolygons {
   // 2^(level+2) vertices on the ellipse (to rounding), in the order of the parametrization
