@@ -191,7 +191,6 @@ Outcome point_test(const Disk<T>& d) noexcept {
 
 template <class T>
 [[gnu::always_inline]] inline Outcome quadrant_test(const Disk<T>& d, T w, T h, int max_level) noexcept {
-  if (point_like(w, h)) return point_test(d);
   if (level_zero_collides(d, w, h)) return {Verdict::collision, 0, 0};
   // Missing the rhombus, the disk meets the enclosing triangle iff it meets the box.
   const T dx = std::max(d.p.x - w, T(0)), dy = std::max(d.p.y - h, T(0));
@@ -240,7 +239,6 @@ bool meets_cover(const Disk<T>& d, Pt<T> c0, Pt<T> c2, int t) noexcept {
 
 template <class T>
 Outcome cover_test(const Disk<T>& d, T w, T h, int max_level) noexcept {
-  if (point_like(w, h)) return point_test(d);
   if (level_zero_collides(d, w, h)) return {Verdict::collision, 0, 0};
   struct Node {
     Pt<T> c0, c2;
@@ -456,7 +454,9 @@ PolygonalOverlap<T> folded_overlap(const Ellipse2<T>& ellipse, const Circle<T>& 
   const T s = T(0.5) * unit_scale(half);
   const Disk<T> d = folded_disk(ellipse, circle, s);
   const T w = s * ellipse.radii()[0], h = s * ellipse.radii()[1];
-  const Outcome o = cover ? cover_test(d, w, h, max_level) : quadrant_test(d, w, h, max_level);
+  const Outcome o = point_like(w, h) ? point_test(d)
+                    : cover         ? cover_test(d, w, h, max_level)
+                                    : quadrant_test(d, w, h, max_level);
   const Vec2<T> offset = s * circle.center() - s * ellipse.center();
   return with_band(o, major, band_size<T>(offset, s * major, s * circle.radius()), s, cover);
 }
@@ -489,7 +489,8 @@ PolygonalOverlap<T> polygonal_overlap(const Ellipse2<T>& a, const Ellipse2<T>& b
     const T wb = same ? rb[0] : rb[1], hb = same ? rb[1] : rb[0];
     const Vec2<T> local = (qa.transpose() * offset).cwiseAbs();
     const T r = wb * (same ? rbs[1] : rbs[0]);
-    o = quadrant_test(Disk<T>{{local.x() * hb, local.y() * wb}, r * r}, ra[0] * hb, ra[1] * wb, max_level);
+    const Disk<T> d{{local.x() * hb, local.y() * wb}, r * r};
+    o = point_like(ra[0], ra[1]) ? point_test(d) : quadrant_test(d, ra[0] * hb, ra[1] * wb, max_level);
   } else {
     // Rotation-stretch: A = diag(h_b, w_b) Q_b^T makes b the circle of radius w_b h_b; a's
     // semi-axes become two conjugate semi-diameters u, v, and the folded test runs in the
@@ -501,13 +502,14 @@ PolygonalOverlap<T> polygonal_overlap(const Ellipse2<T>& a, const Ellipse2<T>& b
     const Vec2<T> v = stretch.cwiseProduct(to_b * (ra[1] * qa.col(1)));
     const T r = rb[0] * rbs[1];
     const Disk<T> d{{p.x(), p.y()}, r * r};
-    // Level 0 without the axes where it can: the disk holds a's center, or it misses the
-    // circle through the corners of a's bounding box in its axes (squared radius w^2 + h^2
-    // = |u|^2 + |v|^2), which the box test would find too.
+    // Level 0 without the axes where it can: the disk holds a's center; a is point-like
+    // (judged on its radii in the scene, before the stretch) and its center outside; or
+    // the disk misses the circle through the corners of a's bounding box in its axes
+    // (squared radius w^2 + h^2 = |u|^2 + |v|^2), which the box test would find too.
     const T d2 = dot(d.p, d.p), corner2 = u.squaredNorm() + v.squaredNorm(), excess = d2 - d.rr - corner2;
     if (d2 <= d.rr)
       o = {Verdict::collision, 0, 0};
-    else if (excess > T(0) && excess * excess > T(4) * d.rr * corner2)
+    else if (point_like(ra[0], ra[1]) || (excess > T(0) && excess * excess > T(4) * d.rr * corner2))
       o = {Verdict::no_collision, 0, 0};
     else {
       const Folded<T> f = principal_frame<T>(d, {u.x(), u.y()}, {v.x(), v.y()});

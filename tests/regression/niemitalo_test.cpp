@@ -306,6 +306,29 @@ TEST(NiemitaloRegression, BandOfAFloatSceneNearTheTopOfTheRangeIsFinite) {
   }
 }
 
+// An ellipse is tested as its center when its radii are within eps of the scene's size:
+// it then lies within the rounding allowance of that center. The check used to run on the
+// radii after b's stretch into a circle, which shrinks lengths along b's major axis by b's
+// aspect ratio: a needle a of half-length 1e4 eps reaching 5e3 eps into the tip of b (radii
+// 1 and 1e-4) was taken for its center, which lies outside b, and reported apart, though
+// the overlap (1.1e-12) is 50 times the band's allowance.
+TEST(NiemitaloRegression, SmallEllipseAtANeedlesTipIsNotAPoint) {
+  const double eps = std::numeric_limits<double>::epsilon();
+  const auto a = make_ellipse<double>({1 + 5e3 * eps, 0}, 0.0, {1e4 * eps, eps});
+  const auto b = make_ellipse<double>({0, 0}, 0.0, {1, 1e-4});
+  ASSERT_EQ(classify(a, b), Relation::overlapping);
+  EXPECT_EQ(polygonal_overlap(a, b, 10).verdict, Verdict::collision);
+  // Turned a little, so that the pair takes the non-parallel route.
+  const auto c = make_ellipse<double>({1 + 5e3 * eps, 0}, 1e-9, {1e4 * eps, eps});
+  ASSERT_EQ(classify(c, b), Relation::overlapping);
+  EXPECT_EQ(polygonal_overlap(c, b, 10).verdict, Verdict::collision);
+  // With b's polygons (band 1.8e-7 at level 10) the overlap is below resolution: never apart.
+  for (const auto& r : {polygonal_overlap(b, a, 10), polygonal_overlap(b, c, 10)}) {
+    EXPECT_NE(r.verdict, Verdict::no_collision);
+    EXPECT_LT(r.gap_lo, -1e-12);
+  }
+}
+
 TEST(NiemitaloRegression, SubnormalCirclesAtTheSameCenterCollide) {
   const double r = 0x0.0000000fdfdfdp-1022;
   const Vec2<double> center(0x1.0000000000001p+0, -5);
