@@ -309,20 +309,15 @@ T unit_scale(T size) noexcept {
   return std::bit_cast<T>(static_cast<U>((2 * bias - field) << mantissa));
 }
 
-// The exact power of two that brings the largest of |offset| (componentwise), `major` and
-// `other` into [1, 2): every quantity of the test, squared, then stays in range (only parts
-// far below rounding underflow). Taken on halves: the offset of two finite points may
-// overflow.
+// Half the largest of |offset| (componentwise), `major` and `other`, taken on halves (the
+// offset of two finite points may overflow). The scene's scale s = unit_scale(half) / 2, an
+// exact power of two, brings that largest into [1, 2): every quantity of the test, squared,
+// then stays in range (only parts far below rounding underflow).
 template <class T>
 T scene_half_size(const Vec2<T>& from, const Vec2<T>& to, T major, T other) noexcept {
   const T half = T(0.5);
   return std::max({std::abs(half * to.x() - half * from.x()), std::abs(half * to.y() - half * from.y()),
                    half * major, half * other});
-}
-
-template <class T>
-T scene_scale(const Vec2<T>& from, const Vec2<T>& to, T major, T other) noexcept {
-  return T(0.5) * unit_scale(scene_half_size(from, to, major, other));
 }
 
 // A scene whose half size is below the smallest normal T cannot be brought into [1, 2) by
@@ -331,11 +326,6 @@ T scene_scale(const Vec2<T>& from, const Vec2<T>& to, T major, T other) noexcept
 // that size) and scaled by 2^tiny_shift, exactly; the band is scaled back.
 template <class T>
 constexpr int tiny_shift = std::numeric_limits<T>::max_exponent - 1;
-
-template <class T>
-bool tiny_scene(const Vec2<T>& from, const Vec2<T>& to, T major, T other) noexcept {
-  return scene_half_size(from, to, major, other) < std::numeric_limits<T>::min();
-}
 
 template <class T>
 Ellipse2<T> blown_up(const Ellipse2<T>& e, const VecArg<T, 2>& origin) noexcept {
@@ -357,7 +347,7 @@ PolygonalOverlap<T> shrunk_back(PolygonalOverlap<T> r) noexcept {
 }
 
 // The disk's center in the ellipse's axes, folded into the first quadrant; all scaled by s
-// (scene_scale: the scaled offset does not overflow, the world one may).
+// (the scene's scale: the scaled offset does not overflow, the world one may).
 template <class T>
 Disk<T> folded_disk(const Ellipse2<T>& e, const Circle<T>& c, T s) noexcept {
   const Mat2<T>& q = e.axes();
@@ -469,13 +459,15 @@ PolygonalOverlap<T> polygonal_overlap(const Ellipse2<T>& ellipse, const Circle<T
 template <class T>
 PolygonalOverlap<T> polygonal_overlap(const Ellipse2<T>& a, const Ellipse2<T>& b, int max_level) noexcept {
   if (!valid_level(max_level)) return {};
-  if (tiny_scene<T>(a.center(), b.center(), std::max(a.radii().maxCoeff(), b.radii().maxCoeff()), T(0)))
+  const T major = a.radii().maxCoeff(), major_b = b.radii().maxCoeff();
+  const T half = scene_half_size<T>(a.center(), b.center(), std::max(major, major_b), T(0));
+  if (half < std::numeric_limits<T>::min()) [[unlikely]]
     return shrunk_back(polygonal_overlap(blown_up(a, a.center()), blown_up(b, a.center()), max_level));
   // Two exact powers of two: sb brings b's major radius into [1, 2) (the stretch factors),
   // s the largest of the offset and the radii (positions). Stretched positions are then
   // products of two numbers below 2 (the stretched frame is linear: scaled by sb s).
-  const T sb = unit_scale(b.radii().maxCoeff());
-  const T s = scene_scale<T>(a.center(), b.center(), std::max(a.radii().maxCoeff(), b.radii().maxCoeff()), T(0));
+  const T sb = unit_scale(major_b);
+  const T s = T(0.5) * unit_scale(half);
   const Mat2<T>& qa = a.axes();
   const Mat2<T>& qb = b.axes();
   const Vec2<T> ra = s * a.radii(), rb = sb * b.radii(), rbs = s * b.radii();
@@ -517,8 +509,7 @@ PolygonalOverlap<T> polygonal_overlap(const Ellipse2<T>& a, const Ellipse2<T>& b
     }
   }
   // The band is a's (the polygons are a's, mapped by an invertible linear map).
-  const T major = a.radii().maxCoeff();
-  return with_band(o, major, band_size<T>(offset, s * major, s * b.radii().maxCoeff()), s, false);
+  return with_band(o, major, band_size<T>(offset, s * major, s * major_b), s, false);
 }
 
 template <class T>
