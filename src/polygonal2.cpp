@@ -7,7 +7,7 @@
 //   touching counted as meeting), but not on the conjugate semi-diameters that the
 //   document's non-parallel ellipse-ellipse test bisects, where they report collisions
 //   between separated ellipses (tests/unit/polygonal2_test.cpp has one). There ellipsect
-//   finds the stretched ellipse's own axes (principal_frame: square roots and a division)
+//   finds the stretched ellipse's own axes (principal_frame: three square roots, two divisions)
 //   and runs the folded test in them.
 // * Everything runs in T (the document mixes float into the double non-parallel test,
 //   which overflows for scenes of size 1e6), on inputs scaled by a power of two.
@@ -346,13 +346,13 @@ PolygonalOverlap<T> shrunk_back(PolygonalOverlap<T> r) noexcept {
   return r;
 }
 
-// The disk's center in the ellipse's axes, folded into the first quadrant; all scaled by s
-// (the scene's scale: the scaled offset does not overflow, the world one may).
+// The disk (center at `offset` from the ellipse's, radius r, both in the scene scaled by s,
+// where the offset does not overflow) with its center in the ellipse's axes, folded into
+// the first quadrant.
 template <class T>
-Disk<T> folded_disk(const Ellipse2<T>& e, const Circle<T>& c, T s) noexcept {
+Disk<T> folded_disk(const Ellipse2<T>& e, const Vec2<T>& offset, T r) noexcept {
   const Mat2<T>& q = e.axes();
-  const T dx = s * c.center().x() - s * e.center().x(), dy = s * c.center().y() - s * e.center().y();
-  const T r = s * c.radius();
+  const T dx = offset.x(), dy = offset.y();
   return {{std::abs(q(0, 0) * dx + q(1, 0) * dy), std::abs(q(0, 1) * dx + q(1, 1) * dy)}, r * r};
 }
 
@@ -442,13 +442,14 @@ PolygonalOverlap<T> folded_overlap(const Ellipse2<T>& ellipse, const Circle<T>& 
     return shrunk_back(folded_overlap<cover>(blown_up(ellipse, ellipse.center()), blown_up(circle, ellipse.center()),
                                              max_level));
   const T s = T(0.5) * unit_scale(half);
-  const Disk<T> d = folded_disk(ellipse, circle, s);
+  const Vec2<T> offset = s * circle.center() - s * ellipse.center();
+  const T r = s * circle.radius();
+  const Disk<T> d = folded_disk(ellipse, offset, r);
   const T w = s * ellipse.radii()[0], h = s * ellipse.radii()[1];
   const Outcome o = point_like(w, h) ? point_test(d)
                     : cover         ? cover_test(d, w, h, max_level)
                                     : quadrant_test(d, w, h, max_level);
-  const Vec2<T> offset = s * circle.center() - s * ellipse.center();
-  return with_band(o, major, band_size<T>(offset, s * major, s * circle.radius()), s, cover);
+  return with_band(o, major, band_size<T>(offset, s * major, r), s, cover);
 }
 
 template <class T>
