@@ -54,7 +54,11 @@
 // BM_overlap3_cached/ellipsect_gpu/random, BM_overlap3_large/ellipsect_gpu/random
 //                       the same through overlap_on_gpu (gpu.hpp; the filter on the GPU, the
 //                       pairs it leaves open on every core; columns copied to the device in
-//                       each call); registered only where a CUDA device is present
+//                       each call, through page-locked memory); registered only where a CUDA
+//                       device is present
+// BM_classify3_large/ellipsect_batch_allcores/random, BM_classify3_large/ellipsect_gpu/random
+//                       batch classify over the same 1 << 20 pairs, on every core and
+//                       through classify_on_gpu
 // BM_overlap3_filter/random  the SIMD certificate pass alone over the 1024 random pairs
 //                             (counter undecided: the share left to the exact path)
 // BM_overlap3_simd/TARGET/random
@@ -331,23 +335,46 @@ void contact_batch(benchmark::State& state, int k, int threads) {
   run_batch<Contact<double, 3>>(state, contact_truth(k), cases<3>(k).pairs, threads, batch_first_contact);
 }
 
-// The random cases cycled to `size` pairs (static: no motion).
+// The random cases cycled to `size` pairs (static: no motion), with the reference's answers.
+template <std::size_t size>
+const auto& cycled() {
+  static const auto out = [] {
+    struct {
+      Pairs<double, 3> pairs;
+      Truth<bool> overlap;
+      Truth<Relation> relation;
+    } c;
+    c.pairs.reserve(size);
+    for (std::size_t i = 0; i < size; ++i) {
+      const auto& x = cases<3>(0).list[i % cases_per_category];
+      c.pairs.push_back(x.a, x.b);
+      c.overlap.push_back(static_truth<3>(0).overlap[i % cases_per_category]);
+      c.relation.push_back(static_truth<3>(0).relation[i % cases_per_category]);
+    }
+    return c;
+  }();
+  return out;
+}
+
+// The batch query, or through its GPU entry point (which must answer on the GPU).
+template <class Out, std::size_t size, class Truth, class Batch, class OnGpu>
+void run_cycled(benchmark::State& state, const Truth& truth, int threads, bool gpu, Batch batch, OnGpu on_gpu) {
+  if (!gpu) return run_batch<Out>(state, truth, cycled<size>().pairs, threads, batch);
+  run_batch<Out>(state, truth, cycled<size>().pairs, threads, [on_gpu](const auto& p, auto out, const BatchOptions& o) {
+    if (on_gpu(p, out, o) != Backend::gpu) throw std::runtime_error("the GPU entry point answered on the CPU");
+  });
+}
+
 template <std::size_t size>
 void overlap_cycled(benchmark::State& state, int threads, bool gpu) {
-  static const auto cycled = [] {
-    std::pair<Pairs<double, 3>, Truth<bool>> out;
-    out.first.reserve(size);
-    for (std::size_t i = 0; i < size; ++i) {
-      const auto& c = cases<3>(0).list[i % cases_per_category];
-      out.first.push_back(c.a, c.b);
-      out.second.push_back(static_truth<3>(0).overlap[i % cases_per_category]);
-    }
-    return out;
-  }();
-  if (!gpu) return run_batch<bool>(state, cycled.second, cycled.first, threads, batch_overlap);
-  run_batch<bool>(state, cycled.second, cycled.first, threads, [](const auto& p, auto out, const BatchOptions& o) {
-    if (overlap_on_gpu(p, out, o) != Backend::gpu) throw std::runtime_error("overlap_on_gpu: answered on the CPU");
-  });
+  run_cycled<bool, size>(state, cycled<size>().overlap, threads, gpu, batch_overlap,
+                         [](const auto& p, auto out, const BatchOptions& o) { return overlap_on_gpu(p, out, o); });
+}
+
+template <std::size_t size>
+void classify_cycled(benchmark::State& state, int threads, bool gpu) {
+  run_cycled<Relation, size>(state, cycled<size>().relation, threads, gpu, batch_classify,
+                             [](const auto& p, auto out, const BatchOptions& o) { return classify_on_gpu(p, out, o); });
 }
 
 // The vector certificate pass alone (no scalar fallback, no thread), on the random pairs:
@@ -520,9 +547,11 @@ void register_all() {
   add("BM_overlap3_cached/ellipsect_batch_allcores/random", overlap_cycled<cached_size>, 0, false)->UseRealTime();
   add("BM_overlap3_large/ellipsect_batch_1thread/random", overlap_cycled<large_size>, 1, false);
   add("BM_overlap3_large/ellipsect_batch_allcores/random", overlap_cycled<large_size>, 0, false)->UseRealTime();
+  add("BM_classify3_large/ellipsect_batch_allcores/random", classify_cycled<large_size>, 0, false)->UseRealTime();
   if (gpu_info().devices > 0) {
     add("BM_overlap3_cached/ellipsect_gpu/random", overlap_cycled<cached_size>, 0, true)->UseRealTime();
     add("BM_overlap3_large/ellipsect_gpu/random", overlap_cycled<large_size>, 0, true)->UseRealTime();
+    add("BM_classify3_large/ellipsect_gpu/random", classify_cycled<large_size>, 0, true)->UseRealTime();
   }
   for (const auto& target : simd_targets()) add("BM_overlap3_simd/" + target + "/random", overlap_simd, target);
   benchmark::RegisterBenchmark("BM_overlap3_filter/random", overlap_filter);

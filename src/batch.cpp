@@ -220,8 +220,11 @@ Backend run_on_gpu(const Pairs<T, N>& pairs, std::size_t out_size, detail::Batch
   if constexpr (detail::gpu_built) {
     require_size(out_size, pairs.size());  // before the device's work
     std::vector<signed char> codes(pairs.size());
+    const auto parallel_for = [&options](std::size_t n, const std::function<void(std::size_t, std::size_t)>& work) {
+      for_each_chunk(n, options.threads, work);
+    };
     const bool on_gpu = detail::certify_pairs_gpu(N, query, columns_of(pairs).data(), pairs.size(),
-                                                  options.query.tolerance, codes.data());
+                                                  options.query.tolerance, codes.data(), parallel_for);
     run_batch(pairs, out_size, query, options, answer, on_gpu ? codes.data() : nullptr);
     return on_gpu ? Backend::gpu : Backend::cpu;
   } else {

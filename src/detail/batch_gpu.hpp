@@ -6,6 +6,7 @@
 #include "batch_kernels.hpp"
 
 #include <cstddef>
+#include <functional>
 #include <string>
 
 namespace ellipsect::detail {
@@ -15,18 +16,24 @@ struct GpuDevice {
   std::string name;  // the current device's name
 };
 
+// parallel_for(n, work) calls work(begin, end) on pieces covering [0, n), on the batch's threads.
+using ParallelFor = std::function<void(std::size_t, const std::function<void(std::size_t, std::size_t)>&)>;
+
 #ifdef ELLIPSECT_CUDA
 inline constexpr bool gpu_built = true;
 GpuDevice gpu_device();
 // codes[i] = the certificate code of pair i of [0, n), columns laid out as in Pairs<T, dim>,
-// computed on the current CUDA device with the scalar code's operations. False where no
-// device is present or a CUDA call fails; codes may then hold anything.
+// computed on the current CUDA device with the scalar code's operations; parallel_for packs
+// the columns into page-locked memory. False where no device is present or a CUDA call
+// fails; codes may then hold anything. One call at a time per process uses the device (a
+// second waits).
 bool certify_pairs_gpu(int dim, BatchQuery query, const double* const* columns, std::size_t n, double tol,
-                       signed char* codes) noexcept;
+                       signed char* codes, const ParallelFor& parallel_for);
 #else
 inline constexpr bool gpu_built = false;
 inline GpuDevice gpu_device() { return {}; }
-inline bool certify_pairs_gpu(int, BatchQuery, const double* const*, std::size_t, double, signed char*) noexcept {
+inline bool certify_pairs_gpu(int, BatchQuery, const double* const*, std::size_t, double, signed char*,
+                              const ParallelFor&) {
   return false;
 }
 #endif

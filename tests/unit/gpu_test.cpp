@@ -7,8 +7,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <memory>
 #include <stdexcept>
+#include <vector>
 
 namespace {
 
@@ -52,6 +54,33 @@ TEST(Gpu, InfoIsConsistent) {
 TEST(Gpu, EqualsScalar3D) { expect_equals_scalar<double, 3>(40); }
 TEST(Gpu, EqualsScalar2D) { expect_equals_scalar<double, 2>(40); }
 TEST(Gpu, EqualsScalarInFloat) { expect_equals_scalar<float, 3>(20); }
+
+// More pairs than one round on the device (gpu.hpp: rounds of 2^17 pairs; here 2.5
+// rounds, the last one partial): every round's answers land on their own pairs.
+TEST(Gpu, SeveralRoundsEqualTheCpuBatch) {
+  const Pairs<double, 3> scenarios = scenario_pairs<double, 3>(20, 9200);
+  Pairs<double, 3> pairs;
+  const std::size_t n = (std::size_t(5) << 17) / 2 + 7;
+  pairs.reserve(n);
+  for (std::size_t i = 0; i < n; ++i)  // a and b from different scenarios too
+    pairs.push_back(scenarios.a(i % scenarios.size()), scenarios.b((i * 7) % scenarios.size()));
+  std::vector<char> gpu_overlaps(n), cpu_overlaps(n);
+  std::vector<Relation> gpu_relations(n), cpu_relations(n);
+  const auto as_bools = [n](std::vector<char>& v) { return std::span<bool>(reinterpret_cast<bool*>(v.data()), n); };
+  EXPECT_EQ(overlap_on_gpu(pairs, as_bools(gpu_overlaps)), expected_backend());
+  EXPECT_EQ(classify_on_gpu(pairs, std::span<Relation>(gpu_relations)), expected_backend());
+  overlap(pairs, as_bools(cpu_overlaps));  // batch.hpp, the CPU filter
+  classify(pairs, std::span<Relation>(cpu_relations));
+  std::size_t overlap_differ = 0, classify_differ = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    overlap_differ += gpu_overlaps[i] != cpu_overlaps[i];
+    classify_differ += gpu_relations[i] != cpu_relations[i];
+  }
+  EXPECT_EQ(overlap_differ, 0u);
+  EXPECT_EQ(classify_differ, 0u);
+  EXPECT_GT(std::count(cpu_overlaps.begin(), cpu_overlaps.end(), 1), 0);  // both answers occur
+  EXPECT_GT(std::count(cpu_overlaps.begin(), cpu_overlaps.end(), 0), 0);
+}
 
 TEST(Gpu, EmptyAndMismatchedSizes) {
   const Pairs<double, 3> none;
