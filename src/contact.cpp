@@ -233,6 +233,16 @@ Contact<T, N> first_contact(const Ellipsoid<T, N>& a, const VecArg<T, N>& veloci
     out.status = ContactStatus::no_contact_in_window;
     return out;
   }
+  // overlap's certificate of a common point is at least 1e-9 deep: the inscribed balls
+  // overlap by 1e-9 of their radii, or a point lies at quadric level 1 - 2.4e-5 or below in
+  // both bodies. Either makes the Perram-Wertheim scale mu < 1 - 1e-9, and the sphere body
+  // scaled by mu about its center meets the other body scaled by mu, hence the other body:
+  // the relative gap at t = 0 is at most mu - 1, below the band of any tolerance <= 1e-10.
+  if (options.tolerance <= 1e-10 && hw::certificate_code<false>(a, b, options.tolerance) > 0) {
+    out.status = ContactStatus::overlapping_at_start;
+    out.time = 0;
+    return out;
+  }
   const auto [s, o, a_is_s] = detail::order_pair(a, b);
   const Vec<T, N>& vs = a_is_s ? velocity_a : velocity_b;
   const Vec<T, N>& vo = a_is_s ? velocity_b : velocity_a;
