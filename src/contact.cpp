@@ -234,7 +234,7 @@ Contact<T, N> first_contact(const Ellipsoid<T, N>& a, const VecArg<T, N>& veloci
     return out;
   }
   // overlap's certificate of a common point is at least 1e-9 deep: the inscribed balls
-  // overlap by 1e-9 of their radii, or a point lies at quadric level 1 - 2.4e-5 or below in
+  // overlap by 1e-9 of their radii, or a point lies at quadric level 1 - 2e-5 or below in
   // both bodies. Either makes the Perram-Wertheim scale mu < 1 - 1e-9, and the sphere body
   // scaled by mu about its center meets the other body scaled by mu, hence the other body:
   // the relative gap at t = 0 is at most mu - 1, below the band of any tolerance <= 1e-10.
