@@ -56,6 +56,12 @@
 //                       pairs it leaves open on every core; columns copied to the device in
 //                       each call, through page-locked memory); registered only where a CUDA
 //                       device is present
+// BM_overlap3_large/ellipsect_spans_allcores/random, BM_classify3_large/ellipsect_spans_allcores/random
+//                       the same 1 << 20 pairs from arrays of bodies, through the span
+//                       overloads (no Pairs: each thread fills its chunk's columns)
+// BM_overlap3_large/ellipsect_build_pairs_allcores/random
+//                       a Pairs built from the arrays in each call (reserve, push_back), then
+//                       overlap on it: what the span overloads did before
 // BM_classify3_large/ellipsect_batch_allcores/random, BM_classify3_large/ellipsect_gpu/random
 //                       batch classify over the same 1 << 20 pairs, on every core and
 //                       through classify_on_gpu
@@ -335,12 +341,19 @@ void contact_batch(benchmark::State& state, int k, int threads) {
   run_batch<Contact<double, 3>>(state, contact_truth(k), cases<3>(k).pairs, threads, batch_first_contact);
 }
 
+// Pair i is (a[i], b[i]).
+struct Bodies {
+  std::vector<Ellipsoid<double, 3>> a, b;
+  std::size_t size() const { return a.size(); }
+};
+
 // The random cases cycled to `size` pairs (static: no motion), with the reference's answers.
 template <std::size_t size>
 const auto& cycled() {
   static const auto out = [] {
     struct {
       Pairs<double, 3> pairs;
+      Bodies bodies;
       Truth<bool> overlap;
       Truth<Relation> relation;
     } c;
@@ -348,6 +361,8 @@ const auto& cycled() {
     for (std::size_t i = 0; i < size; ++i) {
       const auto& x = cases<3>(0).list[i % cases_per_category];
       c.pairs.push_back(x.a, x.b);
+      c.bodies.a.push_back(x.a);
+      c.bodies.b.push_back(x.b);
       c.overlap.push_back(static_truth<3>(0).overlap[i % cases_per_category]);
       c.relation.push_back(static_truth<3>(0).relation[i % cases_per_category]);
     }
@@ -375,6 +390,27 @@ template <std::size_t size>
 void classify_cycled(benchmark::State& state, int threads, bool gpu) {
   run_cycled<Relation, size>(state, cycled<size>().relation, threads, gpu, batch_classify,
                              [](const auto& p, auto out, const BatchOptions& o) { return classify_on_gpu(p, out, o); });
+}
+
+// From arrays of bodies: the span overloads, or a Pairs built in each call, then queried.
+template <std::size_t size>
+void overlap_from_bodies(benchmark::State& state, bool build_pairs) {
+  const auto& c = cycled<size>();
+  run_batch<bool>(state, c.overlap, c.bodies, 0, [build_pairs](const Bodies& x, auto out, const BatchOptions& o) {
+    if (!build_pairs) return overlap<double, 3>(x.a, x.b, out, o);
+    Pairs<double, 3> pairs;
+    pairs.reserve(x.size());
+    for (std::size_t i = 0; i < x.size(); ++i) pairs.push_back(x.a[i], x.b[i]);
+    overlap(pairs, out, o);
+  });
+}
+
+template <std::size_t size>
+void classify_from_bodies(benchmark::State& state) {
+  const auto& c = cycled<size>();
+  run_batch<Relation>(state, c.relation, c.bodies, 0, [](const Bodies& x, auto out, const BatchOptions& o) {
+    classify<double, 3>(x.a, x.b, out, o);
+  });
 }
 
 // The vector certificate pass alone (no scalar fallback, no thread), on the random pairs:
@@ -548,6 +584,9 @@ void register_all() {
   add("BM_overlap3_large/ellipsect_batch_1thread/random", overlap_cycled<large_size>, 1, false);
   add("BM_overlap3_large/ellipsect_batch_allcores/random", overlap_cycled<large_size>, 0, false)->UseRealTime();
   add("BM_classify3_large/ellipsect_batch_allcores/random", classify_cycled<large_size>, 0, false)->UseRealTime();
+  add("BM_overlap3_large/ellipsect_spans_allcores/random", overlap_from_bodies<large_size>, false)->UseRealTime();
+  add("BM_overlap3_large/ellipsect_build_pairs_allcores/random", overlap_from_bodies<large_size>, true)->UseRealTime();
+  add("BM_classify3_large/ellipsect_spans_allcores/random", classify_from_bodies<large_size>)->UseRealTime();
   if (gpu_info().devices > 0) {
     add("BM_overlap3_cached/ellipsect_gpu/random", overlap_cycled<cached_size>, 0, true)->UseRealTime();
     add("BM_overlap3_large/ellipsect_gpu/random", overlap_cycled<large_size>, 0, true)->UseRealTime();

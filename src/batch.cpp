@@ -28,6 +28,42 @@ namespace ellipsect {
 static_assert(Pairs<double, 2>::body_columns == detail::BodyLayout{2}.size());
 static_assert(Pairs<double, 3>::body_columns == detail::BodyLayout{3}.size());
 
+namespace {
+
+// put(k, value) for every column k of pair (a, b) (Pairs' layout; M's columns only for
+// Fill::quadric): Pairs::push_back and the span overloads' chunks. Pairs the scalar
+// functions rescale or widen (detail/scale.hpp) are left to them: NaN radii fail every
+// certificate's comparison, so the filter leaves the pair open.
+template <class T, int N, class Put>
+void put_pair(const Ellipsoid<T, N>& a, const Vec<T, N>& velocity_a, const Ellipsoid<T, N>& b,
+              const Vec<T, N>& velocity_b, T t_max, detail::HWY_NAMESPACE::Fill fill, const Put& put) {
+  constexpr detail::BodyLayout layout{N};
+  constexpr int body_columns = Pairs<T, N>::body_columns;
+  const detail::Scale scale = detail::scale_of(a, b);
+  const bool open = scale.range != detail::Range::native || detail::time_exponent(scale, velocity_a, velocity_b) != 0;
+  auto body = [&](int first, const Ellipsoid<T, N>& e) {
+    const auto lanes = detail::HWY_NAMESPACE::lanes_of(e, fill);
+    for (int i = 0; i < N; ++i) {
+      put(first + layout.center(i), lanes.c[i]);
+      for (int j = i; j < N; ++j) {
+        put(first + layout.s(i, j), lanes.s[i][j]);
+        if (fill == detail::HWY_NAMESPACE::Fill::quadric) put(first + layout.m(i, j), lanes.m[i][j]);
+      }
+    }
+    put(first + layout.rmax(), open ? NAN : lanes.rmax);
+    put(first + layout.rmin(), open ? NAN : lanes.rmin);
+  };
+  body(0, a);
+  body(body_columns, b);
+  for (int i = 0; i < N; ++i) {
+    put(2 * body_columns + i, double(velocity_a[i]));
+    put(2 * body_columns + N + i, double(velocity_b[i]));
+  }
+  put(Pairs<T, N>::columns - 1, double(t_max));
+}
+
+}  // namespace
+
 template <class T, int N>
 void Pairs<T, N>::reserve(std::size_t n) {
   for (auto& c : columns_) c.reserve(n);
@@ -43,33 +79,8 @@ void Pairs<T, N>::push_back(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b) 
 template <class T, int N>
 void Pairs<T, N>::push_back(const Ellipsoid<T, N>& a, const Vec<T, N>& velocity_a, const Ellipsoid<T, N>& b,
                             const Vec<T, N>& velocity_b, T t_max) {
-  constexpr detail::BodyLayout layout{N};
-  auto put = [&](int first, const Ellipsoid<T, N>& e) {
-    const auto lanes = detail::HWY_NAMESPACE::lanes_of(e, detail::HWY_NAMESPACE::Fill::quadric);
-    auto column = [&](int k) -> std::vector<double>& { return columns_[static_cast<std::size_t>(first + k)]; };
-    for (int i = 0; i < N; ++i) {
-      column(layout.center(i)).push_back(lanes.c[i]);
-      for (int j = i; j < N; ++j) {
-        column(layout.s(i, j)).push_back(lanes.s[i][j]);
-        column(layout.m(i, j)).push_back(lanes.m[i][j]);
-      }
-    }
-    column(layout.rmax()).push_back(lanes.rmax);
-    column(layout.rmin()).push_back(lanes.rmin);
-  };
-  put(0, a);
-  put(body_columns, b);
-  // Pairs the scalar functions rescale or widen (detail/scale.hpp) are left to them: NaN
-  // radii fail every certificate's comparison, so the filter leaves the pair open.
-  const detail::Scale scale = detail::scale_of(a, b);
-  if (scale.range != detail::Range::native || detail::time_exponent(scale, velocity_a, velocity_b) != 0)
-    for (const int first : {0, body_columns})
-      for (const int k : {layout.rmax(), layout.rmin()}) columns_[static_cast<std::size_t>(first + k)].back() = NAN;
-  for (int i = 0; i < N; ++i) {
-    columns_[static_cast<std::size_t>(2 * body_columns + i)].push_back(double(velocity_a[i]));
-    columns_[static_cast<std::size_t>(2 * body_columns + N + i)].push_back(double(velocity_b[i]));
-  }
-  columns_[columns - 1].push_back(double(t_max));
+  put_pair(a, velocity_a, b, velocity_b, t_max, detail::HWY_NAMESPACE::Fill::quadric,
+           [this](int k, double value) { columns_[static_cast<std::size_t>(k)].push_back(value); });
   a_.push_back(a);
   b_.push_back(b);
 }
@@ -233,15 +244,57 @@ Backend run_on_gpu(const Pairs<T, N>& pairs, std::size_t out_size, detail::Batch
   }
 }
 
+// Pairs given as spans of bodies (the array-of-structs entry points), read as Pairs are.
 template <class T, int N>
-auto overlap_answer(const Pairs<T, N>& pairs, std::span<bool> out, const BatchOptions& options) {
+struct BodySpans {
+  std::span<const Ellipsoid<T, N>> as, bs;
+  std::span<const Vec<T, N>> velocities_a, velocities_b;  // empty: at rest
+  std::span<const T> t_maxes;                             // empty: t_max = 0
+
+  std::size_t size() const noexcept { return as.size(); }
+  const Ellipsoid<T, N>& a(std::size_t i) const { return as[i]; }
+  const Ellipsoid<T, N>& b(std::size_t i) const { return bs[i]; }
+  Vec<T, N> velocity_a(std::size_t i) const { return velocities_a.empty() ? Vec<T, N>::Zero() : velocities_a[i]; }
+  Vec<T, N> velocity_b(std::size_t i) const { return velocities_b.empty() ? Vec<T, N>::Zero() : velocities_b[i]; }
+  T t_max(std::size_t i) const { return t_maxes.empty() ? T(0) : t_maxes[i]; }
+};
+
+// run_batch on spans of bodies: each thread fills the columns of its chunk in a buffer of
+// its own (kept for the thread), so no Pairs of the whole array is built, on one thread,
+// before the filter runs (it cost about 30 times the filter on 1M pairs).
+template <class T, int N, class Answer>
+void run_batch(const BodySpans<T, N>& pairs, std::size_t out_size, detail::BatchQuery query,
+               const BatchOptions& options, const Answer& answer) {
+  require_size(out_size, pairs.size());
+  constexpr int columns = Pairs<T, N>::columns;
+  namespace hw = detail::HWY_NAMESPACE;
+  const hw::Fill fill = query == detail::BatchQuery::classify ? hw::Fill::quadric : hw::Fill::shape;  // what the filter reads
+  for_each_chunk(pairs.size(), options.threads, [&](std::size_t begin, std::size_t end) {
+    // Columns a cache line apart beyond their length: at a stride of exactly 8 KB, the
+    // rows' writes to the 41 columns would all fall in one set of the L1 cache.
+    constexpr std::size_t stride = chunk + 8;
+    thread_local std::vector<double> buffer;
+    buffer.resize(columns * stride);
+    std::array<const double*, columns> column;
+    for (int k = 0; k < columns; ++k) column[static_cast<std::size_t>(k)] = buffer.data() + k * stride;
+    for (std::size_t i = begin; i < end; ++i)
+      put_pair(pairs.a(i), pairs.velocity_a(i), pairs.b(i), pairs.velocity_b(i), pairs.t_max(i), fill,
+               [&](int k, double value) { buffer[static_cast<std::size_t>(k) * stride + (i - begin)] = value; });
+    std::array<signed char, chunk> codes;
+    detail::certify_pairs(N, query, column.data(), 0, end - begin, options.query.tolerance, codes.data());
+    for (std::size_t i = begin; i < end; ++i) answer(i, codes[i - begin]);
+  });
+}
+
+template <class P>
+auto overlap_answer(const P& pairs, std::span<bool> out, const BatchOptions& options) {
   return [&pairs, out, &options](std::size_t i, signed char code) {
     out[i] = code != 0 ? code > 0 : overlap(pairs.a(i), pairs.b(i), options.query);
   };
 }
 
-template <class T, int N>
-auto classify_answer(const Pairs<T, N>& pairs, std::span<Relation> out, const BatchOptions& options) {
+template <class P>
+auto classify_answer(const P& pairs, std::span<Relation> out, const BatchOptions& options) {
   return [&pairs, out, &options](std::size_t i, signed char code) {
     out[i] = code < 0   ? Relation::separated
              : code > 0 ? Relation::overlapping
@@ -249,13 +302,21 @@ auto classify_answer(const Pairs<T, N>& pairs, std::span<Relation> out, const Ba
   };
 }
 
-template <class T, int N>
-Pairs<T, N> pairs_of(std::span<const Ellipsoid<T, N>> a, std::span<const Ellipsoid<T, N>> b) {
-  if (a.size() != b.size()) throw std::invalid_argument("ellipsect: a and b must have equal sizes");
-  Pairs<T, N> pairs;
-  pairs.reserve(a.size());
-  for (std::size_t i = 0; i < a.size(); ++i) pairs.push_back(a[i], b[i]);
-  return pairs;
+template <class P, class T, int N>
+auto contact_answer(const P& pairs, std::span<Contact<T, N>> out, const BatchOptions& options) {
+  return [&pairs, out, &options](std::size_t i, signed char code) {
+    if (code > 0) {  // what first_contact answers when the swept balls stay apart
+      Contact<T, N> c;
+      c.status = ContactStatus::no_contact_in_window;
+      c.time = std::numeric_limits<T>::quiet_NaN();
+      c.point.setConstant(c.time);
+      c.normal.setConstant(c.time);
+      out[i] = c;
+    } else {
+      out[i] = first_contact(pairs.a(i), pairs.velocity_a(i), pairs.b(i), pairs.velocity_b(i), pairs.t_max(i),
+                             options.query);
+    }
+  };
 }
 
 }  // namespace
@@ -289,31 +350,23 @@ std::string_view to_string(Backend b) noexcept { return b == Backend::gpu ? "gpu
 
 template <class T, int N>
 void first_contact(const Pairs<T, N>& pairs, std::span<Contact<T, N>> out, const BatchOptions& options) {
-  run_batch(pairs, out.size(), detail::BatchQuery::contact, options, [&](std::size_t i, signed char code) {
-    if (code > 0) {  // what first_contact answers when the swept balls stay apart
-      Contact<T, N> c;
-      c.status = ContactStatus::no_contact_in_window;
-      c.time = std::numeric_limits<T>::quiet_NaN();
-      c.point.setConstant(c.time);
-      c.normal.setConstant(c.time);
-      out[i] = c;
-    } else {
-      out[i] = first_contact(pairs.a(i), pairs.velocity_a(i), pairs.b(i), pairs.velocity_b(i), pairs.t_max(i),
-                             options.query);
-    }
-  });
+  run_batch(pairs, out.size(), detail::BatchQuery::contact, options, contact_answer(pairs, out, options));
 }
 
 template <class T, int N>
 void overlap(std::span<const Ellipsoid<T, N>> a, std::span<const Ellipsoid<T, N>> b, std::span<bool> out,
              const BatchOptions& options) {
-  overlap(pairs_of(a, b), out, options);
+  if (a.size() != b.size()) throw std::invalid_argument("ellipsect: a and b must have equal sizes");
+  const BodySpans<T, N> pairs{a, b, {}, {}, {}};
+  run_batch(pairs, out.size(), detail::BatchQuery::overlap, options, overlap_answer(pairs, out, options));
 }
 
 template <class T, int N>
 void classify(std::span<const Ellipsoid<T, N>> a, std::span<const Ellipsoid<T, N>> b, std::span<Relation> out,
               const BatchOptions& options) {
-  classify(pairs_of(a, b), out, options);
+  if (a.size() != b.size()) throw std::invalid_argument("ellipsect: a and b must have equal sizes");
+  const BodySpans<T, N> pairs{a, b, {}, {}, {}};
+  run_batch(pairs, out.size(), detail::BatchQuery::classify, options, classify_answer(pairs, out, options));
 }
 
 template <class T, int N>
@@ -323,10 +376,8 @@ void first_contact(std::span<const Ellipsoid<T, N>> a, std::span<const Vec<T, N>
   const std::size_t n = a.size();
   if (b.size() != n || velocity_a.size() != n || velocity_b.size() != n || t_max.size() != n)
     throw std::invalid_argument("ellipsect: a, velocity_a, b, velocity_b and t_max must have equal sizes");
-  Pairs<T, N> pairs;
-  pairs.reserve(n);
-  for (std::size_t i = 0; i < n; ++i) pairs.push_back(a[i], velocity_a[i], b[i], velocity_b[i], t_max[i]);
-  first_contact(pairs, out, options);
+  const BodySpans<T, N> pairs{a, b, velocity_a, velocity_b, t_max};
+  run_batch(pairs, out.size(), detail::BatchQuery::contact, options, contact_answer(pairs, out, options));
 }
 
 #define ELLIPSECT_INSTANTIATE(T, N)                                                                              \

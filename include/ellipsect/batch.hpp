@@ -90,7 +90,11 @@ void classify(const Pairs<T, N>& pairs, std::span<Relation> out, const BatchOpti
 template <class T, int N>
 void first_contact(const Pairs<T, N>& pairs, std::span<Contact<T, N>> out, const BatchOptions& options = {});
 
-// Array-of-structs convenience: pair i is (a[i], b[i]); a, b and out of equal sizes.
+// Array-of-structs entry points: pair i is (a[i], b[i]); a, b and out of equal sizes. The
+// answers are those of the Pairs overloads; no Pairs is built: each thread computes the
+// columns of the chunk it filters, in a buffer of its own (bench/RESULTS.md, "Batch from
+// bodies": about 30 ns per 3D overlap pair on 2 cores, against 11 on prebuilt Pairs and
+// 360 when a Pairs was built first).
 template <class T, int N>
 void overlap(std::span<const Ellipsoid<T, N>> a, std::span<const Ellipsoid<T, N>> b, std::span<bool> out,
              const BatchOptions& options = {});

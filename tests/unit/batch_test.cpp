@@ -177,12 +177,14 @@ TEST(Batch, ConcurrentCallsAndForkedChild) {
   EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0);
 }
 
+// The span overloads pack each chunk's columns on the thread that filters it: more than
+// two chunks of 1024, on two threads, every category (rescaled and long double pairs too).
 TEST(Batch, ArrayOfStructsEntryPoints) {
   std::vector<Ellipsoid<double, 3>> a, b;
   std::vector<Vec3<double>> va, vb;
   std::vector<double> t_max;
   for (const auto category : scenarios::all_categories)
-    for (int i = 0; i < 13; ++i) {
+    for (int i = 0; i < 220; ++i) {
       const auto c = scenarios::make_case<3>(category, 100 + std::uint64_t(i));
       a.push_back(c.a);
       b.push_back(c.b);
@@ -194,9 +196,11 @@ TEST(Batch, ArrayOfStructsEntryPoints) {
   const auto overlaps = std::make_unique<bool[]>(n);
   std::vector<Relation> relations(n);
   std::vector<Contact<double, 3>> contacts(n);
-  overlap<double, 3>(a, b, std::span<bool>(overlaps.get(), n));
-  classify<double, 3>(a, b, relations);
-  first_contact<double, 3>(a, va, b, vb, t_max, contacts);
+  const BatchOptions two_threads{.query = {}, .threads = 2};
+  overlap<double, 3>(a, b, std::span<bool>(overlaps.get(), n), two_threads);
+  classify<double, 3>(a, b, relations, two_threads);
+  first_contact<double, 3>(a, va, b, vb, t_max, contacts, two_threads);
+  ASSERT_GT(n, 2 * 1024u);
   for (std::size_t i = 0; i < n; ++i) {
     EXPECT_EQ(overlaps[i], overlap(a[i], b[i]));
     EXPECT_EQ(relations[i], classify(a[i], b[i]));
