@@ -62,6 +62,9 @@
 // BM_overlap3_large/ellipsect_build_pairs_allcores/random
 //                       a Pairs built from the arrays in each call (reserve, push_back), then
 //                       overlap on it: what the span overloads did before
+// BM_pairs3_large/push_back/random, BM_pairs3_large/assign_allcores/random
+//                       building a Pairs of the 1 << 20 pairs from the arrays: reserve and
+//                       push_back per pair, or Pairs::assign (columns on every core)
 // BM_classify3_large/ellipsect_batch_allcores/random, BM_classify3_large/ellipsect_gpu/random
 //                       batch classify over the same 1 << 20 pairs, on every core and
 //                       through classify_on_gpu
@@ -392,17 +395,36 @@ void classify_cycled(benchmark::State& state, int threads, bool gpu) {
                              [](const auto& p, auto out, const BatchOptions& o) { return classify_on_gpu(p, out, o); });
 }
 
+Pairs<double, 3> pushed(const Bodies& x) {
+  Pairs<double, 3> pairs;
+  pairs.reserve(x.size());
+  for (std::size_t i = 0; i < x.size(); ++i) pairs.push_back(x.a[i], x.b[i]);
+  return pairs;
+}
+
 // From arrays of bodies: the span overloads, or a Pairs built in each call, then queried.
 template <std::size_t size>
 void overlap_from_bodies(benchmark::State& state, bool build_pairs) {
   const auto& c = cycled<size>();
   run_batch<bool>(state, c.overlap, c.bodies, 0, [build_pairs](const Bodies& x, auto out, const BatchOptions& o) {
     if (!build_pairs) return overlap<double, 3>(x.a, x.b, out, o);
-    Pairs<double, 3> pairs;
-    pairs.reserve(x.size());
-    for (std::size_t i = 0; i < x.size(); ++i) pairs.push_back(x.a[i], x.b[i]);
-    overlap(pairs, out, o);
+    overlap(pushed(x), out, o);
   });
+}
+
+// A Pairs from the arrays: push_back per pair, or assign (on every core).
+template <std::size_t size>
+void build_pairs(benchmark::State& state, bool assign) {
+  const auto& c = cycled<size>();
+  for (auto _ : state) {
+    Pairs<double, 3> pairs;
+    if (assign)
+      pairs.assign(c.bodies.a, c.bodies.b);
+    else
+      pairs = pushed(c.bodies);
+    benchmark::DoNotOptimize(pairs.column(0));
+  }
+  per_pair(state, size);
 }
 
 template <std::size_t size>
@@ -587,6 +609,8 @@ void register_all() {
   add("BM_overlap3_large/ellipsect_spans_allcores/random", overlap_from_bodies<large_size>, false)->UseRealTime();
   add("BM_overlap3_large/ellipsect_build_pairs_allcores/random", overlap_from_bodies<large_size>, true)->UseRealTime();
   add("BM_classify3_large/ellipsect_spans_allcores/random", classify_from_bodies<large_size>)->UseRealTime();
+  add("BM_pairs3_large/push_back/random", build_pairs<large_size>, false)->UseRealTime();
+  add("BM_pairs3_large/assign_allcores/random", build_pairs<large_size>, true)->UseRealTime();
   if (gpu_info().devices > 0) {
     add("BM_overlap3_cached/ellipsect_gpu/random", overlap_cycled<cached_size>, 0, true)->UseRealTime();
     add("BM_overlap3_large/ellipsect_gpu/random", overlap_cycled<large_size>, 0, true)->UseRealTime();

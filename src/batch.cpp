@@ -15,6 +15,7 @@
 #include <cmath>
 #include <condition_variable>
 #include <cstdint>
+#include <exception>
 #include <functional>
 #include <limits>
 #include <mutex>
@@ -183,19 +184,29 @@ private:
   const std::function<void()>* job_ = nullptr;
 };
 
+// job(j) for every j in [0, count), on up to `wanted` threads (the caller and the pool's).
+template <class Job>
+void run_jobs(std::size_t count, std::size_t wanted, const Job& job) {
+  std::atomic<std::size_t> next{0};
+  auto run = [&] {
+    for (std::size_t j; (j = next.fetch_add(1)) < count;) job(j);
+  };
+  if (wanted <= 1) return run();
+  Workers::get().run(wanted - 1, run);
+}
+
+// BatchOptions::threads (0: all hardware threads), at most `at_most`.
+std::size_t threads_wanted(int threads, std::size_t at_most) {
+  return std::min(threads > 0 ? std::size_t(threads) : std::numeric_limits<std::size_t>::max(), at_most);
+}
+
 // Calls work(begin, end) on every chunk of [0, n), on up to `threads` threads (0: all
 // hardware threads; at most the pool and the caller).
 template <class Work>
 void for_each_chunk(std::size_t n, int threads, const Work& work) {
   const std::size_t chunks = (n + chunk - 1) / chunk;
-  const std::size_t wanted = std::min(threads > 0 ? std::size_t(threads) : std::numeric_limits<std::size_t>::max(),
-                                      (chunks + chunks_per_thread - 1) / chunks_per_thread);
-  std::atomic<std::size_t> next{0};
-  auto run = [&] {
-    for (std::size_t c; (c = next.fetch_add(1)) < chunks;) work(c * chunk, std::min(n, (c + 1) * chunk));
-  };
-  if (wanted <= 1) return run();
-  Workers::get().run(wanted - 1, run);
+  run_jobs(chunks, threads_wanted(threads, (chunks + chunks_per_thread - 1) / chunks_per_thread),
+           [&](std::size_t c) { work(c * chunk, std::min(n, (c + 1) * chunk)); });
 }
 
 template <class T, int N>
@@ -207,6 +218,12 @@ std::array<const double*, Pairs<T, N>::columns> columns_of(const Pairs<T, N>& pa
 
 void require_size(std::size_t out_size, std::size_t pairs) {
   if (out_size != pairs) throw std::invalid_argument("ellipsect: out.size() must equal the number of pairs");
+}
+
+void require_equal_sizes(std::size_t a, std::size_t b, std::size_t velocity_a, std::size_t velocity_b,
+                         std::size_t t_max) {
+  if (b != a || velocity_a != a || velocity_b != a || t_max != a)
+    throw std::invalid_argument("ellipsect: a, velocity_a, b, velocity_b and t_max must have equal sizes");
 }
 
 // `answer(i, code)` writes pair i's result from its code (0: undecided, the scalar function
@@ -322,6 +339,55 @@ auto contact_answer(const P& pairs, std::span<Contact<T, N>> out, const BatchOpt
 }  // namespace
 
 template <class T, int N>
+template <class Source>
+void Pairs<T, N>::fill(const Source& pairs, int threads) {
+  const std::size_t n = pairs.size();
+  clear();
+  // Sizing the columns and copying the bodies writes fresh memory (568 bytes per 3D pair):
+  // one job per column on the pool, as the filling below. A job that fails to allocate
+  // ends the assignment with its exception, the contents cleared.
+  const std::size_t jobs = columns + 2;
+  std::exception_ptr error;
+  std::mutex error_mutex;
+  run_jobs(jobs, threads_wanted(threads, n >= chunk * chunks_per_thread ? jobs : 1), [&](std::size_t j) {
+    try {
+      if (j < columns)
+        columns_[j].resize(n);
+      else
+        (j == columns ? a_ : b_).assign(j == columns ? pairs.as.begin() : pairs.bs.begin(),
+                                        j == columns ? pairs.as.end() : pairs.bs.end());
+    } catch (...) {
+      const std::lock_guard lock(error_mutex);
+      if (!error) error = std::current_exception();
+    }
+  });
+  if (error) {
+    clear();
+    std::rethrow_exception(error);
+  }
+  for_each_chunk(n, threads, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i)
+      put_pair(pairs.a(i), pairs.velocity_a(i), pairs.b(i), pairs.velocity_b(i), pairs.t_max(i),
+               detail::HWY_NAMESPACE::Fill::quadric,
+               [&](int k, double value) { columns_[static_cast<std::size_t>(k)][i] = value; });
+  });
+}
+
+template <class T, int N>
+void Pairs<T, N>::assign(std::span<const Ellipsoid<T, N>> a, std::span<const Ellipsoid<T, N>> b, int threads) {
+  if (a.size() != b.size()) throw std::invalid_argument("ellipsect: a and b must have equal sizes");
+  fill(BodySpans<T, N>{a, b, {}, {}, {}}, threads);
+}
+
+template <class T, int N>
+void Pairs<T, N>::assign(std::span<const Ellipsoid<T, N>> a, std::span<const Vec<T, N>> velocity_a,
+                         std::span<const Ellipsoid<T, N>> b, std::span<const Vec<T, N>> velocity_b,
+                         std::span<const T> t_max, int threads) {
+  require_equal_sizes(a.size(), b.size(), velocity_a.size(), velocity_b.size(), t_max.size());
+  fill(BodySpans<T, N>{a, b, velocity_a, velocity_b, t_max}, threads);
+}
+
+template <class T, int N>
 void overlap(const Pairs<T, N>& pairs, std::span<bool> out, const BatchOptions& options) {
   run_batch(pairs, out.size(), detail::BatchQuery::overlap, options, overlap_answer(pairs, out, options));
 }
@@ -373,9 +439,7 @@ template <class T, int N>
 void first_contact(std::span<const Ellipsoid<T, N>> a, std::span<const Vec<T, N>> velocity_a,
                    std::span<const Ellipsoid<T, N>> b, std::span<const Vec<T, N>> velocity_b,
                    std::span<const T> t_max, std::span<Contact<T, N>> out, const BatchOptions& options) {
-  const std::size_t n = a.size();
-  if (b.size() != n || velocity_a.size() != n || velocity_b.size() != n || t_max.size() != n)
-    throw std::invalid_argument("ellipsect: a, velocity_a, b, velocity_b and t_max must have equal sizes");
+  require_equal_sizes(a.size(), b.size(), velocity_a.size(), velocity_b.size(), t_max.size());
   const BodySpans<T, N> pairs{a, b, velocity_a, velocity_b, t_max};
   run_batch(pairs, out.size(), detail::BatchQuery::contact, options, contact_answer(pairs, out, options));
 }

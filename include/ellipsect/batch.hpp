@@ -65,6 +65,13 @@ public:
   void push_back(const Ellipsoid<T, N>& a, const Vec<T, N>& velocity_a, const Ellipsoid<T, N>& b,
                  const Vec<T, N>& velocity_b, T t_max);
   void clear();
+  // Replaces the contents with the pairs (a[i], b[i]), with velocities and windows in the
+  // second form: the columns push_back would store, computed on `threads` threads (0: every
+  // hardware thread; batch.hpp's pool). Spans of unequal sizes throw std::invalid_argument.
+  void assign(std::span<const Ellipsoid<T, N>> a, std::span<const Ellipsoid<T, N>> b, int threads = 0);
+  void assign(std::span<const Ellipsoid<T, N>> a, std::span<const Vec<T, N>> velocity_a,
+              std::span<const Ellipsoid<T, N>> b, std::span<const Vec<T, N>> velocity_b, std::span<const T> t_max,
+              int threads = 0);
 
   std::size_t size() const noexcept { return a_.size(); }
   const Ellipsoid<T, N>& a(std::size_t i) const { return a_[i]; }
@@ -76,6 +83,9 @@ public:
   const double* column(int k) const noexcept { return columns_[static_cast<std::size_t>(k)].data(); }
 
 private:
+  template <class Source>
+  void fill(const Source& pairs, int threads);  // assign's work (src/batch.cpp)
+
   std::vector<std::vector<double>> columns_;
   std::vector<Ellipsoid<T, N>> a_, b_;
 };

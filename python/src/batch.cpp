@@ -273,13 +273,10 @@ void def_batch_queries(py::module_& m) {
           const Motion<N> motion = moving ? motion_of<N>(n, velocity_a, velocity_b, t_max) : Motion<N>{};
           py::gil_scoped_release release;
           P out;
-          out.reserve(n);
-          for (std::size_t i = 0; i < n; ++i) {
-            if (moving)
-              out.push_back(a.items[i], motion.velocity_a[i], b.items[i], motion.velocity_b[i], motion.t_max[i]);
-            else
-              out.push_back(a.items[i], b.items[i]);
-          }
+          if (moving)
+            out.assign(span_of(a), motion.velocity_a, span_of(b), motion.velocity_b, motion.t_max);
+          else
+            out.assign(span_of(a), span_of(b));
           return out;
         },
         py::arg("a"), py::arg("b"), py::arg("velocity_a") = py::none(), py::arg("velocity_b") = py::none(),

@@ -12,6 +12,7 @@
 
 #include <bit>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <memory>
 #include <thread>
@@ -206,6 +207,47 @@ TEST(Batch, ArrayOfStructsEntryPoints) {
     EXPECT_EQ(relations[i], classify(a[i], b[i]));
     expect_same(contacts[i], first_contact(a[i], va[i], b[i], vb[i], t_max[i]), i);
   }
+}
+
+// Pairs::assign stores what push_back stores, bit for bit (NaN radii of rescaled and long
+// double pairs too), on every thread count, and replaces what was there.
+TEST(Batch, AssignEqualsPushBack) {
+  std::vector<Ellipsoid<double, 3>> a, b;
+  std::vector<Vec3<double>> va, vb;
+  std::vector<double> t_max;
+  Pairs<double, 3> pushed;
+  for (const auto category : scenarios::all_categories)
+    for (int i = 0; i < 900; ++i) {  // 9000 pairs: enough for every thread to take a share
+      const auto c = scenarios::make_case<3>(category, 300 + std::uint64_t(i));
+      a.push_back(c.a);
+      b.push_back(c.b);
+      va.push_back(c.va);
+      vb.push_back(c.vb);
+      t_max.push_back(c.t_max);
+      pushed.push_back(c.a, c.va, c.b, c.vb, c.t_max);
+    }
+  const auto expect_equal = [&](const Pairs<double, 3>& p) {
+    ASSERT_EQ(p.size(), pushed.size());
+    std::size_t differ = 0;
+    for (int k = 0; k < Pairs<double, 3>::columns; ++k)
+      for (std::size_t i = 0; i < p.size(); ++i) differ += !same_bits(p.column(k)[i], pushed.column(k)[i]);
+    for (std::size_t i = 0; i < p.size(); ++i)
+      differ += std::memcmp(&p.a(i), &pushed.a(i), sizeof(p.a(i))) != 0 || std::memcmp(&p.b(i), &pushed.b(i), sizeof(p.b(i))) != 0;
+    EXPECT_EQ(differ, 0u);
+  };
+  for (const int threads : {1, 2, 0}) {
+    Pairs<double, 3> assigned;
+    assigned.push_back(b[0], a[0]);  // replaced
+    assigned.assign(a, va, b, vb, t_max, threads);
+    expect_equal(assigned);
+  }
+  Pairs<double, 3> still, pushed_still;
+  still.assign(a, b);
+  for (std::size_t i = 0; i < a.size(); ++i) pushed_still.push_back(a[i], b[i]);
+  pushed = pushed_still;
+  expect_equal(still);
+  EXPECT_THROW(still.assign(std::span(a), std::span(b).first(3)), std::invalid_argument);
+  EXPECT_THROW(still.assign(a, va, b, std::span(vb).first(3), t_max), std::invalid_argument);
 }
 
 TEST(Batch, InvalidMotionIsReportedPerPair) {
