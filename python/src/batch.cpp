@@ -231,7 +231,7 @@ py::array_t<std::int8_t> classify_array(std::size_t n, const Run& run) {
   py::array_t<std::int8_t> out(static_cast<py::ssize_t>(n));
   std::int8_t* p = out.mutable_data();
   py::gil_scoped_release release;
-  const auto relations = std::make_unique<Relation[]>(n);
+  const auto relations = std::make_unique_for_overwrite<Relation[]>(n);  // no zero fill: every entry is written
   run(std::span<Relation>(relations.get(), n));
   for (std::size_t i = 0; i < n; ++i) p[i] = static_cast<std::int8_t>(relations[i]);
   return out;
