@@ -276,6 +276,14 @@ struct BodySpans {
   T t_max(std::size_t i) const { return t_maxes.empty() ? T(0) : t_maxes[i]; }
 };
 
+// At least `size` doubles of the calling thread's own, kept for the thread (one buffer
+// for every query, type and dimension: at most 336 KB, 3D).
+double* thread_buffer(std::size_t size) {
+  thread_local std::vector<double> buffer;
+  if (buffer.size() < size) buffer.resize(size);
+  return buffer.data();
+}
+
 // run_batch on spans of bodies: each thread fills the columns of its chunk in a buffer of
 // its own (kept for the thread), so no Pairs of the whole array is built, on one thread,
 // before the filter runs (it cost about 30 times the filter on 1M pairs).
@@ -290,10 +298,9 @@ void run_batch(const BodySpans<T, N>& pairs, std::size_t out_size, detail::Batch
     // Columns a cache line apart beyond their length: at a stride of exactly 8 KB, the
     // rows' writes to the 41 columns would all fall in one set of the L1 cache.
     constexpr std::size_t stride = chunk + 8;
-    thread_local std::vector<double> buffer;
-    buffer.resize(columns * stride);
+    double* const buffer = thread_buffer(columns * stride);
     std::array<const double*, columns> column;
-    for (int k = 0; k < columns; ++k) column[static_cast<std::size_t>(k)] = buffer.data() + k * stride;
+    for (int k = 0; k < columns; ++k) column[static_cast<std::size_t>(k)] = buffer + k * stride;
     for (std::size_t i = begin; i < end; ++i)
       put_pair(pairs.a(i), pairs.velocity_a(i), pairs.b(i), pairs.velocity_b(i), pairs.t_max(i), fill,
                [&](int k, double value) { buffer[static_cast<std::size_t>(k) * stride + (i - begin)] = value; });
