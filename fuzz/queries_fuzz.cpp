@@ -212,6 +212,26 @@ void check_batch(const std::vector<Ellipsoid<T, N>>& as, const std::vector<Ellip
   overlap<T, N>(pairs, std::span<bool>(o.get(), n), one_thread);
   classify<T, N>(pairs, std::span<Relation>(r), one_thread);
   first_contact<T, N>(pairs, std::span<Contact<T, N>>(c), one_thread);
+  // The span overloads (each chunk's columns filled on its thread) and Pairs::assign give
+  // the Pairs path's columns and answers.
+  std::unique_ptr<bool[]> os(new bool[n]);
+  std::vector<Relation> rs(n);
+  std::vector<Contact<T, N>> cs(n);
+  overlap<T, N>(as, bs, std::span<bool>(os.get(), n), one_thread);
+  classify<T, N>(as, bs, std::span<Relation>(rs), one_thread);
+  first_contact<T, N>(as, vas, bs, vbs, t_maxes, std::span<Contact<T, N>>(cs), one_thread);
+  Pairs<T, N> assigned;
+  assigned.assign(as, vas, bs, vbs, t_maxes, 1);
+  for (int k = 0; k < Pairs<T, N>::columns; ++k)
+    for (std::size_t i = 0; i < n; ++i)
+      FUZZ_CHECK(same_bits(assigned.column(k)[i], pairs.column(k)[i]),
+                 << "Pairs::assign, column " << k << ", pair " << i);
+  for (std::size_t i = 0; i < n; ++i) {
+    FUZZ_CHECK(os[i] == o[i] && rs[i] == r[i], << "span overloads, pair " << i);
+    FUZZ_CHECK(cs[i].status == c[i].status && same_bits(cs[i].time, c[i].time) && same_bits(cs[i].point, c[i].point) &&
+                   same_bits(cs[i].normal, c[i].normal) && cs[i].iterations == c[i].iterations,
+               << "span first_contact, pair " << i);
+  }
   for (std::size_t i = 0; i < n; ++i) {
     const Contact<T, N> sc = first_contact(as[i], vas[i], bs[i], vbs[i], t_maxes[i]);
     FUZZ_CHECK(o[i] == overlap(as[i], bs[i]), << "batch overlap, pair " << i);
