@@ -293,7 +293,8 @@ void run_batch(const BodySpans<T, N>& pairs, std::size_t out_size, detail::Batch
   require_size(out_size, pairs.size());
   constexpr int columns = Pairs<T, N>::columns;
   namespace hw = detail::HWY_NAMESPACE;
-  const hw::Fill fill = query == detail::BatchQuery::classify ? hw::Fill::quadric : hw::Fill::shape;  // what the filter reads
+  // The columns the filter reads: M for classify only.
+  const hw::Fill fill = query == detail::BatchQuery::classify ? hw::Fill::quadric : hw::Fill::shape;
   for_each_chunk(pairs.size(), options.threads, [&](std::size_t begin, std::size_t end) {
     // Columns a cache line apart beyond their length: at a stride of exactly 8 KB, the
     // rows' writes to the 41 columns would all fall in one set of the L1 cache.

@@ -232,7 +232,8 @@ TEST(Batch, AssignEqualsPushBack) {
     for (int k = 0; k < Pairs<double, 3>::columns; ++k)
       for (std::size_t i = 0; i < p.size(); ++i) differ += !same_bits(p.column(k)[i], pushed.column(k)[i]);
     for (std::size_t i = 0; i < p.size(); ++i)
-      differ += std::memcmp(&p.a(i), &pushed.a(i), sizeof(p.a(i))) != 0 || std::memcmp(&p.b(i), &pushed.b(i), sizeof(p.b(i))) != 0;
+      differ += std::memcmp(&p.a(i), &pushed.a(i), sizeof(p.a(i))) != 0 ||
+                std::memcmp(&p.b(i), &pushed.b(i), sizeof(p.b(i))) != 0;
     EXPECT_EQ(differ, 0u);
   };
   for (const int threads : {1, 2, 0}) {
