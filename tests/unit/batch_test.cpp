@@ -178,21 +178,30 @@ TEST(Batch, ConcurrentCallsAndForkedChild) {
   EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0);
 }
 
-// The span overloads pack each chunk's columns on the thread that filters it: more than
-// two chunks of 1024, on two threads, every category (rescaled and long double pairs too).
-TEST(Batch, ArrayOfStructsEntryPoints) {
+// `per_category` cases of every scenario category as arrays: pair i is (a[i], b[i]).
+struct CaseArrays {
   std::vector<Ellipsoid<double, 3>> a, b;
   std::vector<Vec3<double>> va, vb;
   std::vector<double> t_max;
-  for (const auto category : scenarios::all_categories)
-    for (int i = 0; i < 220; ++i) {
-      const auto c = scenarios::make_case<3>(category, 100 + std::uint64_t(i));
-      a.push_back(c.a);
-      b.push_back(c.b);
-      va.push_back(c.va);
-      vb.push_back(c.vb);
-      t_max.push_back(c.t_max);
-    }
+
+  CaseArrays(int per_category, std::uint64_t seed) {
+    for (const auto category : scenarios::all_categories)
+      for (int i = 0; i < per_category; ++i) {
+        const auto c = scenarios::make_case<3>(category, seed + std::uint64_t(i));
+        a.push_back(c.a);
+        b.push_back(c.b);
+        va.push_back(c.va);
+        vb.push_back(c.vb);
+        t_max.push_back(c.t_max);
+      }
+  }
+};
+
+// The span overloads pack each chunk's columns on the thread that filters it: more than
+// two chunks of 1024, on two threads, every category (rescaled and long double pairs too).
+TEST(Batch, ArrayOfStructsEntryPoints) {
+  const CaseArrays cases(220, 100);
+  const auto& [a, b, va, vb, t_max] = cases;
   const std::size_t n = a.size();
   const auto overlaps = std::make_unique<bool[]>(n);
   std::vector<Relation> relations(n);
@@ -212,20 +221,10 @@ TEST(Batch, ArrayOfStructsEntryPoints) {
 // Pairs::assign stores what push_back stores, bit for bit (NaN radii of rescaled and long
 // double pairs too), on every thread count, and replaces what was there.
 TEST(Batch, AssignEqualsPushBack) {
-  std::vector<Ellipsoid<double, 3>> a, b;
-  std::vector<Vec3<double>> va, vb;
-  std::vector<double> t_max;
+  const CaseArrays cases(900, 300);  // 9000 pairs: enough for every thread to take a share
+  const auto& [a, b, va, vb, t_max] = cases;
   Pairs<double, 3> pushed;
-  for (const auto category : scenarios::all_categories)
-    for (int i = 0; i < 900; ++i) {  // 9000 pairs: enough for every thread to take a share
-      const auto c = scenarios::make_case<3>(category, 300 + std::uint64_t(i));
-      a.push_back(c.a);
-      b.push_back(c.b);
-      va.push_back(c.va);
-      vb.push_back(c.vb);
-      t_max.push_back(c.t_max);
-      pushed.push_back(c.a, c.va, c.b, c.vb, c.t_max);
-    }
+  for (std::size_t i = 0; i < a.size(); ++i) pushed.push_back(a[i], va[i], b[i], vb[i], t_max[i]);
   const auto expect_equal = [&](const Pairs<double, 3>& p) {
     ASSERT_EQ(p.size(), pushed.size());
     std::size_t differ = 0;
