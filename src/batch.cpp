@@ -220,12 +220,6 @@ void require_size(std::size_t out_size, std::size_t pairs) {
   if (out_size != pairs) throw std::invalid_argument("ellipsect: out.size() must equal the number of pairs");
 }
 
-void require_equal_sizes(std::size_t a, std::size_t b, std::size_t velocity_a, std::size_t velocity_b,
-                         std::size_t t_max) {
-  if (b != a || velocity_a != a || velocity_b != a || t_max != a)
-    throw std::invalid_argument("ellipsect: a, velocity_a, b, velocity_b and t_max must have equal sizes");
-}
-
 // `answer(i, code)` writes pair i's result from its code (0: undecided, the scalar function
 // answers) on each chunk; the codes are `given` (all pairs') or the filter's on the chunk.
 template <class T, int N, class Answer>
@@ -275,6 +269,23 @@ struct BodySpans {
   Vec<T, N> velocity_b(std::size_t i) const { return velocities_b.empty() ? Vec<T, N>::Zero() : velocities_b[i]; }
   T t_max(std::size_t i) const { return t_maxes.empty() ? T(0) : t_maxes[i]; }
 };
+
+// BodySpans of static pairs, or of moving ones; spans of unequal sizes throw.
+template <class T, int N>
+BodySpans<T, N> body_spans(std::span<const Ellipsoid<T, N>> a, std::span<const Ellipsoid<T, N>> b) {
+  if (a.size() != b.size()) throw std::invalid_argument("ellipsect: a and b must have equal sizes");
+  return {a, b, {}, {}, {}};
+}
+
+template <class T, int N>
+BodySpans<T, N> body_spans(std::span<const Ellipsoid<T, N>> a, std::span<const Vec<T, N>> velocity_a,
+                           std::span<const Ellipsoid<T, N>> b, std::span<const Vec<T, N>> velocity_b,
+                           std::span<const T> t_max) {
+  const std::size_t n = a.size();
+  if (b.size() != n || velocity_a.size() != n || velocity_b.size() != n || t_max.size() != n)
+    throw std::invalid_argument("ellipsect: a, velocity_a, b, velocity_b and t_max must have equal sizes");
+  return {a, b, velocity_a, velocity_b, t_max};
+}
 
 // At least `size` doubles of the calling thread's own, kept for the thread (one buffer
 // for every query, type and dimension: at most 336 KB, 3D).
@@ -361,9 +372,10 @@ void Pairs<T, N>::fill(const Source& pairs, int threads) {
     try {
       if (j < columns)
         columns_[j].resize(n);
+      else if (j == columns)
+        a_.assign(pairs.as.begin(), pairs.as.end());
       else
-        (j == columns ? a_ : b_).assign(j == columns ? pairs.as.begin() : pairs.bs.begin(),
-                                        j == columns ? pairs.as.end() : pairs.bs.end());
+        b_.assign(pairs.bs.begin(), pairs.bs.end());
     } catch (...) {
       const std::lock_guard lock(error_mutex);
       if (!error) error = std::current_exception();
@@ -383,16 +395,14 @@ void Pairs<T, N>::fill(const Source& pairs, int threads) {
 
 template <class T, int N>
 void Pairs<T, N>::assign(std::span<const Ellipsoid<T, N>> a, std::span<const Ellipsoid<T, N>> b, int threads) {
-  if (a.size() != b.size()) throw std::invalid_argument("ellipsect: a and b must have equal sizes");
-  fill(BodySpans<T, N>{a, b, {}, {}, {}}, threads);
+  fill(body_spans(a, b), threads);
 }
 
 template <class T, int N>
 void Pairs<T, N>::assign(std::span<const Ellipsoid<T, N>> a, std::span<const Vec<T, N>> velocity_a,
                          std::span<const Ellipsoid<T, N>> b, std::span<const Vec<T, N>> velocity_b,
                          std::span<const T> t_max, int threads) {
-  require_equal_sizes(a.size(), b.size(), velocity_a.size(), velocity_b.size(), t_max.size());
-  fill(BodySpans<T, N>{a, b, velocity_a, velocity_b, t_max}, threads);
+  fill(body_spans(a, velocity_a, b, velocity_b, t_max), threads);
 }
 
 template <class T, int N>
@@ -430,16 +440,14 @@ void first_contact(const Pairs<T, N>& pairs, std::span<Contact<T, N>> out, const
 template <class T, int N>
 void overlap(std::span<const Ellipsoid<T, N>> a, std::span<const Ellipsoid<T, N>> b, std::span<bool> out,
              const BatchOptions& options) {
-  if (a.size() != b.size()) throw std::invalid_argument("ellipsect: a and b must have equal sizes");
-  const BodySpans<T, N> pairs{a, b, {}, {}, {}};
+  const BodySpans<T, N> pairs = body_spans(a, b);
   run_batch(pairs, out.size(), detail::BatchQuery::overlap, options, overlap_answer(pairs, out, options));
 }
 
 template <class T, int N>
 void classify(std::span<const Ellipsoid<T, N>> a, std::span<const Ellipsoid<T, N>> b, std::span<Relation> out,
               const BatchOptions& options) {
-  if (a.size() != b.size()) throw std::invalid_argument("ellipsect: a and b must have equal sizes");
-  const BodySpans<T, N> pairs{a, b, {}, {}, {}};
+  const BodySpans<T, N> pairs = body_spans(a, b);
   run_batch(pairs, out.size(), detail::BatchQuery::classify, options, classify_answer(pairs, out, options));
 }
 
@@ -447,8 +455,7 @@ template <class T, int N>
 void first_contact(std::span<const Ellipsoid<T, N>> a, std::span<const Vec<T, N>> velocity_a,
                    std::span<const Ellipsoid<T, N>> b, std::span<const Vec<T, N>> velocity_b,
                    std::span<const T> t_max, std::span<Contact<T, N>> out, const BatchOptions& options) {
-  require_equal_sizes(a.size(), b.size(), velocity_a.size(), velocity_b.size(), t_max.size());
-  const BodySpans<T, N> pairs{a, b, velocity_a, velocity_b, t_max};
+  const BodySpans<T, N> pairs = body_spans(a, velocity_a, b, velocity_b, t_max);
   run_batch(pairs, out.size(), detail::BatchQuery::contact, options, contact_answer(pairs, out, options));
 }
 
