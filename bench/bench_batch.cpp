@@ -122,6 +122,7 @@
 #include <span>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 namespace {
@@ -350,24 +351,36 @@ struct Bodies {
   std::size_t size() const { return a.size(); }
 };
 
-// The random cases cycled to `size` pairs (static: no motion), with the reference's answers.
+Ellipsoid<float, 3> in_float(const Ellipsoid<double, 3>& e) {
+  return Ellipsoid<float, 3>::from_axes(e.center().cast<float>(), e.axes().cast<float>(), e.radii().cast<float>());
+}
+
+// The random cases cycled to `size` pairs (static: no motion), with the reference's answers;
+// and the same bodies rounded to float, with the scalar functions' answers for those (equal
+// to the reference's wherever the rounding, ~1e-7, does not move a pair across the band).
 template <std::size_t size>
 const auto& cycled() {
   static const auto out = [] {
     struct {
       Pairs<double, 3> pairs;
+      Pairs<float, 3> pairs_in_float;
       Bodies bodies;
-      Truth<bool> overlap;
-      Truth<Relation> relation;
+      Truth<bool> overlap, overlap_in_float;
+      Truth<Relation> relation, relation_in_float;
     } c;
     c.pairs.reserve(size);
+    c.pairs_in_float.reserve(size);
     for (std::size_t i = 0; i < size; ++i) {
       const auto& x = cases<3>(0).list[i % cases_per_category];
+      const auto a = in_float(x.a), b = in_float(x.b);
       c.pairs.push_back(x.a, x.b);
+      c.pairs_in_float.push_back(a, b);
       c.bodies.a.push_back(x.a);
       c.bodies.b.push_back(x.b);
       c.overlap.push_back(static_truth<3>(0).overlap[i % cases_per_category]);
       c.relation.push_back(static_truth<3>(0).relation[i % cases_per_category]);
+      c.overlap_in_float.push_back(overlap(a, b));
+      c.relation_in_float.push_back(classify(a, b));
     }
     return c;
   }();
@@ -381,6 +394,18 @@ void run_cycled(benchmark::State& state, const Truth& truth, int threads, bool g
   run_batch<Out>(state, truth, cycled<size>().pairs, threads, [on_gpu](const auto& p, auto out, const BatchOptions& o) {
     if (on_gpu(p, out, o) != Backend::gpu) throw std::runtime_error("the GPU entry point answered on the CPU");
   });
+}
+
+// Pairs<float, 3>: the float filter.
+template <std::size_t size>
+void overlap_cycled_in_float(benchmark::State& state, int threads) {
+  run_batch<bool>(state, cycled<size>().overlap_in_float, cycled<size>().pairs_in_float, threads, batch_overlap);
+}
+
+template <std::size_t size>
+void classify_cycled_in_float(benchmark::State& state, int threads) {
+  run_batch<Relation>(state, cycled<size>().relation_in_float, cycled<size>().pairs_in_float, threads,
+                      batch_classify);
 }
 
 template <std::size_t size>
@@ -435,15 +460,25 @@ void classify_from_bodies(benchmark::State& state) {
   });
 }
 
-// The vector certificate pass alone (no scalar fallback, no thread), on the random pairs:
-// `undecided` is the share it leaves to the exact path.
-void overlap_filter(benchmark::State& state) {
-  const auto& pairs = cases<3>(0).pairs;
-  std::vector<const double*> columns;
-  for (int k = 0; k < Pairs<double, 3>::columns; ++k) columns.push_back(pairs.column(k));
+// The vector certificate pass alone (no scalar fallback, no thread), on the random pairs
+// (double, or the float filter on them rounded to float): `undecided` is the share it
+// leaves to the exact path.
+template <class T>
+void filter(benchmark::State& state, detail::BatchQuery query) {
+  const auto& pairs = [] {
+    if constexpr (std::is_same_v<T, double>) {
+      return cases<3>(0).pairs;
+    } else {
+      Pairs<float, 3> p;
+      for (const auto& c : cases<3>(0).list) p.push_back(in_float(c.a), in_float(c.b));
+      return p;
+    }
+  }();
+  std::vector<const T*> columns;
+  for (int k = 0; k < Pairs<T, 3>::columns; ++k) columns.push_back(pairs.column(k));
   std::vector<signed char> codes(pairs.size());
   for (auto _ : state) {
-    detail::certify_pairs(3, detail::BatchQuery::overlap, columns.data(), 0, pairs.size(), 1e-12, codes.data());
+    detail::certify_pairs(3, query, columns.data(), 0, pairs.size(), 1e-12, codes.data());
     benchmark::DoNotOptimize(codes.data());
   }
   state.counters["undecided"] = double(std::count(codes.begin(), codes.end(), 0)) / double(codes.size());
@@ -606,6 +641,16 @@ void register_all() {
   add("BM_overlap3_large/ellipsect_batch_1thread/random", overlap_cycled<large_size>, 1, false);
   add("BM_overlap3_large/ellipsect_batch_allcores/random", overlap_cycled<large_size>, 0, false)->UseRealTime();
   add("BM_classify3_large/ellipsect_batch_allcores/random", classify_cycled<large_size>, 0, false)->UseRealTime();
+  add("BM_overlap3_cached/ellipsect_batch_float_1thread/random", overlap_cycled_in_float<cached_size>, 1);
+  add("BM_overlap3_cached/ellipsect_batch_float_allcores/random", overlap_cycled_in_float<cached_size>, 0)
+      ->UseRealTime();
+  add("BM_overlap3_large/ellipsect_batch_float_allcores/random", overlap_cycled_in_float<large_size>, 0)
+      ->UseRealTime();
+  add("BM_classify3_cached/ellipsect_batch_allcores/random", classify_cycled<cached_size>, 0, false)->UseRealTime();
+  add("BM_classify3_cached/ellipsect_batch_float_allcores/random", classify_cycled_in_float<cached_size>, 0)
+      ->UseRealTime();
+  add("BM_classify3_large/ellipsect_batch_float_allcores/random", classify_cycled_in_float<large_size>, 0)
+      ->UseRealTime();
   add("BM_overlap3_large/ellipsect_spans_allcores/random", overlap_from_bodies<large_size>, false)->UseRealTime();
   add("BM_overlap3_large/ellipsect_build_pairs_allcores/random", overlap_from_bodies<large_size>, true)->UseRealTime();
   add("BM_classify3_large/ellipsect_spans_allcores/random", classify_from_bodies<large_size>)->UseRealTime();
@@ -617,7 +662,11 @@ void register_all() {
     add("BM_classify3_large/ellipsect_gpu/random", classify_cycled<large_size>, 0, true)->UseRealTime();
   }
   for (const auto& target : simd_targets()) add("BM_overlap3_simd/" + target + "/random", overlap_simd, target);
-  benchmark::RegisterBenchmark("BM_overlap3_filter/random", overlap_filter);
+  for (const auto& [name, query] : {std::pair("BM_overlap3_filter", detail::BatchQuery::overlap),
+                                    std::pair("BM_classify3_filter", detail::BatchQuery::classify)}) {
+    add(std::string(name) + "/random", filter<double>, query);
+    add(std::string(name) + "/float/random", filter<float>, query);
+  }
 }
 
 }  // namespace

@@ -21,6 +21,7 @@
 #include <mutex>
 #include <stdexcept>
 #include <thread>
+#include <type_traits>
 
 #include <unistd.h>
 
@@ -81,7 +82,7 @@ template <class T, int N>
 void Pairs<T, N>::push_back(const Ellipsoid<T, N>& a, const Vec<T, N>& velocity_a, const Ellipsoid<T, N>& b,
                             const Vec<T, N>& velocity_b, T t_max) {
   put_pair(a, velocity_a, b, velocity_b, t_max, detail::HWY_NAMESPACE::Fill::quadric,
-           [this](int k, double value) { columns_[static_cast<std::size_t>(k)].push_back(value); });
+           [this](int k, double value) { columns_[static_cast<std::size_t>(k)].push_back(T(value)); });
   a_.push_back(a);
   b_.push_back(b);
 }
@@ -210,8 +211,8 @@ void for_each_chunk(std::size_t n, int threads, const Work& work) {
 }
 
 template <class T, int N>
-std::array<const double*, Pairs<T, N>::columns> columns_of(const Pairs<T, N>& pairs) {
-  std::array<const double*, Pairs<T, N>::columns> columns;
+std::array<const T*, Pairs<T, N>::columns> columns_of(const Pairs<T, N>& pairs) {
+  std::array<const T*, Pairs<T, N>::columns> columns;
   for (int k = 0; k < Pairs<T, N>::columns; ++k) columns[static_cast<std::size_t>(k)] = pairs.column(k);
   return columns;
 }
@@ -235,11 +236,12 @@ void run_batch(const Pairs<T, N>& pairs, std::size_t out_size, detail::BatchQuer
   });
 }
 
-// run_batch with the codes from the GPU where it gives them.
+// run_batch with the codes from the GPU where it gives them (double columns: the device
+// runs the double filter; float pairs are filtered on the CPU, gpu.hpp).
 template <class T, int N, class Answer>
 Backend run_on_gpu(const Pairs<T, N>& pairs, std::size_t out_size, detail::BatchQuery query,
                    const BatchOptions& options, const Answer& answer) {
-  if constexpr (detail::gpu_built) {
+  if constexpr (detail::gpu_built && std::is_same_v<T, double>) {
     require_size(out_size, pairs.size());  // before the device's work
     std::vector<signed char> codes(pairs.size());
     const auto parallel_for = [&options](std::size_t n, const std::function<void(std::size_t, std::size_t)>& work) {
@@ -287,10 +289,11 @@ BodySpans<T, N> body_spans(std::span<const Ellipsoid<T, N>> a, std::span<const V
   return {a, b, velocity_a, velocity_b, t_max};
 }
 
-// At least `size` doubles of the calling thread's own, kept for the thread (one buffer
-// for every query, type and dimension: at most 336 KB, 3D).
-double* thread_buffer(std::size_t size) {
-  thread_local std::vector<double> buffer;
+// At least `size` values of C of the calling thread's own, kept for the thread (one buffer
+// for every query and dimension: at most 336 KB, 3D double).
+template <class C>
+C* thread_buffer(std::size_t size) {
+  thread_local std::vector<C> buffer;
   if (buffer.size() < size) buffer.resize(size);
   return buffer.data();
 }
@@ -309,13 +312,13 @@ void run_batch(const BodySpans<T, N>& pairs, std::size_t out_size, detail::Batch
   for_each_chunk(pairs.size(), options.threads, [&](std::size_t begin, std::size_t end) {
     // Columns a cache line apart beyond their length: at a stride of exactly 8 KB, the
     // rows' writes to the 41 columns would all fall in one set of the L1 cache.
-    constexpr std::size_t stride = chunk + 8;
-    double* const buffer = thread_buffer(columns * stride);
-    std::array<const double*, columns> column;
+    constexpr std::size_t stride = chunk + 64 / sizeof(T);
+    T* const buffer = thread_buffer<T>(columns * stride);
+    std::array<const T*, columns> column;
     for (int k = 0; k < columns; ++k) column[static_cast<std::size_t>(k)] = buffer + k * stride;
     for (std::size_t i = begin; i < end; ++i)
       put_pair(pairs.a(i), pairs.velocity_a(i), pairs.b(i), pairs.velocity_b(i), pairs.t_max(i), fill,
-               [&](int k, double value) { buffer[static_cast<std::size_t>(k) * stride + (i - begin)] = value; });
+               [&](int k, double value) { buffer[static_cast<std::size_t>(k) * stride + (i - begin)] = T(value); });
     std::array<signed char, chunk> codes;
     detail::certify_pairs(N, query, column.data(), 0, end - begin, options.query.tolerance, codes.data());
     for (std::size_t i = begin; i < end; ++i) answer(i, codes[i - begin]);
@@ -389,7 +392,7 @@ void Pairs<T, N>::fill(const Source& pairs, int threads) {
     for (std::size_t i = begin; i < end; ++i)
       put_pair(pairs.a(i), pairs.velocity_a(i), pairs.b(i), pairs.velocity_b(i), pairs.t_max(i),
                detail::HWY_NAMESPACE::Fill::quadric,
-               [&](int k, double value) { columns_[static_cast<std::size_t>(k)][i] = value; });
+               [&](int k, double value) { columns_[static_cast<std::size_t>(k)][i] = T(value); });
   });
 }
 

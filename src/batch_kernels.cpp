@@ -9,8 +9,10 @@
 
 #include "detail/batch_kernels.hpp"
 #include "detail/certificates-inl.hpp"
+#include "detail/certificates_float-inl.hpp"
 
 #include <algorithm>
+#include <type_traits>
 #include <vector>
 
 HWY_BEFORE_NAMESPACE();
@@ -23,11 +25,22 @@ struct Layout {
   static constexpr int columns = 2 * body.size() + 2 * N + 1;  // a, b, velocity_a, velocity_b, t_max
 };
 
+// Column k at row i as lanes of D: loaded as they are, or float columns widened to
+// double (exactly) for the double filter.
+template <class D, class C>
+hn::Vec<D> load_lanes(D d, const C* column) {
+  if constexpr (std::is_same_v<hn::TFromD<D>, C>) {
+    return hn::LoadU(d, column);
+  } else {
+    return hn::PromoteTo(d, hn::LoadU(hn::Rebind<C, D>(), column));
+  }
+}
+
 // `quadric`: also load M (classify).
-template <int N, class D>
-BodyLanes<hn::Vec<D>, N> load_body(D d, const double* const* src, std::size_t i, int first, bool quadric) {
+template <int N, class D, class C>
+BodyLanes<hn::Vec<D>, N> load_body(D d, const C* const* src, std::size_t i, int first, bool quadric) {
   constexpr BodyLayout layout = Layout<N>::body;
-  auto load = [&](int k) { return hn::LoadU(d, src[first + k] + i); };
+  auto load = [&](int k) { return load_lanes(d, src[first + k] + i); };
   BodyLanes<hn::Vec<D>, N> b;
   for (int r = 0; r < N; ++r) {
     b.c[r] = load(layout.center(r));
@@ -41,35 +54,49 @@ BodyLanes<hn::Vec<D>, N> load_body(D d, const double* const* src, std::size_t i,
   return b;
 }
 
-template <int N, int rounds, class D>
-hn::Vec<D> certify_lanes(D d, BatchQuery query, const double* const* src, std::size_t i, double tol) {
+// The filter's inputs besides the columns: the tolerance (double lanes) and the float
+// filter's thresholds made from it (certificates_float-inl.hpp).
+struct Band {
+  double tol;
+  FloatBand in_float;
+};
+
+// Lanes of float run the float certificates (overlap and classify of float columns);
+// lanes of double the scalar code's, on double columns or on float ones widened.
+template <int N, int rounds, class D, class C>
+hn::Vec<D> certify_lanes(D d, BatchQuery query, const C* const* src, std::size_t i, const Band& band) {
   using V = hn::Vec<D>;
   constexpr int body = Layout<N>::body.size();
   const bool quadric = query == BatchQuery::classify;
   const auto a = load_body<N>(d, src, i, 0, quadric), b = load_body<N>(d, src, i, body, quadric);
-  const V vtol = hn::Set(d, tol);
-  if (query == BatchQuery::overlap) return overlap_code<V, N, rounds>(a, b, vtol);
-  if (query == BatchQuery::classify) return classify_code<V, N, rounds>(a, b, vtol);
-  V va[N], vb[N];
-  for (int k = 0; k < N; ++k) {
-    va[k] = hn::LoadU(d, src[2 * body + k] + i);
-    vb[k] = hn::LoadU(d, src[2 * body + N + k] + i);
+  if constexpr (std::is_same_v<hn::TFromD<D>, float>) {
+    if (query == BatchQuery::overlap) return float_code<V, N, false, rounds>(a, b, band.in_float);
+    return float_code<V, N, true, rounds>(a, b, band.in_float);
+  } else {
+    const V vtol = hn::Set(d, band.tol);
+    if (query == BatchQuery::overlap) return overlap_code<V, N, rounds>(a, b, vtol);
+    if (query == BatchQuery::classify) return classify_code<V, N, rounds>(a, b, vtol);
+    V va[N], vb[N];
+    for (int k = 0; k < N; ++k) {
+      va[k] = load_lanes(d, src[2 * body + k] + i);
+      vb[k] = load_lanes(d, src[2 * body + N + k] + i);
+    }
+    return swept_code<V, N>(a, va, b, vb, load_lanes(d, src[2 * body + 2 * N] + i), vtol);
   }
-  return swept_code<V, N>(a, va, b, vb, hn::LoadU(d, src[2 * body + 2 * N] + i), vtol);
 }
 
 // Two passes: every pair without Newton rounds, then the pairs left open, gathered into
 // full vectors, with them. The rounds then run on open lanes only instead of on every
 // vector that has one (about a third of them on random pairs); the codes are the same.
-template <int N>
-void certify(BatchQuery query, const double* const* columns, std::size_t begin, std::size_t end, double tol,
+template <int N, class D, class C>
+void filter(D d, BatchQuery query, const C* const* columns, std::size_t begin, std::size_t end, const Band& band,
              signed char* codes) {
-  const hn::ScalableTag<double> d;
+  using Lane = hn::TFromD<D>;
   constexpr int n_columns = Layout<N>::columns;
   const std::size_t lanes = hn::Lanes(d);
-  HWY_ALIGN double out[HWY_LANES(double)];
-  HWY_ALIGN double gathered[n_columns][HWY_LANES(double)];
-  const double* src[n_columns] = {};
+  HWY_ALIGN Lane out[HWY_LANES(Lane)];
+  C gathered[n_columns][HWY_LANES(Lane)];
+  const C* src[n_columns] = {};
   // Rows `rows[0..count)` as one vector, padded by repeating the last; only the columns
   // the query reads (M for classify, velocities and t_max for contact).
   constexpr BodyLayout body = Layout<N>::body;
@@ -95,22 +122,34 @@ void certify(BatchQuery query, const double* const* columns, std::size_t begin, 
   };
   std::size_t i = begin;
   for (; i + lanes <= end; i += lanes) {
-    hn::Store(certify_lanes<N, 0>(d, query, columns, i, tol), d, out);
+    hn::Store(certify_lanes<N, 0>(d, query, columns, i, band), d, out);
     first_pass(i, lanes);
   }
   if (i < end) {
-    std::size_t rows[HWY_LANES(double)];
+    std::size_t rows[HWY_LANES(Lane)];
     for (std::size_t j = 0; j < end - i; ++j) rows[j] = i + j;
     gather(rows, end - i);
-    hn::Store(certify_lanes<N, 0>(d, query, src, 0, tol), d, out);
+    hn::Store(certify_lanes<N, 0>(d, query, src, 0, band), d, out);
     first_pass(i, end - i);
   }
   for (std::size_t g = 0; g < open.size(); g += lanes) {
     const std::size_t count = std::min(lanes, open.size() - g);
     gather(open.data() + g, count);
-    hn::Store(certify_lanes<N, newton_steps>(d, query, src, 0, tol), d, out);
+    hn::Store(certify_lanes<N, newton_steps>(d, query, src, 0, band), d, out);
     for (std::size_t k = 0; k < count; ++k) codes[open[g + k] - begin] = static_cast<signed char>(out[k]);
   }
+}
+
+// Float columns: overlap and classify in float lanes, first_contact's swept balls (which
+// read only the exact float centers, radii, velocities and t_max) in double lanes.
+template <int N, class C>
+void certify(BatchQuery query, const C* const* columns, std::size_t begin, std::size_t end, double tol,
+             signed char* codes) {
+  const Band band{tol, float_band(tol)};
+  if constexpr (std::is_same_v<C, float>) {
+    if (query != BatchQuery::contact) return filter<N>(hn::ScalableTag<float>(), query, columns, begin, end, band, codes);
+  }
+  filter<N>(hn::ScalableTag<double>(), query, columns, begin, end, band, codes);
 }
 
 void Certify2(BatchQuery query, const double* const* columns, std::size_t begin, std::size_t end, double tol,
@@ -120,6 +159,16 @@ void Certify2(BatchQuery query, const double* const* columns, std::size_t begin,
 
 void Certify3(BatchQuery query, const double* const* columns, std::size_t begin, std::size_t end, double tol,
               signed char* codes) {
+  certify<3>(query, columns, begin, end, tol, codes);
+}
+
+void CertifyFloat2(BatchQuery query, const float* const* columns, std::size_t begin, std::size_t end, double tol,
+                   signed char* codes) {
+  certify<2>(query, columns, begin, end, tol, codes);
+}
+
+void CertifyFloat3(BatchQuery query, const float* const* columns, std::size_t begin, std::size_t end, double tol,
+                   signed char* codes) {
   certify<3>(query, columns, begin, end, tol, codes);
 }
 
@@ -136,6 +185,8 @@ namespace detail {
 
 HWY_EXPORT(Certify2);
 HWY_EXPORT(Certify3);
+HWY_EXPORT(CertifyFloat2);
+HWY_EXPORT(CertifyFloat3);
 HWY_EXPORT(TargetInUse);
 
 void certify_pairs(int dim, BatchQuery query, const double* const* columns, std::size_t begin, std::size_t end,
@@ -144,6 +195,15 @@ void certify_pairs(int dim, BatchQuery query, const double* const* columns, std:
     HWY_DYNAMIC_DISPATCH(Certify2)(query, columns, begin, end, tol, codes);
   } else {
     HWY_DYNAMIC_DISPATCH(Certify3)(query, columns, begin, end, tol, codes);
+  }
+}
+
+void certify_pairs(int dim, BatchQuery query, const float* const* columns, std::size_t begin, std::size_t end,
+                   double tol, signed char* codes) {
+  if (dim == 2) {
+    HWY_DYNAMIC_DISPATCH(CertifyFloat2)(query, columns, begin, end, tol, codes);
+  } else {
+    HWY_DYNAMIC_DISPATCH(CertifyFloat3)(query, columns, begin, end, tol, codes);
   }
 }
 

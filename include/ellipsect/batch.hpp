@@ -12,7 +12,8 @@
 // certificates the scalar functions try first (detail/certificates-inl.hpp: circumscribed
 // and inscribed balls, the Perram-Wertheim function with Newton steps on its parameter,
 // support points against containment, swept balls for contact), with the same operations
-// in the same order, so a pair it decides gets the scalar answer exactly. Pairs it leaves
+// in the same order, so a pair it decides gets the scalar answer exactly (float pairs:
+// overlap and classify by float certificates with proven error bounds, see Pairs). Pairs it leaves
 // open (near tangency, aspect ratios above 1e4, containment, contacts that may happen) go
 // to the scalar function: 0.4% of random 3D pairs, all near-tangent ones.
 //
@@ -43,12 +44,19 @@ struct BatchOptions {
 };
 
 // Pairs (a_i, b_i), with velocities and a time window for first_contact, stored as
-// structure of arrays: one contiguous column of doubles per quantity the filter reads,
-// computed once per body when the pair is added (center, S = A diag(r^2) A^T and its
+// structure of arrays: one contiguous column of T per quantity the filter reads, computed
+// once per body (in double) when the pair is added (center, S = A diag(r^2) A^T and its
 // inverse, the quadric matrix, as packed upper triangles, largest and smallest radius),
 // plus the bodies themselves for the scalar fallback. Pairs the scalar functions rescale or
 // compute in long double (docs/method.md, section 7) store NaN radii, which sends them to
 // the scalar functions.
+//
+// float: the columns hold S and M rounded to float (centers, radii, velocities and t_max
+// are exact), and overlap and classify filter them in float, twice the pairs per
+// instruction and half the bytes per pair (detail/certificates_float-inl.hpp). That filter
+// proves each answer it gives with bounds on every rounding, including the columns'; it
+// decides fewer pairs than the double filter near tangency, and those take the scalar
+// functions, so the answers are still theirs.
 template <class T, int N>
 class Pairs {
 public:
@@ -80,13 +88,13 @@ public:
   Vec<T, N> velocity_b(std::size_t i) const;
   T t_max(std::size_t i) const { return T(columns_[columns - 1][i]); }
   // Column k (see the order above; src/detail/batch_kernels.hpp), size() values.
-  const double* column(int k) const noexcept { return columns_[static_cast<std::size_t>(k)].data(); }
+  const T* column(int k) const noexcept { return columns_[static_cast<std::size_t>(k)].data(); }
 
 private:
   template <class Source>
   void fill(const Source& pairs, int threads);  // assign's work (src/batch.cpp)
 
-  std::vector<std::vector<double>> columns_;
+  std::vector<std::vector<T>> columns_;
   std::vector<Ellipsoid<T, N>> a_, b_;
 };
 static_assert(detail::has_plain_layout<Pairs<double, 3>, std::vector<std::vector<double>>,

@@ -9,7 +9,8 @@
 // undecided pairs take that path. Where the library was built without CUDA (CMake option
 // ELLIPSECT_CUDA: AUTO builds it where a CUDA compiler is found, not in sanitized builds),
 // no device is present, or a CUDA call fails (device memory), the filter runs on the CPU as
-// in batch.hpp, and the returned Backend says which one answered.
+// in batch.hpp, and the returned Backend says which one answered. Pairs<float, N> are
+// always filtered on the CPU (batch.hpp's float filter; the device runs the double one).
 //
 // Pairs go to the device in rounds of 2^17, packed by the batch's threads into page-locked
 // buffers while the previous round is copied and filtered. The buffers (two rounds: 71 MB of

@@ -26,5 +26,10 @@ struct BodyLayout {
 // [begin, end), read from columns laid out as in Pairs<T, dim>.
 void certify_pairs(int dim, BatchQuery query, const double* const* columns, std::size_t begin, std::size_t end,
                    double tol, signed char* codes);
+// Pairs<float, dim>'s columns: overlap and classify by the float certificates
+// (detail/certificates_float-inl.hpp), which may leave open pairs the double filter
+// decides; first_contact as above (it reads only columns that are exact in float).
+void certify_pairs(int dim, BatchQuery query, const float* const* columns, std::size_t begin, std::size_t end,
+                   double tol, signed char* codes);
 
 }  // namespace ellipsect::detail

@@ -86,6 +86,19 @@ ELLIPSECT_LANE V Splat(double x) {
   }
 }
 
+// The smallest normal number of V's lanes (double or float).
+template <class V>
+ELLIPSECT_LANE V tiny_normal() {
+  if constexpr (std::is_same_v<V, double>) {
+    return std::numeric_limits<double>::min();
+  } else {
+#ifndef __CUDACC__
+    using Lane = hwy::HWY_NAMESPACE::TFromV<V>;
+    return hwy::HWY_NAMESPACE::Set(hwy::HWY_NAMESPACE::DFromV<V>(), std::numeric_limits<Lane>::min());
+#endif
+  }
+}
+
 template <class V, class M>
 ELLIPSECT_LANE bool all_lanes(M m) {
   if constexpr (std::is_same_v<V, double>) {
@@ -193,13 +206,13 @@ struct PerramWertheim {
   Mask closed;    // lanes solved in closed form (Solver::mixed)
   V l, m, f, qa, qb;
   Mask factored;  // det or every pivot of D positive and normal: the values are meaningful
-  V adj[N][N], inv_det, low[N][N], inv[N], a, b, sy_a[N], sy_b[N];
+  V adj[N][N], inv_det, low[N][N], inv[N], y[N], a, b, sy_a[N], sy_b[N];  // y = C^-1 r
 
   // The determinant and the pivots must be normal numbers: a subnormal one has lost digits
   // and its reciprocal may overflow (3D balls 1e107 apart in size have det(C) ~ 1e-313, and
   // an infinite F would certify separation).
   ELLIPSECT_LANE void factor(const V (&sa)[N][N], const V (&sb)[N][N]) {
-    const V one = Splat<V>(1), zero = Splat<V>(0), tiny = Splat<V>(std::numeric_limits<double>::min());
+    const V one = Splat<V>(1), zero = Splat<V>(0), tiny = tiny_normal<V>();
     V c[N][N];
     for (int i = 0; i < N; ++i)
       for (int j = 0; j <= i; ++j) c[i][j] = c[j][i] = m * sa[i][j] + l * sb[i][j];
@@ -288,13 +301,12 @@ ELLIPSECT_LANE PerramWertheim<V, N> perram_wertheim(const V (&sa)[N][N], const V
   p.l = l;
   p.m = m;
   p.factor(sa, sb);
-  V y[N];
-  p.solve(r, y);
-  times<V, N>(sa, y, p.sy_a);
-  times<V, N>(sb, y, p.sy_b);
-  p.a = dot<V, N>(y, p.sy_a);
-  p.b = dot<V, N>(y, p.sy_b);
-  p.f = l * m * dot<V, N>(r, y);
+  p.solve(r, p.y);
+  times<V, N>(sa, p.y, p.sy_a);
+  times<V, N>(sb, p.y, p.sy_b);
+  p.a = dot<V, N>(p.y, p.sy_a);
+  p.b = dot<V, N>(p.y, p.sy_b);
+  p.f = l * m * dot<V, N>(r, p.y);
   p.qa = m * m * p.a;
   p.qb = l * l * p.b;
   return p;

@@ -5,9 +5,18 @@
 // Claim under test (classify.hpp): the relation is exact whenever every tangency measure
 // of the reference (margin) is farther than 2 * tolerance from 1, and a pair reported
 // touching has |mu - 1| <= 2 * tolerance.
+#include <ellipsect/batch.hpp>
 #include <ellipsect/intersect2.hpp>
 
 #include "common.hpp"
+#include "detail/batch_kernels.hpp"
+#include "tests/unit/scenario_pairs.hpp"
+
+#include <Eigen/SVD>
+
+#include <memory>
+#include <span>
+#include <vector>
 
 namespace {
 
@@ -131,6 +140,60 @@ TEST(ClassifyProperty, FloatMatchesReferenceOutsideFloatBand) {
     }
   }
 }
+
+// Pairs<float, N> (float columns, the float filter, the scalar functions for the pairs it
+// leaves open) against the reference at the certificates' margins: float bodies scaled so
+// that mu = 1 + delta, |delta| from 1e-8 to 1e-2 (float's rounding is 6e-8), over random
+// and high-aspect shapes. The reference takes each float body as every query does: its
+// axes replaced by their orthonormal polar factor, here U V^T of Eigen's SVD in double.
+template <int N>
+void check_float_batch_at_margins(int n) {
+  using E = Ellipsoid<float, N>;
+  auto as_ref = [](const E& e) {
+    const Mat<double, N> axes = e.axes().template cast<double>();
+    const Eigen::JacobiSVD<Mat<double, N>> svd(axes, Eigen::ComputeFullU | Eigen::ComputeFullV);
+    return ref::Body<N>{e.center().template cast<double>(), svd.matrixU() * svd.matrixV().transpose(),
+                        e.radii().template cast<double>()};
+  };
+  scenarios::detail::Rng rng(4343);
+  Pairs<float, N> pairs;
+  std::vector<ref::Classification<N>> want;
+  for (int i = 0; i < n; ++i) {
+    const auto category = i % 2 == 0 ? scenarios::Category::random : scenarios::Category::high_aspect;
+    const auto c = scenarios::make_case<N>(category, 310000 + std::uint64_t(i));
+    const E a0 = ellipsect::testing::as<float>(c.a), b0 = ellipsect::testing::as<float>(c.b);
+    const double mu = ref::to_double(ref::pw_scale<N>(as_ref(a0), as_ref(b0)));
+    const double delta = (i % 4 < 2 ? 1 : -1) * std::pow(10.0, scenarios::detail::uniform(rng, -8, -2));
+    const double s = mu / (1 + delta);
+    const E a = E::from_axes(a0.center(), a0.axes(), (a0.radii().template cast<double>() * s).template cast<float>());
+    const E b = E::from_axes(b0.center(), b0.axes(), (b0.radii().template cast<double>() * s).template cast<float>());
+    pairs.push_back(a, b);
+    want.push_back(ref::classify<N>(as_ref(a), as_ref(b), band));
+  }
+  const std::size_t count = pairs.size();
+  const auto overlaps = std::make_unique<bool[]>(count);
+  std::vector<Relation> relations(count);
+  overlap(pairs, std::span<bool>(overlaps.get(), count));
+  classify(pairs, std::span<Relation>(relations));
+  std::vector<const float*> columns;
+  for (int k = 0; k < Pairs<float, N>::columns; ++k) columns.push_back(pairs.column(k));
+  std::vector<signed char> codes(count);
+  detail::certify_pairs(N, detail::BatchQuery::classify, columns.data(), 0, count, Options{}.tolerance, codes.data());
+  int decided = 0, by_filter = 0;
+  for (std::size_t i = 0; i < count; ++i) {
+    if (want[i].margin <= band) continue;
+    ++decided;
+    by_filter += codes[i] != 0;
+    const Relation r = from_ref(want[i].relation);
+    ASSERT_EQ(relations[i], r) << "pair " << i << " mu=" << ref::to_double(want[i].mu);
+    ASSERT_EQ(overlaps[i], r != Relation::separated) << "pair " << i << " mu=" << ref::to_double(want[i].mu);
+  }
+  EXPECT_GT(decided, n * 9 / 10);
+  EXPECT_GT(by_filter, n / 4);  // the filter's own answers are among those checked
+}
+
+TEST(ClassifyProperty, FloatBatchMatchesReferenceAtMargins2D) { check_float_batch_at_margins<2>(cases(1000)); }
+TEST(ClassifyProperty, FloatBatchMatchesReferenceAtMargins3D) { check_float_batch_at_margins<3>(cases(1000)); }
 
 // A body and a bit-identical copy of it are equal, for every valid body: float and double,
 // 2D and 3D, random poses and aspect ratios to 1e8; overlap agrees, and in 2D the boundaries

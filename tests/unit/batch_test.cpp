@@ -10,11 +10,14 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <bit>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <limits>
 #include <memory>
+#include <string>
 #include <thread>
 #include <vector>
 
@@ -122,6 +125,117 @@ void codes_equal_scalar() {
 TEST(Batch, FilterCodesEqualScalarCertificates) {
   codes_equal_scalar<2>();
   codes_equal_scalar<3>();
+}
+
+// The float filter (Pairs<float>'s overlap and classify): every code it gives is the
+// scalar function's answer, on every category and target, and on random pairs it decides
+// nearly all that the double certificates decide (each category's counts are printed:
+// near-tangent pairs are left to the scalar functions).
+template <int N>
+void float_codes_are_scalar_answers() {
+  namespace hw = detail::HWY_NAMESPACE;
+  const auto pairs = scenario_pairs<float, N>(ellipsect::testing::cases(200));
+  std::vector<const float*> columns;
+  for (int k = 0; k < Pairs<float, N>::columns; ++k) columns.push_back(pairs.column(k));
+  const std::size_t n = pairs.size(), per_category = n / scenarios::all_categories.size();
+  std::vector<signed char> codes(n);
+  for (const auto& target : simd_targets()) {
+    SCOPED_TRACE(target);
+    set_simd_target(target);
+    for (const auto query : {detail::BatchQuery::overlap, detail::BatchQuery::classify}) {
+      detail::certify_pairs(N, query, columns.data(), 0, n, 1e-12, codes.data());
+      std::vector<std::size_t> decided(scenarios::all_categories.size()), by_double(decided.size());
+      for (std::size_t i = 0; i < n; ++i) {
+        const auto &a = pairs.a(i), &b = pairs.b(i);
+        const bool overlap_query = query == detail::BatchQuery::overlap;
+        by_double[i / per_category] += (overlap_query ? hw::certificate_code<false>(a, b, 1e-12)
+                                                      : hw::certificate_code<true>(a, b, 1e-12)) != 0;
+        if (codes[i] == 0) continue;
+        ++decided[i / per_category];
+        if (query == detail::BatchQuery::overlap) {
+          ASSERT_EQ(codes[i] > 0, overlap(a, b)) << "pair " << i;
+        } else {
+          ASSERT_EQ(classify(a, b), codes[i] > 0 ? Relation::overlapping : Relation::separated) << "pair " << i;
+        }
+      }
+      std::string counts;
+      for (std::size_t c = 0; c < decided.size(); ++c)
+        counts += std::string(scenarios::name(scenarios::all_categories[c])) + " " + std::to_string(decided[c]) + " (" +
+                  std::to_string(by_double[c]) + ") ";
+      std::printf("%dD %s, decided of %zu per category, float (double): %s\n", N,
+                  query == detail::BatchQuery::overlap ? "overlap" : "classify", per_category, counts.c_str());
+      EXPECT_GE(decided[0], by_double[0] * 95 / 100);  // the random category comes first
+    }
+  }
+  set_simd_target("");
+}
+
+TEST(Batch, FloatFilterCodesAreScalarAnswers) {
+  float_codes_are_scalar_answers<2>();
+  float_codes_are_scalar_answers<3>();
+}
+
+// Pairs at float's resolution from the boundaries the float filter must not cross: b
+// moved along the line of centers to relative offsets g (1e-7 to 1e-3) from where it just
+// touches a from outside (random pairs) or from inside (containment pairs), both found by
+// bisection on the scalar answers. Every code the float filter gives there is the scalar
+// answer, and it decides the pairs well outside the band.
+template <int N>
+void float_filter_near_boundaries() {
+  using E = Ellipsoid<float, N>;
+  auto moved = [](const E& a, const E& b, double t) {
+    const Vec<double, N> from = a.center().template cast<double>(), to = b.center().template cast<double>();
+    return E::from_axes((from + t * (to - from)).template cast<float>(), b.axes(), b.radii());
+  };
+  // The boundary of `inside(t)` (true at t = 1) along t >= 1.
+  auto boundary = [](const auto& inside) {
+    double lo = 1, hi = 2;
+    while (inside(hi)) hi *= 2;
+    for (int k = 0; k < 60; ++k) ((inside((lo + hi) / 2)) ? lo : hi) = (lo + hi) / 2;
+    return lo;
+  };
+  Pairs<float, N> pairs;
+  const double offsets[] = {1e-7, 3e-7, 1e-6, 3e-6, 1e-5, 3e-5, 1e-4, 1e-3};
+  for (const auto category : {scenarios::Category::random, scenarios::Category::containment})
+    for (std::uint64_t seed = 0; seed < 100; ++seed) {
+      const auto c = scenarios::make_case<N>(category, 9300 + seed);
+      const E a = ellipsect::testing::as<float>(c.a), b = ellipsect::testing::as<float>(c.b);
+      const bool contained = category == scenarios::Category::containment;
+      if (contained ? classify(a, b) != Relation::a_contains_b : !overlap(a, b)) continue;
+      const double t = contained ? boundary([&](double s) { return classify(a, moved(a, b, s)) == Relation::a_contains_b; })
+                                 : boundary([&](double s) { return overlap(a, moved(a, b, s)); });
+      for (const double g : offsets)
+        for (const double sign : {-1.0, 1.0}) pairs.push_back(a, moved(a, b, t * (1 + sign * g)));
+    }
+  std::vector<const float*> columns;
+  for (int k = 0; k < Pairs<float, N>::columns; ++k) columns.push_back(pairs.column(k));
+  const std::size_t n = pairs.size();
+  ASSERT_GT(n, 1000u);
+  std::vector<signed char> codes(n);
+  for (const auto query : {detail::BatchQuery::overlap, detail::BatchQuery::classify}) {
+    detail::certify_pairs(N, query, columns.data(), 0, n, 1e-12, codes.data());
+    std::array<std::size_t, 8> decided{};  // by offset
+    for (std::size_t i = 0; i < n; ++i) {
+      if (codes[i] == 0) continue;
+      const auto &a = pairs.a(i), &b = pairs.b(i);
+      if (query == detail::BatchQuery::overlap) {
+        ASSERT_EQ(codes[i] > 0, overlap(a, b)) << "pair " << i;
+      } else {
+        ASSERT_EQ(classify(a, b), codes[i] > 0 ? Relation::overlapping : Relation::separated) << "pair " << i;
+      }
+      ++decided[(i % 16) / 2];
+    }
+    std::printf("%dD %s near boundaries, decided of %zu per offset:", N,
+                query == detail::BatchQuery::overlap ? "overlap" : "classify", n / 8);
+    for (std::size_t k = 0; k < 8; ++k) std::printf(" %g: %zu", offsets[k], decided[k]);
+    std::printf("\n");
+    EXPECT_GT(decided[7], n / 8 / 4);  // offset 1e-3
+  }
+}
+
+TEST(Batch, FloatFilterNearBoundaries) {
+  float_filter_near_boundaries<2>();
+  float_filter_near_boundaries<3>();
 }
 
 TEST(Batch, IndependentOfThreadCount) {
