@@ -9,6 +9,10 @@
 // rounding; pairs it leaves open (code 0) take the exact path.
 //   circumscribed balls apart (1e-9 margin)   -> separated
 //   inscribed balls meet (1e-9 margin)        -> a common point
+//   (one pair's overlap) the bodies' reaches along the centre line sum to at least
+//   |r| / (1 - margin)^1/2                    -> a common point
+//   the support planes normal to r apart: |r|^2 > (1 + margin) (rho_a + rho_b), rho the
+//   support radii times |r| (rho_a^2 = r^T Sa r)  -> separated (margin as F's, below)
 //   Perram-Wertheim F(l) = l (1 - l) r^T C^-1 r, C = (1 - l) Sa + l Sb (S = A diag(radii^2)
 //   A^T, r = c_b - c_a): max_l F = mu^2, mu the scale at which the bodies touch. Any l
 //   bounds mu^2 from below, and x(l) = c_a + (1 - l) Sa C^-1 r has quadrics qa, qb:
@@ -329,6 +333,23 @@ ELLIPSECT_LANE auto ball_tests(const BodyLanes<V, N>& a, const BodyLanes<V, N>& 
   return std::pair(Gt(d2, outer * outer), Lt(d2, inner * inner));
 }
 
+// F is used for aspect ratios up to 1e4, so cond(C) <= 1e8; its margin is 1e-6 above
+// 1024 times the rounding estimate eps (cond(C) + |c| / r_min) of F and the quadrics.
+template <class V, int N>
+ELLIPSECT_LANE auto aspect_gate(const BodyLanes<V, N>& a, const BodyLanes<V, N>& b) {
+  const V aspect = Splat<V>(1e4);
+  return And(Le(a.rmax, aspect * a.rmin), Le(b.rmax, aspect * b.rmin));
+}
+
+template <class V, int N>
+ELLIPSECT_LANE V certificate_margin(const BodyLanes<V, N>& a, const BodyLanes<V, N>& b) {
+  V world = Splat<V>(0);
+  for (int i = 0; i < N; ++i) world = world + (Abs(a.c[i]) + Abs(b.c[i]));
+  world = world / Min(a.rmin, b.rmin);
+  constexpr double ulp_scale = 1024 * std::numeric_limits<double>::epsilon();
+  return Splat<V>(1e-6 + ulp_scale * 1e8) + Splat<V>(ulp_scale) * world;
+}
+
 // Newton steps on the Perram-Wertheim parameter (quadratic convergence: three leave
 // 0.25% of random pairs open).
 inline constexpr int newton_steps = 3;
@@ -348,15 +369,8 @@ ELLIPSECT_LANE V certify(const BodyLanes<V, N>& a, const BodyLanes<V, N>& b, V t
   } else {
     if (all_lanes<V>(Or(apart, inside))) return IfThenElse(apart, minus_one, one);
   }
-  // F is used for aspect ratios up to 1e4, so cond(C) <= 1e8; its margin is 1e-6 above
-  // 1024 times the rounding estimate eps (cond(C) + |c| / r_min) of F and the quadrics.
-  const V aspect = Splat<V>(1e4);
-  auto gate = And(Le(a.rmax, aspect * a.rmin), Le(b.rmax, aspect * b.rmin));
-  V world = zero;
-  for (int i = 0; i < N; ++i) world = world + (Abs(a.c[i]) + Abs(b.c[i]));
-  world = world / Min(a.rmin, b.rmin);
-  constexpr double ulp_scale = 1024 * std::numeric_limits<double>::epsilon();
-  const V margin = Splat<V>(1e-6 + ulp_scale * 1e8) + Splat<V>(ulp_scale) * world;
+  auto gate = aspect_gate<V, N>(a, b);
+  const V margin = certificate_margin<V, N>(a, b);
 
   const auto& sa = a.s;
   const auto& sb = b.s;
@@ -371,12 +385,20 @@ ELLIPSECT_LANE V certify(const BodyLanes<V, N>& a, const BodyLanes<V, N>& b, V t
   const Solver solver = all_lanes<V>(closed)            ? Solver::closed_form
                         : all_lanes<V>(Not(closed)) ? Solver::ldlt
                                                         : Solver::mixed;
-  const V rho = rho_a + rho_b;
+  const V rho = rho_a + rho_b, pass = one + margin, deep = one - margin;
+  // The plane normal to r between the support planes: |r| >= (rho_a + rho_b) / |r| (1 +
+  // margin) makes mu >= 1 + margin, before C is solved (F at the two-ball l is at least
+  // (|r|^2 / rho)^2 by Cauchy-Schwarz, so F would decide these lanes too).
+  const auto slab = And(gate, Gt(dot<V, N>(r, r), rho * pass));  // strict: concentric bodies have r = rho = 0
+  if constexpr (containment) {
+    if (all_lanes<V>(Or(apart, slab))) return minus_one;
+  } else {
+    if (all_lanes<V>(Or(Or(apart, slab), inside))) return IfThenElse(Or(apart, slab), minus_one, one);
+  }
   auto p = perram_wertheim<V, N>(sa, sb, r, rho_a / rho, rho_b / rho, solver, closed);
   gate = And(gate, p.factored);
-  const V pass = one + margin, deep = one - margin;
   auto certain = [&](const PerramWertheim<V, N>& q) { return And(gate, q.factored); };
-  auto separated = Or(apart, And(certain(p), Ge(p.f, pass)));
+  auto separated = Or(Or(apart, slab), And(certain(p), Ge(p.f, pass)));
   auto shared = AndNot(separated, Or(inside, And(certain(p), And(Le(p.qa, deep), Le(p.qb, deep)))));
   for (int it = 1; it <= rounds && !all_lanes<V>(Or(separated, shared)); ++it) {
     V l, m;
@@ -441,11 +463,39 @@ ELLIPSECT_LANE V swept_code(const BodyLanes<V, N>& a, const V* va, const BodyLan
 
 // One pair: classify's code (`containment`) or overlap's, with the balls tested before S
 // and M are formed (the same decisions as certify's, which tests them first too).
+// The centre line (overlap of one pair, before S is formed: the batch columns hold no axes,
+// so the batch filter leaves such pairs to overlap, which runs this). a reaches t_a |r|
+// from c_a along r = c_b - c_a, t_a = (r^T Ma r)^-1/2 = |diag(radii)^-1 A^T r|^-1 (a sum of
+// squares: relative rounding a few eps times the aspect ratio), and b reaches t_b |r| back;
+// (t_a + t_b)^2 (1 - margin) >= 1 puts a point of the segment at both quadrics <= 1 - margin.
+template <class T, int N>
+bool centre_line_meets(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b, const BodyLanes<double, N>& la,
+                       const BodyLanes<double, N>& lb) noexcept {
+  double r[N];
+  for (int i = 0; i < N; ++i) r[i] = lb.c[i] - la.c[i];
+  auto reach = [&r](const Ellipsoid<T, N>& e) {
+    const Mat<double, N> axes = work_axes<double>(e);
+    double q = 0;
+    for (int k = 0; k < N; ++k) {
+      double p = axes(0, k) * r[0];
+      for (int i = 1; i < N; ++i) p = p + axes(i, k) * r[i];
+      p = p / double(e.radii()[k]);
+      q = q + p * p;
+    }
+    return 1 / std::sqrt(q);  // concentric: infinite
+  };
+  const double t = reach(a) + reach(b);
+  return aspect_gate<double, N>(la, lb) && t * t * (1 - certificate_margin<double, N>(la, lb)) >= 1;
+}
+
 template <bool containment, class T, int N>
 double certificate_code(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b, double tol) noexcept {
-  const auto [apart, inside] = ball_tests<double, N>(lanes_of(a, Fill::balls), lanes_of(b, Fill::balls), tol);
+  const auto balls_a = lanes_of(a, Fill::balls), balls_b = lanes_of(b, Fill::balls);
+  const auto [apart, inside] = ball_tests<double, N>(balls_a, balls_b, tol);
   if (apart) return -1;
-  if (inside && !containment) return 1;
+  if constexpr (!containment) {
+    if (inside || centre_line_meets(a, b, balls_a, balls_b)) return 1;
+  }
   const Fill fill = containment ? Fill::quadric : Fill::shape;
   return certify<double, N, containment>(lanes_of(a, fill), lanes_of(b, fill), tol);
 }

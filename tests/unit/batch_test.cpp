@@ -82,8 +82,9 @@ TEST(Batch, EqualsScalarInFloat) {
   every_target<float, 3>(20);
 }
 
-// The vector filter's code for each pair is the scalar certificate's, on every target,
-// and it decides most pairs of the random category (the point of the filter).
+// The vector filter's code for each pair is the scalar certificate's, on every target
+// (one pair's overlap may decide more, by the centre line), and it decides most pairs of
+// the random category (the point of the filter).
 template <int N>
 void codes_equal_scalar() {
   namespace hw = detail::HWY_NAMESPACE;
@@ -108,7 +109,13 @@ void codes_equal_scalar() {
         const double scalar = query == detail::BatchQuery::overlap    ? hw::certificate_code<false>(pairs.a(i), pairs.b(i), 1e-12)
                               : query == detail::BatchQuery::classify ? hw::certificate_code<true>(pairs.a(i), pairs.b(i), 1e-12)
                                                                       : hw::swept_code<double, N>(a, va, b, vb, pairs.t_max(i), 1e-12);
-        ASSERT_EQ(codes[i], static_cast<signed char>(scalar)) << "pair " << i;
+        // One pair's overlap also tries the centre line, which reads the axes the columns
+        // do not hold: a pair it decides may be open in the filter, nothing else differs.
+        const bool by_centre_line = query == detail::BatchQuery::overlap && codes[i] == 0 && scalar == 1 &&
+                                    hw::centre_line_meets(pairs.a(i), pairs.b(i), a, b);
+        if (!by_centre_line) {
+          ASSERT_EQ(codes[i], static_cast<signed char>(scalar)) << "pair " << i;
+        }
         if (i < n / scenarios::all_categories.size()) {  // the random category comes first
           ++random;
           decided += codes[i] != 0;
