@@ -6,6 +6,7 @@
 #include "detail/batch_gpu.hpp"
 #include "detail/batch_kernels.hpp"
 #include "detail/certificates-inl.hpp"
+#include "detail/classify_impl.hpp"
 #include "detail/instantiate.hpp"
 #include "detail/scale.hpp"
 
@@ -335,9 +336,7 @@ auto overlap_answer(const P& pairs, std::span<bool> out, const BatchOptions& opt
 template <class P>
 auto classify_answer(const P& pairs, std::span<Relation> out, const BatchOptions& options) {
   return [&pairs, out, &options](std::size_t i, signed char code) {
-    out[i] = code < 0   ? Relation::separated
-             : code > 0 ? Relation::overlapping
-                        : classify(pairs.a(i), pairs.b(i), options.query);
+    out[i] = code != 0 ? detail::certified_relation(code) : classify(pairs.a(i), pairs.b(i), options.query);
   };
 }
 

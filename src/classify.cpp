@@ -48,8 +48,7 @@ Relation classify(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b, const Opti
   const bool wide = scale.range == detail::Range::wide;
   namespace hw = detail::HWY_NAMESPACE;
   const double code = wide ? 0 : hw::certificate_code<true>(a, b, options.tolerance);
-  if (code < 0) return Relation::separated;
-  if (code > 0) return Relation::overlapping;
+  if (code != 0) return detail::certified_relation(code);
   const auto [s, o, a_is_s] = detail::order_pair(a, b);
   const R tol = R(options.tolerance);
   switch (wide ? decide<W>(s, o, W(tol)) : decide<R>(s, o, tol)) {

@@ -26,6 +26,7 @@
 //   1024 eps (1e8 + |c| / r_min), about 2.4e-5.
 //   a's support point away from b, c_a - Sa r / rho_a, has b's quadric >= 1.02 and b's away
 //   from a has a's quadric >= 1.02            -> neither body inside the other
+//   sqrt(qa(c_b)) + sqrt(tr(Ma Sb)) <= 1 - margin  -> a contains b (and the same for b)
 //   the centers' closest approach over [0, t_max] exceeds the circumscribed radii
 //                                             -> no contact in the window
 // A certified answer is therefore the one the exact path gives (the property tests check
@@ -177,6 +178,16 @@ BodyLanes<double, N> lanes_of(const Ellipsoid<T, N>& e, Fill fill) noexcept {
       for (int j = i; j < N; ++j) b.m[i][j] = b.m[j][i] = dot<double, N>(w[i], w[j]);
   }
   return b;
+}
+
+// tr(M S) for symmetric M and S.
+template <class V, int N>
+ELLIPSECT_LANE V trace_product(const V (&m)[N][N], const V (&s)[N][N]) {
+  V diagonal = m[0][0] * s[0][0], off = Splat<V>(0);
+  for (int i = 1; i < N; ++i) diagonal = diagonal + m[i][i] * s[i][i];
+  for (int i = 0; i < N; ++i)
+    for (int j = i + 1; j < N; ++j) off = off + m[i][j] * s[i][j];
+  return diagonal + (off + off);
 }
 
 // The body's quadric at offset w from its center, w^T M w.
@@ -355,7 +366,8 @@ ELLIPSECT_LANE V certificate_margin(const BodyLanes<V, N>& a, const BodyLanes<V,
 inline constexpr int newton_steps = 3;
 
 // Codes: -1 separated, +1 decided otherwise (overlap: a common point; classify: relation
-// overlapping, neither body inside the other), 0 undecided. `rounds`: Newton rounds at
+// overlapping, neither body inside the other), classify also +2 a contains b, +3 b contains
+// a (with the margin), 0 undecided. `rounds`: Newton rounds at
 // most; a lane's code does not depend on the other lanes, nor on whether the rounds are
 // run at once or after a first call with none (the rounds start from the same iterate).
 template <class V, int N, bool containment, int rounds = newton_steps>
@@ -417,7 +429,15 @@ ELLIPSECT_LANE V certify(const BodyLanes<V, N>& a, const BodyLanes<V, N>& b, V t
     }
     const V out = Splat<V>(1.02);
     const auto proper = And(And(shared, gate), And(Ge(level<V, N>(b, wa), out), Ge(level<V, N>(a, wb), out)));
-    return IfThenElse(separated, minus_one, IfThenElse(proper, one, zero));
+    // b inside a shrunk by 1 - margin about c_a: over b, |x - c_a|_a <= |c_b - c_a|_a +
+    // |Ma^1/2 Lb| (b = c_b + Lb (unit ball), Lb Lb^T = Sb), and |Ma^1/2 Lb|^2 = lambda_max(Ma Sb)
+    // <= tr(Ma Sb); likewise a inside b.
+    const auto aspect_ok = aspect_gate<V, N>(a, b);
+    const auto b_in_a = And(aspect_ok, Le(Sqrt(level<V, N>(a, r)) + Sqrt(trace_product<V, N>(a.m, b.s)), deep));
+    const auto a_in_b = And(aspect_ok, Le(Sqrt(level<V, N>(b, r)) + Sqrt(trace_product<V, N>(b.m, a.s)), deep));
+    const V two = one + one, three = two + one;
+    return IfThenElse(separated, minus_one,
+                      IfThenElse(proper, one, IfThenElse(b_in_a, two, IfThenElse(a_in_b, three, zero))));
   }
 }
 

@@ -30,6 +30,8 @@
 //   rmax_b), or a's support point away from b, pulled in by its own quadric's upper bound
 //   (with M's rounding, at most 1e-14 / rmin^2 per entry in double, and u |M_ij|), with
 //   b's quadric bounded below likewise.
+//   Containment (classify): b lies in a shrunk by k_in about c_a when sqrt(qa(c_b)) +
+//   sqrt(tr(Ma Sb)) <= k_in (certificates-inl.hpp), here with both terms bounded above.
 // Radii must lie in [2^-30, 2^30] (so that no square underflows); other pairs stay open.
 // A NaN or infinity anywhere fails every comparison: the pair stays open.
 #if defined(ELLIPSECT_CERTIFICATES_FLOAT_INL_) == defined(HWY_TARGET_TOGGLE)
@@ -86,7 +88,8 @@ HWY_INLINE V abs_level(const V (&m)[N][N], const V* w_abs) {
 }
 
 // Codes as certify's in certificates-inl.hpp: -1 separated, +1 a common point (overlap) or
-// overlapping with neither body inside the other (classify, `containment`), 0 open.
+// overlapping with neither body inside the other (classify, `containment`), +2 a contains b,
+// +3 b contains a (classify), 0 open.
 template <class V, int N, bool containment, int rounds = newton_steps>
 HWY_INLINE V float_code(const BodyLanes<V, N>& a, const BodyLanes<V, N>& b, const FloatBand& band) {
   constexpr double u = 0x1p-24;
@@ -199,6 +202,25 @@ HWY_INLINE V float_code(const BodyLanes<V, N>& a, const BodyLanes<V, N>& b, cons
       };
       proper = And(Or(a_ball_out, sticks_out(a, wa, b, minus_r)), Or(b_ball_out, sticks_out(b, wb, a, r)));
     }
+    // `inner` inside `outer` shrunk by deep about its center (certificates-inl.hpp's test,
+    // with bounds): the upper bounds of qa(c_b) and tr(Ma Sb), M's double rounding at most
+    // 1e-14 / rmin^2 per entry and S's 1e-14 rmax^2.
+    V r1 = zero;
+    for (int i = 0; i < N; ++i) r1 = r1 + r_abs[i];
+    auto holds = [&](const BodyLanes<V, N>& outer, const BodyLanes<V, N>& inner) {
+      const V outer_min2 = outer.rmin * outer.rmin;
+      const V level_up = level<V, N>(outer, r) + k_sum * abs_level<V, N>(outer.m, r_abs) + double_s * (r1 * r1) / outer_min2;
+      V trace_abs = zero;
+      for (int i = 0; i < N; ++i)
+        for (int j = 0; j < N; ++j) trace_abs = trace_abs + Abs(outer.m[i][j]) * Abs(inner.s[i][j]);
+      const V trace_up = trace_product<V, N>(outer.m, inner.s) + k_sum * trace_abs +
+                         Splat<V>(2e-14 * N * N) * (inner.rmax * inner.rmax) / outer_min2;
+      return And(gate, Le(Sqrt(level_up) + Sqrt(trace_up), deep));
+    };
+    const V two = one + one, three = two + one;
+    const auto b_in_a = AndNot(separated, holds(a, b)), a_in_b = AndNot(separated, holds(b, a));
+    return IfThenElse(separated, minus_one,
+                      IfThenElse(And(shared, proper), one, IfThenElse(b_in_a, two, IfThenElse(a_in_b, three, zero))));
   }
   return code();
 }

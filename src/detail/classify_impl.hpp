@@ -11,6 +11,8 @@
 // the pair satisfies |mu - 1| <= |gap|, so the band bounds mu too.
 #pragma once
 
+#include <ellipsect/classify.hpp>
+
 #include "reduce.hpp"
 #include "secular.hpp"
 
@@ -19,6 +21,15 @@
 namespace ellipsect::detail {
 
 enum class ReducedRelation { separated, touching, overlapping, s_contains_o, o_contains_s, equal };
+
+// The relation a nonzero code of classify's certificates stands for (certificates-inl.hpp:
+// -1 separated, +1 overlapping, +2 a contains b, +3 b contains a).
+inline Relation certified_relation(double code) noexcept {
+  return code < 0 ? Relation::separated
+         : code == 1 ? Relation::overlapping
+         : code == 2 ? Relation::a_contains_b
+                     : Relation::b_contains_a;
+}
 
 // Bit-identical data: the same set, so `equal` without reduction. Reducing a body onto
 // itself would see its axes' rounding (orthonormal to ~eps, ~1e-7 for float data) times

@@ -195,6 +195,57 @@ void check_float_batch_at_margins(int n) {
 TEST(ClassifyProperty, FloatBatchMatchesReferenceAtMargins2D) { check_float_batch_at_margins<2>(cases(1000)); }
 TEST(ClassifyProperty, FloatBatchMatchesReferenceAtMargins3D) { check_float_batch_at_margins<3>(cases(1000)); }
 
+// Containment at the certificates' margins: containment pairs (b inside a) with a scaled
+// about its center so that the reference's containment measure max over b of sqrt(qa)
+// becomes 1 - delta, |delta| from 1e-8 to 1e-2 (either side of containment). classify (one
+// pair), the batch on double Pairs and the batch on float Pairs (float bodies, the
+// reference taking their axes' polar factor) must each match the reference.
+template <class T, int N>
+void check_containment_at_margins(int n) {
+  using E = Ellipsoid<T, N>;
+  auto as_ref = [](const E& e) {
+    const Mat<double, N> axes = e.axes().template cast<double>();
+    const Eigen::JacobiSVD<Mat<double, N>> svd(axes, Eigen::ComputeFullU | Eigen::ComputeFullV);
+    return ref::Body<N>{e.center().template cast<double>(), svd.matrixU() * svd.matrixV().transpose(),
+                        e.radii().template cast<double>()};
+  };
+  scenarios::detail::Rng rng(4444);
+  Pairs<T, N> pairs;
+  std::vector<Relation> want;
+  for (int i = 0; i < n; ++i) {
+    const auto c = scenarios::make_case<N>(scenarios::Category::containment, 320000 + std::uint64_t(i));
+    const E a0 = ellipsect::testing::as<T>(c.a), b = ellipsect::testing::as<T>(c.b);
+    const double inside = ref::to_double(ref::classify<N>(as_ref(a0), as_ref(b), band).b_in_a);
+    const double delta = (i % 4 < 2 ? 1 : -1) * std::pow(10.0, scenarios::detail::uniform(rng, -8, -2));
+    const auto radii = (a0.radii().template cast<double>() * (inside / (1 - delta))).template cast<T>();
+    const E a = E::from_axes(a0.center(), a0.axes(), radii);
+    const auto r = ref::classify<N>(as_ref(a), as_ref(b), band);
+    if (r.margin <= band) continue;
+    const Relation expected = from_ref(r.relation);
+    ASSERT_EQ(classify(a, b), expected) << describe(c) << " delta=" << delta;
+    ASSERT_EQ(classify(b, a), mirrored(expected)) << describe(c) << " delta=" << delta;
+    pairs.push_back(a, b);
+    want.push_back(expected);
+  }
+  ASSERT_GT(pairs.size(), std::size_t(n) * 9 / 10);
+  std::vector<Relation> relations(pairs.size());
+  classify(pairs, std::span<Relation>(relations));
+  int contained = 0;
+  for (std::size_t i = 0; i < pairs.size(); ++i) {
+    ASSERT_EQ(relations[i], want[i]) << "pair " << i;
+    contained += want[i] == Relation::a_contains_b;
+  }
+  EXPECT_GT(contained, n / 4);  // both sides of containment occur
+  EXPECT_LT(contained, n * 3 / 4);
+}
+
+TEST(ClassifyProperty, ContainmentAtMargins2D) { check_containment_at_margins<double, 2>(cases(500)); }
+TEST(ClassifyProperty, ContainmentAtMargins3D) { check_containment_at_margins<double, 3>(cases(500)); }
+TEST(ClassifyProperty, ContainmentAtMarginsFloatBatch) {
+  check_containment_at_margins<float, 2>(cases(300));
+  check_containment_at_margins<float, 3>(cases(300));
+}
+
 // A body and a bit-identical copy of it are equal, for every valid body: float and double,
 // 2D and 3D, random poses and aspect ratios to 1e8; overlap agrees, and in 2D the boundaries
 // are reported equal and the overlap is the body's area.

@@ -134,6 +134,19 @@ TEST(Batch, FilterCodesEqualScalarCertificates) {
   codes_equal_scalar<3>();
 }
 
+// What a classify code stands for (certificates-inl.hpp): -1 separated, +1 overlapping,
+// +2 a contains b, +3 b contains a.
+Relation classify_code_relation(signed char code) {
+  switch (code) {
+    case -1: return Relation::separated;
+    case 1: return Relation::overlapping;
+    case 2: return Relation::a_contains_b;
+    case 3: return Relation::b_contains_a;
+  }
+  ADD_FAILURE() << "no relation for code " << int(code);
+  return Relation::equal;
+}
+
 // The float filter (Pairs<float>'s overlap and classify): every code it gives is the
 // scalar function's answer, on every category and target, and on random pairs it decides
 // nearly all that the double certificates decide (each category's counts are printed:
@@ -162,7 +175,7 @@ void float_codes_are_scalar_answers() {
         if (query == detail::BatchQuery::overlap) {
           ASSERT_EQ(codes[i] > 0, overlap(a, b)) << "pair " << i;
         } else {
-          ASSERT_EQ(classify(a, b), codes[i] > 0 ? Relation::overlapping : Relation::separated) << "pair " << i;
+          ASSERT_EQ(classify(a, b), classify_code_relation(codes[i])) << "pair " << i;
         }
       }
       std::string counts;
@@ -228,7 +241,7 @@ void float_filter_near_boundaries() {
       if (query == detail::BatchQuery::overlap) {
         ASSERT_EQ(codes[i] > 0, overlap(a, b)) << "pair " << i;
       } else {
-        ASSERT_EQ(classify(a, b), codes[i] > 0 ? Relation::overlapping : Relation::separated) << "pair " << i;
+        ASSERT_EQ(classify(a, b), classify_code_relation(codes[i])) << "pair " << i;
       }
       ++decided[(i % 16) / 2];
     }
