@@ -141,20 +141,23 @@ TEST(ClassifyProperty, FloatMatchesReferenceOutsideFloatBand) {
   }
 }
 
+// The body as every query takes it: its axes replaced by their orthonormal polar factor
+// (for float data), here U V^T of Eigen's SVD in double.
+template <class T, int N>
+ref::Body<N> polar_ref(const Ellipsoid<T, N>& e) {
+  const Mat<double, N> axes = e.axes().template cast<double>();
+  const Eigen::JacobiSVD<Mat<double, N>> svd(axes, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  return ref::Body<N>{e.center().template cast<double>(), svd.matrixU() * svd.matrixV().transpose(),
+                      e.radii().template cast<double>()};
+}
+
 // Pairs<float, N> (float columns, the float filter, the scalar functions for the pairs it
 // leaves open) against the reference at the certificates' margins: float bodies scaled so
 // that mu = 1 + delta, |delta| from 1e-8 to 1e-2 (float's rounding is 6e-8), over random
-// and high-aspect shapes. The reference takes each float body as every query does: its
-// axes replaced by their orthonormal polar factor, here U V^T of Eigen's SVD in double.
+// and high-aspect shapes; the reference takes each float body by polar_ref.
 template <int N>
 void check_float_batch_at_margins(int n) {
   using E = Ellipsoid<float, N>;
-  auto as_ref = [](const E& e) {
-    const Mat<double, N> axes = e.axes().template cast<double>();
-    const Eigen::JacobiSVD<Mat<double, N>> svd(axes, Eigen::ComputeFullU | Eigen::ComputeFullV);
-    return ref::Body<N>{e.center().template cast<double>(), svd.matrixU() * svd.matrixV().transpose(),
-                        e.radii().template cast<double>()};
-  };
   scenarios::detail::Rng rng(4343);
   Pairs<float, N> pairs;
   std::vector<ref::Classification<N>> want;
@@ -162,21 +165,20 @@ void check_float_batch_at_margins(int n) {
     const auto category = i % 2 == 0 ? scenarios::Category::random : scenarios::Category::high_aspect;
     const auto c = scenarios::make_case<N>(category, 310000 + std::uint64_t(i));
     const E a0 = ellipsect::testing::as<float>(c.a), b0 = ellipsect::testing::as<float>(c.b);
-    const double mu = ref::to_double(ref::pw_scale<N>(as_ref(a0), as_ref(b0)));
+    const double mu = ref::to_double(ref::pw_scale<N>(polar_ref(a0), polar_ref(b0)));
     const double delta = (i % 4 < 2 ? 1 : -1) * std::pow(10.0, scenarios::detail::uniform(rng, -8, -2));
     const double s = mu / (1 + delta);
     const E a = E::from_axes(a0.center(), a0.axes(), (a0.radii().template cast<double>() * s).template cast<float>());
     const E b = E::from_axes(b0.center(), b0.axes(), (b0.radii().template cast<double>() * s).template cast<float>());
     pairs.push_back(a, b);
-    want.push_back(ref::classify<N>(as_ref(a), as_ref(b), band));
+    want.push_back(ref::classify<N>(polar_ref(a), polar_ref(b), band));
   }
   const std::size_t count = pairs.size();
   const auto overlaps = std::make_unique<bool[]>(count);
   std::vector<Relation> relations(count);
   overlap(pairs, std::span<bool>(overlaps.get(), count));
   classify(pairs, std::span<Relation>(relations));
-  std::vector<const float*> columns;
-  for (int k = 0; k < Pairs<float, N>::columns; ++k) columns.push_back(pairs.column(k));
+  const auto columns = ellipsect::testing::columns_of(pairs);
   std::vector<signed char> codes(count);
   detail::certify_pairs(N, detail::BatchQuery::classify, columns.data(), 0, count, Options{}.tolerance, codes.data());
   int decided = 0, by_filter = 0;
@@ -199,27 +201,21 @@ TEST(ClassifyProperty, FloatBatchMatchesReferenceAtMargins3D) { check_float_batc
 // about its center so that the reference's containment measure max over b of sqrt(qa)
 // becomes 1 - delta, |delta| from 1e-8 to 1e-2 (either side of containment). classify (one
 // pair), the batch on double Pairs and the batch on float Pairs (float bodies, the
-// reference taking their axes' polar factor) must each match the reference.
+// reference taking them by polar_ref) must each match the reference.
 template <class T, int N>
 void check_containment_at_margins(int n) {
   using E = Ellipsoid<T, N>;
-  auto as_ref = [](const E& e) {
-    const Mat<double, N> axes = e.axes().template cast<double>();
-    const Eigen::JacobiSVD<Mat<double, N>> svd(axes, Eigen::ComputeFullU | Eigen::ComputeFullV);
-    return ref::Body<N>{e.center().template cast<double>(), svd.matrixU() * svd.matrixV().transpose(),
-                        e.radii().template cast<double>()};
-  };
   scenarios::detail::Rng rng(4444);
   Pairs<T, N> pairs;
   std::vector<Relation> want;
   for (int i = 0; i < n; ++i) {
     const auto c = scenarios::make_case<N>(scenarios::Category::containment, 320000 + std::uint64_t(i));
     const E a0 = ellipsect::testing::as<T>(c.a), b = ellipsect::testing::as<T>(c.b);
-    const double inside = ref::to_double(ref::classify<N>(as_ref(a0), as_ref(b), band).b_in_a);
+    const double inside = ref::to_double(ref::classify<N>(polar_ref(a0), polar_ref(b), band).b_in_a);
     const double delta = (i % 4 < 2 ? 1 : -1) * std::pow(10.0, scenarios::detail::uniform(rng, -8, -2));
     const auto radii = (a0.radii().template cast<double>() * (inside / (1 - delta))).template cast<T>();
     const E a = E::from_axes(a0.center(), a0.axes(), radii);
-    const auto r = ref::classify<N>(as_ref(a), as_ref(b), band);
+    const auto r = ref::classify<N>(polar_ref(a), polar_ref(b), band);
     if (r.margin <= band) continue;
     const Relation expected = from_ref(r.relation);
     ASSERT_EQ(classify(a, b), expected) << describe(c) << " delta=" << delta;

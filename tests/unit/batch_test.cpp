@@ -89,8 +89,7 @@ template <int N>
 void codes_equal_scalar() {
   namespace hw = detail::HWY_NAMESPACE;
   const auto pairs = scenario_pairs<double, N>(ellipsect::testing::cases(50));
-  std::vector<const double*> columns;
-  for (int k = 0; k < Pairs<double, N>::columns; ++k) columns.push_back(pairs.column(k));
+  const auto columns = ellipsect::testing::columns_of(pairs);
   const std::size_t n = pairs.size();
   std::vector<signed char> codes(n);
   for (const auto& target : simd_targets()) {
@@ -155,8 +154,7 @@ template <int N>
 void float_codes_are_scalar_answers() {
   namespace hw = detail::HWY_NAMESPACE;
   const auto pairs = scenario_pairs<float, N>(ellipsect::testing::cases(200));
-  std::vector<const float*> columns;
-  for (int k = 0; k < Pairs<float, N>::columns; ++k) columns.push_back(pairs.column(k));
+  const auto columns = ellipsect::testing::columns_of(pairs);
   const std::size_t n = pairs.size(), per_category = n / scenarios::all_categories.size();
   std::vector<signed char> codes(n);
   for (const auto& target : simd_targets()) {
@@ -227,8 +225,7 @@ void float_filter_near_boundaries() {
       for (const double g : offsets)
         for (const double sign : {-1.0, 1.0}) pairs.push_back(a, moved(a, b, t * (1 + sign * g)));
     }
-  std::vector<const float*> columns;
-  for (int k = 0; k < Pairs<float, N>::columns; ++k) columns.push_back(pairs.column(k));
+  const auto columns = ellipsect::testing::columns_of(pairs);
   const std::size_t n = pairs.size();
   ASSERT_GT(n, 1000u);
   std::vector<signed char> codes(n);

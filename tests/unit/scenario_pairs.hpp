@@ -6,6 +6,7 @@
 #include "scenarios/scenarios.hpp"
 
 #include <cstdint>
+#include <vector>
 
 namespace ellipsect::testing {
 
@@ -25,6 +26,14 @@ Pairs<T, N> scenario_pairs(int per_category, std::uint64_t first_seed = 7000) {
       pairs.push_back(as<T>(c.a), c.va.template cast<T>(), as<T>(c.b), c.vb.template cast<T>(), T(c.t_max));
     }
   return pairs;
+}
+
+// The columns of `pairs`, as batch_kernels.hpp's certify_pairs reads them.
+template <class T, int N>
+std::vector<const T*> columns_of(const Pairs<T, N>& pairs) {
+  std::vector<const T*> columns;
+  for (int k = 0; k < Pairs<T, N>::columns; ++k) columns.push_back(pairs.column(k));
+  return columns;
 }
 
 }  // namespace ellipsect::testing
