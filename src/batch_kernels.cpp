@@ -147,29 +147,20 @@ void certify(BatchQuery query, const C* const* columns, std::size_t begin, std::
              signed char* codes) {
   const Band band{tol, float_band(tol)};
   if constexpr (std::is_same_v<C, float>) {
-    if (query != BatchQuery::contact) return filter<N>(hn::ScalableTag<float>(), query, columns, begin, end, band, codes);
+    if (query != BatchQuery::contact)
+      return filter<N>(hn::ScalableTag<float>(), query, columns, begin, end, band, codes);
   }
   filter<N>(hn::ScalableTag<double>(), query, columns, begin, end, band, codes);
 }
 
-void Certify2(BatchQuery query, const double* const* columns, std::size_t begin, std::size_t end, double tol,
-              signed char* codes) {
-  certify<2>(query, columns, begin, end, tol, codes);
+void CertifyDouble(int dim, BatchQuery query, const double* const* columns, std::size_t begin, std::size_t end,
+                   double tol, signed char* codes) {
+  (dim == 2 ? certify<2, double> : certify<3, double>)(query, columns, begin, end, tol, codes);
 }
 
-void Certify3(BatchQuery query, const double* const* columns, std::size_t begin, std::size_t end, double tol,
-              signed char* codes) {
-  certify<3>(query, columns, begin, end, tol, codes);
-}
-
-void CertifyFloat2(BatchQuery query, const float* const* columns, std::size_t begin, std::size_t end, double tol,
-                   signed char* codes) {
-  certify<2>(query, columns, begin, end, tol, codes);
-}
-
-void CertifyFloat3(BatchQuery query, const float* const* columns, std::size_t begin, std::size_t end, double tol,
-                   signed char* codes) {
-  certify<3>(query, columns, begin, end, tol, codes);
+void CertifyFloat(int dim, BatchQuery query, const float* const* columns, std::size_t begin, std::size_t end,
+                  double tol, signed char* codes) {
+  (dim == 2 ? certify<2, float> : certify<3, float>)(query, columns, begin, end, tol, codes);
 }
 
 const char* TargetInUse() { return hwy::TargetName(HWY_TARGET); }
@@ -183,28 +174,18 @@ HWY_AFTER_NAMESPACE();
 namespace ellipsect {
 namespace detail {
 
-HWY_EXPORT(Certify2);
-HWY_EXPORT(Certify3);
-HWY_EXPORT(CertifyFloat2);
-HWY_EXPORT(CertifyFloat3);
+HWY_EXPORT(CertifyDouble);
+HWY_EXPORT(CertifyFloat);
 HWY_EXPORT(TargetInUse);
 
 void certify_pairs(int dim, BatchQuery query, const double* const* columns, std::size_t begin, std::size_t end,
                    double tol, signed char* codes) {
-  if (dim == 2) {
-    HWY_DYNAMIC_DISPATCH(Certify2)(query, columns, begin, end, tol, codes);
-  } else {
-    HWY_DYNAMIC_DISPATCH(Certify3)(query, columns, begin, end, tol, codes);
-  }
+  HWY_DYNAMIC_DISPATCH(CertifyDouble)(dim, query, columns, begin, end, tol, codes);
 }
 
 void certify_pairs(int dim, BatchQuery query, const float* const* columns, std::size_t begin, std::size_t end,
                    double tol, signed char* codes) {
-  if (dim == 2) {
-    HWY_DYNAMIC_DISPATCH(CertifyFloat2)(query, columns, begin, end, tol, codes);
-  } else {
-    HWY_DYNAMIC_DISPATCH(CertifyFloat3)(query, columns, begin, end, tol, codes);
-  }
+  HWY_DYNAMIC_DISPATCH(CertifyFloat)(dim, query, columns, begin, end, tol, codes);
 }
 
 std::string target_in_use() { return HWY_DYNAMIC_DISPATCH(TargetInUse)(); }

@@ -105,7 +105,8 @@ HWY_INLINE V float_code(const BodyLanes<V, N>& a, const BodyLanes<V, N>& b, cons
   auto separated = And(gate, Gt(d2, Splat<V>(band.apart2) * (sum_max * sum_max)));
   auto shared = AndNot(separated, And(gate, Lt(d2, Splat<V>(band.inner2) * (sum_min * sum_min))));
   const V reach = Splat<V>(band.reach), deep = Splat<V>(band.deep);
-  const auto a_ball_out = Gt(dist + deep * a.rmin, reach * b.rmax), b_ball_out = Gt(dist + deep * b.rmin, reach * a.rmax);
+  const auto a_ball_out = Gt(dist + deep * a.rmin, reach * b.rmax);
+  const auto b_ball_out = Gt(dist + deep * b.rmin, reach * a.rmax);
   auto proper = And(a_ball_out, b_ball_out);
   auto decided = [&] { return containment ? Or(separated, And(shared, proper)) : Or(separated, shared); };
   auto code = [&] {
@@ -152,7 +153,8 @@ HWY_INLINE V float_code(const BodyLanes<V, N>& a, const BodyLanes<V, N>& b, cons
     V e2 = zero;
     const V s_e = double_s * (q.m * ra2 + q.l * rb2) * y1;
     for (int i = 0; i < N; ++i) {
-      const V e = Abs((q.m * q.sy_a[i] + q.l * q.sy_b[i]) - r[i]) + k_vec * ((q.m * ha[i] + q.l * hb[i]) + r_abs[i]) + s_e;
+      const V e = Abs((q.m * q.sy_a[i] + q.l * q.sy_b[i]) - r[i]) + k_vec * ((q.m * ha[i] + q.l * hb[i]) + r_abs[i]) +
+                  s_e;
       e2 = e2 + e * e;
     }
     const V root_a = Sqrt(q.a + k_sum * pa + s_a), root_b = Sqrt(q.b + k_sum * pb + s_b);
@@ -209,7 +211,8 @@ HWY_INLINE V float_code(const BodyLanes<V, N>& a, const BodyLanes<V, N>& b, cons
     for (int i = 0; i < N; ++i) r1 = r1 + r_abs[i];
     auto holds = [&](const BodyLanes<V, N>& outer, const BodyLanes<V, N>& inner) {
       const V outer_min2 = outer.rmin * outer.rmin;
-      const V level_up = level<V, N>(outer, r) + k_sum * abs_level<V, N>(outer.m, r_abs) + double_s * (r1 * r1) / outer_min2;
+      const V level_up =
+          level<V, N>(outer, r) + k_sum * abs_level<V, N>(outer.m, r_abs) + double_s * (r1 * r1) / outer_min2;
       V trace_abs = zero;
       for (int i = 0; i < N; ++i)
         for (int j = 0; j < N; ++j) trace_abs = trace_abs + Abs(outer.m[i][j]) * Abs(inner.s[i][j]);

@@ -220,8 +220,9 @@ void float_filter_near_boundaries() {
       const E a = ellipsect::testing::as<float>(c.a), b = ellipsect::testing::as<float>(c.b);
       const bool contained = category == scenarios::Category::containment;
       if (contained ? classify(a, b) != Relation::a_contains_b : !overlap(a, b)) continue;
-      const double t = contained ? boundary([&](double s) { return classify(a, moved(a, b, s)) == Relation::a_contains_b; })
-                                 : boundary([&](double s) { return overlap(a, moved(a, b, s)); });
+      const double t =
+          contained ? boundary([&](double s) { return classify(a, moved(a, b, s)) == Relation::a_contains_b; })
+                    : boundary([&](double s) { return overlap(a, moved(a, b, s)); });
       for (const double g : offsets)
         for (const double sign : {-1.0, 1.0}) pairs.push_back(a, moved(a, b, t * (1 + sign * g)));
     }
