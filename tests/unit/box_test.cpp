@@ -240,3 +240,30 @@ TEST(Box, MatchesReference2D) { matches_reference<2>(); }
 TEST(Box, MatchesReference3D) { matches_reference<3>(); }
 
 }  // namespace
+
+// A float plate thinner than its corners' rounding (half thickness 1.4e-6 at 16 from the
+// origin, where float's ulp is 1.9e-6): its twelve triangles, as computed in float, no
+// longer bound a box, so first_contact must not skip faces by the box's normals. A ball
+// sliding in over the rim met a big face's triangle at 0.1297 while the box, having skipped
+// that face, answered 0.1386 (found by the queries fuzz target). The box's time is now the
+// earliest of its triangles'.
+TEST(Box, ThinFloatPlateTestsEveryFace) {
+  Mat3<float> ball_axes, plate_axes;
+  ball_axes << -0x1.0d14cp-4f, -0x1.de5d72p-1f, -0x1.66c618p-2f, 0x1.de5d72p-1f, 0x1.0d147p-4f, -0x1.66c618p-2f,
+      0x1.66c618p-2f, -0x1.66c618p-2f, 0x1.bcbadcp-1f;
+  plate_axes << 0x1.1b7ae8p-2f, -0x1.72428cp-1f, 0x1.43fa3ap-1f, 0x1.72428cp-1f, -0x1.1b7bp-2f, -0x1.43fa3ap-1f,
+      0x1.43fa3ap-1f, 0x1.43fa3ap-1f, 0x1.c90a1cp-2f;
+  const auto ball = Ellipsoid3<float>::from_axes({0x1p-28f, 0, 1}, ball_axes, {8, 8, 8});
+  const auto plate = make_box<float, 3>({0x1.f808p+1f, -6, -8}, plate_axes, {0x1.82p-21f, 8, 8});
+  const Vec3<float> v(-8, 0, -8), rest = Vec3<float>::Zero();
+  const float inf = std::numeric_limits<float>::infinity();
+  const Contact<float, 3> c = first_contact(ball, v, plate, rest, inf);
+  ASSERT_EQ(c.status, ContactStatus::hit);
+  float earliest = inf;
+  for (const auto& t : plate.triangles()) {
+    const Contact<float, 3> ct = first_contact(ball, v, t, rest, inf);
+    if (ct.status == ContactStatus::hit) earliest = std::min(earliest, ct.time);
+  }
+  EXPECT_EQ(c.time, earliest);
+  EXPECT_LT(c.time, 0.13f);  // the big face's contact, not the rim's at 0.1386
+}
