@@ -19,7 +19,8 @@
 // its boundary, so the hit is the earliest of the triangles' (closed form, triangle.hpp),
 // with their accuracy; in 3D it skips the faces that cannot hold the first contact (those
 // facing away from the relative velocity, or whose plane the body lies inside of at the
-// start). The box answered for is the convex hull of its corners as computed
+// start), except on a box thinner than 64 ulps of its corners' magnitude, whose computed
+// corners need not bound a box: there every triangle is tested. The box answered for is the convex hull of its corners as computed
 // (center +- half extents along the axes, rounded to T: within a few ulps of the center's
 // magnitude of the stored box).
 #pragma once
