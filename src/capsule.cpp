@@ -29,15 +29,25 @@ detail::Support<T, N> support_of(const Ellipsoid<T, N>& a, const Capsule<T, N>& 
 // and largest radius: -1 where they surely overlap (the center nearer the segment than r_min
 // + R), +1 where they are surely apart by more than the tangency band (farther than r_max +
 // R, by 1e-9 of the lengths: the relative gap is then above 1e-9), 0 otherwise.
+// Computed on lengths scaled by a power of two (exact) that brings the largest into [1, 2):
+// squared lengths of a scene at 1e-299 underflowed to 0 and read as overlapping.
 template <class T, int N>
 int by_spheres(const Ellipsoid<T, N>& a, const Capsule<T, N>& b) noexcept {
   using W = std::conditional_t<(sizeof(T) < sizeof(double)), double, T>;
-  const Vec<W, N> c = a.center().template cast<W>(), p0 = b.point(0).template cast<W>();
-  const Vec<W, N> e = b.point(1).template cast<W>() - p0;
+  const Vec<W, N> p0 = b.point(0).template cast<W>();
+  Vec<W, N> w = a.center().template cast<W>() - p0, e = b.point(1).template cast<W>() - p0;
+  W r_max = W(a.radii().maxCoeff()), r_min = W(a.radii().minCoeff()), R = W(b.radius());
+  const W size = std::max({w.cwiseAbs().maxCoeff(), e.cwiseAbs().maxCoeff(), r_max, R});
+  if (!(size > W(0)) || !std::isfinite(size)) return 0;
+  const W unit = std::ldexp(W(1), std::min(-std::ilogb(size), std::numeric_limits<W>::max_exponent - 1));
+  w *= unit;
+  e *= unit;
+  r_max *= unit;
+  r_min *= unit;
+  R *= unit;
   const W ee = e.squaredNorm();
-  const W u = ee > W(0) ? std::clamp((c - p0).dot(e) / ee, W(0), W(1)) : W(0);
-  const W d = (c - p0 - u * e).norm();
-  const W r_max = W(a.radii().maxCoeff()), r_min = W(a.radii().minCoeff()), R = W(b.radius());
+  const W u = ee > W(0) ? std::clamp(w.dot(e) / ee, W(0), W(1)) : W(0);
+  const W d = (w - u * e).norm();
   const W margin = W(1e-9) * (d + r_max + R);
   if (!std::isfinite(d) || !std::isfinite(margin)) return 0;
   if (d - r_max - R > margin) return 1;

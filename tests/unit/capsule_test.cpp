@@ -128,3 +128,20 @@ TEST(Capsule, FloatBodies) {
 }
 
 }  // namespace
+
+// A scene at 1e-299 (found by the queries fuzz target): the spheres' pre-test of overlap
+// squared lengths that underflowed to 0 and read a ball 2.3 radii from the capsule as
+// overlapping, while classify said separated. The pre-test now works on lengths scaled by
+// a power of two.
+TEST(Capsule, OverlapAtTinyScaleAgreesWithClassify) {
+  const double x = 0x1.dddddddddddddp-994;
+  const auto ball = make_ball<double, 3>({x, x, x}, x);
+  for (const double scale : {1.0, 0x1p-60, 0x1p+900}) {
+    const double s = x * scale;
+    const auto ball_s = make_ball<double, 3>({s, s, s}, s);
+    const auto capsule = make_capsule<double, 3>({0, 5.3 * s, s}, {2 * s, 5.3 * s, s}, s);
+    EXPECT_EQ(classify(ball_s, capsule), Relation::separated) << scale;
+    EXPECT_FALSE(overlap(ball_s, capsule)) << scale;
+  }
+  EXPECT_TRUE(overlap(ball, make_capsule<double, 3>({0, 2.5 * x, x}, {2 * x, 2.5 * x, x}, x)));
+}
