@@ -320,6 +320,18 @@ T scene_half_size(const Vec2<T>& from, const Vec2<T>& to, T major, T other) noex
                    half * major, half * other});
 }
 
+// s (to - from) for the scene's scale s: the difference first (exact where it is subnormal,
+// rounded once otherwise), on halves where it overflows (a point is then beyond 2^1022 and
+// halving loses nothing above that difference's rounding). Scaling each point first
+// overflowed for a tiny scene far from the origin (s = 2^1021 at x = -8).
+template <class T>
+Vec2<T> scaled_offset(const Vec2<T>& from, const Vec2<T>& to, T s) noexcept {
+  const Vec2<T> d = to - from;
+  if (d.allFinite()) [[likely]]
+    return s * d;
+  return (T(2) * s) * (T(0.5) * to - T(0.5) * from);
+}
+
 // A scene whose half size is below the smallest normal T cannot be brought into [1, 2) by
 // one finite power of two (two subnormal circles of radius 3e-316 at the same center read as
 // no_collision). Such a scene runs moved to `origin` (its offsets are exact differences at
@@ -442,7 +454,7 @@ PolygonalOverlap<T> folded_overlap(const Ellipse2<T>& ellipse, const Circle<T>& 
     return shrunk_back(folded_overlap<cover>(blown_up(ellipse, ellipse.center()), blown_up(circle, ellipse.center()),
                                              max_level));
   const T s = T(0.5) * unit_scale(half);
-  const Vec2<T> offset = s * circle.center() - s * ellipse.center();
+  const Vec2<T> offset = scaled_offset<T>(ellipse.center(), circle.center(), s);
   const T r = s * circle.radius();
   const Disk<T> d = folded_disk(ellipse, offset, r);
   const T w = s * ellipse.radii()[0], h = s * ellipse.radii()[1];
@@ -472,7 +484,7 @@ PolygonalOverlap<T> polygonal_overlap(const Ellipse2<T>& a, const Ellipse2<T>& b
   const Mat2<T>& qa = a.axes();
   const Mat2<T>& qb = b.axes();
   const Vec2<T> ra = s * a.radii(), rb = sb * b.radii(), rbs = s * b.radii();
-  const Vec2<T> offset = s * b.center() - s * a.center();
+  const Vec2<T> offset = scaled_offset<T>(a.center(), b.center(), s);
   const bool same = same_direction<T>(qa.col(0), qb.col(0)) && same_direction<T>(qa.col(1), qb.col(1));
   const bool swapped = same_direction<T>(qa.col(0), qb.col(1)) && same_direction<T>(qa.col(1), qb.col(0));
   Outcome o;

@@ -355,6 +355,34 @@ TEST(NiemitaloRegression, SubnormalCirclesAtTheSameCenterCollide) {
   }
 }
 
+// Fuzzing (the CI mutation run): polygonal_overlap returned the band [NaN, inf] for a circle
+// of subnormal radius 2.2e-310 at (-8, 2.2e-310) against a circle of radius 2^-1021 at
+// (-8, 2^-1021). The scene's scale 2^1021 multiplied each center before the difference, and
+// 2^1021 * -8 overflowed (inf - inf in x). The offset is now the difference, scaled.
+// Expected from geometry, for circles of radius r = 2^-1022 a distance k r apart at x = -8
+// and at x = 1e300: the gap is (k - 2) r.
+TEST(NiemitaloRegression, TinySceneFarFromTheOriginHasAFiniteBand) {
+  const double r = 0x1p-1022;
+  const double sub = 0x0.03b000000003dp-1022, big = 0x1.000000080003dp-1021;
+  const auto x =
+      polygonal_overlap(make_ellipse<double>({-8, sub}, 0.0, {sub, sub}), make_circle<double>({-8, big}, big), 25);
+  EXPECT_EQ(x.verdict, Verdict::collision);
+  EXPECT_FALSE(std::isnan(x.gap_hi));
+  for (const double at : {-8.0, 1e300}) {
+    const auto e = make_ellipse<double>({at, 0}, 0.0, {r, r});
+    for (const double k : {1.0, 3.0}) {
+      const auto c = make_circle<double>({at, k * r}, r);
+      const double gap = (k - 2) * r;
+      for (const auto& y : {polygonal_overlap(e, c, 15), circle_cover_overlap(e, c, 15),
+                            polygonal_overlap(e, c.ellipse(), 15)}) {
+        EXPECT_EQ(y.verdict == Verdict::collision, k < 2) << at << " " << k;
+        EXPECT_LE(y.gap_lo, gap) << at << " " << k;
+        EXPECT_GE(y.gap_hi, gap) << at << " " << k;
+      }
+    }
+  }
+}
+
 // Fuzzing: closest_point_quartic answered `outside` with a NaN point for an ellipse of
 // radii 8 and about 1.4e306 (a needle's flat side; the factories now reject that aspect
 // ratio): the polish started at t = a^2 tau with a^2 overflowing. The same overflow, within
