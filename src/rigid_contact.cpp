@@ -93,6 +93,36 @@ struct BodyParty {
   }
 };
 
+// first_contact with lengths scaled by 2^-e and time by 2^f (exact but for underflow far
+// below rounding): velocities times 2^-(e + f), angular velocities 2^-f, all finite.
+template <class T, int N>
+Contact<T, N> rescaled_first_contact(const Ellipsoid<T, N>& a, const RigidMotion<T, N>& motion_a,
+                                     const Ellipsoid<T, N>& b, const RigidMotion<T, N>& motion_b, T t_max,
+                                     const Options& options, int e, int f) noexcept {
+  RigidMotion<T, N> ma = motion_a, mb = motion_b;
+  ma.velocity = detail::times_pow2(motion_a.velocity, -e - f);
+  mb.velocity = detail::times_pow2(motion_b.velocity, -e - f);
+  if constexpr (N == 2) {
+    ma.angular_velocity = std::ldexp(motion_a.angular_velocity, -f);
+    mb.angular_velocity = std::ldexp(motion_b.angular_velocity, -f);
+  } else {
+    ma.angular_velocity = detail::times_pow2(motion_a.angular_velocity, -f);
+    mb.angular_velocity = detail::times_pow2(motion_b.angular_velocity, -f);
+  }
+  // Centers that the scaling would overflow (bodies far smaller than their coordinates):
+  // the pair is moved to a's center first (an exact difference for nearby centers).
+  const bool move = std::max(detail::max_abs(a.center()), detail::max_abs(b.center())) >= std::ldexp(T(1), 1000 + e);
+  const Vec<T, N> origin = move ? Vec<T, N>(a.center()) : Vec<T, N>::Zero();
+  auto prepared = [&](const Ellipsoid<T, N>& x) {
+    return detail::scaled(detail::ShapeAccess::unchecked<T, N>(x.center() - origin, x.axes(), x.radii()), -e);
+  };
+  Contact<T, N> c = first_contact(prepared(a), ma, prepared(b), mb, std::ldexp(t_max, f), options);
+  c.time = std::ldexp(c.time, -f);
+  c.point = detail::times_pow2(c.point, e);
+  if (move) c.point += origin;
+  return c;
+}
+
 }  // namespace
 
 template <class T, int N>
@@ -120,10 +150,11 @@ Contact<T, N> first_contact(const Ellipsoid<T, N>& a, const RigidMotion<T, N>& m
   const R spin_a = magnitude<N>(motion_a.angular_velocity), spin_b = magnitude<N>(motion_b.angular_velocity);
   if (spin_a == R(0) && spin_b == R(0))
     return first_contact(a, motion_a.velocity, b, motion_b.velocity, t_max, options);
-  // Beyond the bounds' range: |omega| overflows, or the pair needs more than double (radius
-  // ratios beyond 2^160, coordinates beyond 2^340 radii; detail/scale.hpp). Only the start
-  // state is decided there; otherwise did_not_converge at 0.
-  const bool out_of_range =
+  // Beyond the bounds' range: |omega| overflows (here or in the time unit chosen below), or
+  // the pair needs more than double (radius ratios beyond 2^160, coordinates beyond 2^340
+  // radii; detail/scale.hpp). Only the start state is decided there; otherwise
+  // did_not_converge at 0.
+  bool out_of_range =
       !std::isfinite(spin_a) || !std::isfinite(spin_b) || detail::scale_of(a, b).range == detail::Range::wide;
 
   // Lengths rescaled by 2^-e (exact) where the radii leave 2^+-64, so that squares of radii
@@ -135,28 +166,11 @@ Contact<T, N> first_contact(const Ellipsoid<T, N>& a, const RigidMotion<T, N>& m
       const T speed = std::max(detail::max_abs(motion_a.velocity), detail::max_abs(motion_b.velocity));
       const int g = speed > T(0) ? std::ilogb(speed) - e : 0;
       const int f = g > 960 || g < -960 ? g : 0;
-      RigidMotion<T, N> ma = motion_a, mb = motion_b;
-      ma.velocity = detail::times_pow2(motion_a.velocity, -e - f);
-      mb.velocity = detail::times_pow2(motion_b.velocity, -e - f);
-      if constexpr (N == 2) {
-        ma.angular_velocity = std::ldexp(motion_a.angular_velocity, -f);
-        mb.angular_velocity = std::ldexp(motion_b.angular_velocity, -f);
-      } else {
-        ma.angular_velocity = detail::times_pow2(motion_a.angular_velocity, -f);
-        mb.angular_velocity = detail::times_pow2(motion_b.angular_velocity, -f);
-      }
-      // Centers that the scaling would overflow (bodies far smaller than their coordinates):
-      // the pair is moved to a's center first (an exact difference for nearby centers).
-      const bool move = std::max(detail::max_abs(a.center()), detail::max_abs(b.center())) >= std::ldexp(T(1), 1000 + e);
-      const Vec<T, N> origin = move ? Vec<T, N>(a.center()) : Vec<T, N>::Zero();
-      auto prepared = [&](const Ellipsoid<T, N>& x) {
-        return detail::scaled(detail::ShapeAccess::unchecked<T, N>(x.center() - origin, x.axes(), x.radii()), -e);
-      };
-      Contact<T, N> c = first_contact(prepared(a), ma, prepared(b), mb, std::ldexp(t_max, f), options);
-      c.time = std::ldexp(c.time, -f);
-      c.point = detail::times_pow2(c.point, e);
-      if (move) c.point += origin;
-      return c;
+      // Bodies 2^963 across moving 1 per unit time and turning at 2^500 rad per unit time:
+      // in the time unit where they move about a radius, the spin overflows.
+      if (std::isfinite(std::ldexp(std::max(spin_a, spin_b), -f)))
+        return rescaled_first_contact(a, motion_a, b, motion_b, t_max, options, e, f);
+      out_of_range = true;
     }
   }
 

@@ -204,6 +204,26 @@ TEST(RigidContact, PowerOfTwoScaling) {
   }
 }
 
+// Fuzzing (the CI mutation run): circles of radius 2^963 moving 1 per unit time, one turning
+// at 2^500 rad per unit time, answered invalid_input. Time is rescaled to the unit in which
+// they move about a radius (2^-963), where that spin overflowed. Such a pair is beyond the
+// bounds' range (contact.hpp): its start state, or did_not_converge at 0. Expected from
+// geometry: centers 1 apart overlap; 3 radii apart they are separated.
+TEST(RigidContact, SpinOverflowingInTheRescaledTimeGivesTheStartState) {
+  const double r = 0x1p963;
+  const RigidMotion<double, 2> ma{{1, 1}, 1.0}, mb{{1, 1}, 0x1p500};
+  const auto circle = [&](double x) { return make_ball<double, 2>({x, -r}, r); };
+  const Contact<double, 2> near = first_contact(circle(1), ma, circle(2), mb, 1.0);
+  EXPECT_EQ(near.status, ContactStatus::overlapping_at_start);
+  const Contact<double, 2> far = first_contact(circle(0), ma, circle(3 * r), mb, 1.0);
+  EXPECT_EQ(far.status, ContactStatus::did_not_converge);
+  EXPECT_EQ(far.time, 0.0);
+  // A spin that fits that time unit (2^40 rad per unit time, 2^1003 per new unit) still runs.
+  const RigidMotion<double, 2> slower{{1, 1}, 0x1p40};
+  const Contact<double, 2> runs = first_contact(circle(0), ma, circle(3 * r), slower, 1.0);
+  EXPECT_EQ(runs.status, ContactStatus::no_contact_in_window);
+}
+
 TEST(RigidContact, FloatAgreesWithDouble) {
   for (std::uint64_t seed = 1; seed <= 20; ++seed) {
     const auto c = scenarios::make_contact_case<2>(scenarios::Category::random, seed, 0.3);
