@@ -5,6 +5,7 @@
 #include "detail/contact_start.hpp"
 #include "detail/instantiate.hpp"
 #include "detail/polytope_distance.hpp"
+#include "detail/scale.hpp"
 
 #include <algorithm>
 #include <array>
@@ -39,7 +40,7 @@ int by_spheres(const Ellipsoid<T, N>& a, const Capsule<T, N>& b) noexcept {
   W r_max = W(a.radii().maxCoeff()), r_min = W(a.radii().minCoeff()), R = W(b.radius());
   const W size = std::max({w.cwiseAbs().maxCoeff(), e.cwiseAbs().maxCoeff(), r_max, R});
   if (!(size > W(0)) || !std::isfinite(size)) return 0;
-  const W unit = std::ldexp(W(1), std::min(-std::ilogb(size), std::numeric_limits<W>::max_exponent - 1));
+  const W unit = detail::unit_scale(size);
   w *= unit;
   e *= unit;
   r_max *= unit;

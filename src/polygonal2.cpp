@@ -55,6 +55,8 @@ std::string_view to_string(Side s) noexcept {
 
 namespace {
 
+using detail::unit_scale;
+
 // Points of the test's frame (plain scalars: this is the inner loop).
 template <class T>
 struct Pt {
@@ -289,24 +291,6 @@ PolygonalOverlap<T> with_band(const Outcome& o, T major, T scaled_size, T s, boo
 template <class T>
 T band_size(const Vec2<T>& offset, T major, T other) noexcept {
   return std::abs(offset.x()) + std::abs(offset.y()) + major + other;
-}
-
-// 2^-e for the binary exponent e of `size` (finite, > 0): multiplying by it is exact and
-// brings `size` into [1, 2), so squared quantities of the test stay in range. Read off the
-// exponent field (libm's frexp and ldexp would cost more than a level of the test).
-template <class T>
-T unit_scale(T size) noexcept {
-  using U = std::conditional_t<sizeof(T) == sizeof(std::uint64_t), std::uint64_t, std::uint32_t>;
-  static_assert(std::numeric_limits<T>::is_iec559 && sizeof(T) == sizeof(U));
-  constexpr int mantissa = std::numeric_limits<T>::digits - 1;
-  constexpr U bias = std::numeric_limits<T>::max_exponent - 1;
-  const U field = (std::bit_cast<U>(size) >> mantissa) & (2 * bias + 1);
-  if (field == 0 || field >= 2 * bias) {  // size subnormal, or 2^-e would be: the nearest finite power
-    int e;
-    (void)std::frexp(size, &e);
-    return std::ldexp(T(1), std::min(1 - e, std::numeric_limits<T>::max_exponent - 1));
-  }
-  return std::bit_cast<T>(static_cast<U>((2 * bias - field) << mantissa));
 }
 
 // Half the largest of |offset| (componentwise), `major` and `other`, taken on halves (the

@@ -361,6 +361,15 @@ ELLIPSECT_LANE V certificate_margin(const BodyLanes<V, N>& a, const BodyLanes<V,
   return Splat<V>(1e-6 + ulp_scale * 1e8) + Splat<V>(ulp_scale) * world;
 }
 
+// classify's code from its certified masks, first that holds: -1 separated, +1 overlapping
+// with neither body inside the other, +2 a contains b, +3 b contains a, else 0.
+template <class V, class M>
+ELLIPSECT_LANE V relation_code(M separated, M proper, M b_in_a, M a_in_b) {
+  const V one = Splat<V>(1), two = one + one;
+  return IfThenElse(separated, Splat<V>(0) - one,
+                    IfThenElse(proper, one, IfThenElse(b_in_a, two, IfThenElse(a_in_b, two + one, Splat<V>(0)))));
+}
+
 // Newton steps on the Perram-Wertheim parameter (quadratic convergence: three leave
 // 0.25% of random pairs open).
 inline constexpr int newton_steps = 3;
@@ -381,7 +390,8 @@ ELLIPSECT_LANE V certify(const BodyLanes<V, N>& a, const BodyLanes<V, N>& b, V t
   } else {
     if (all_lanes<V>(Or(apart, inside))) return IfThenElse(apart, minus_one, one);
   }
-  auto gate = aspect_gate<V, N>(a, b);
+  const auto aspect_ok = aspect_gate<V, N>(a, b);
+  auto gate = aspect_ok;
   const V margin = certificate_margin<V, N>(a, b);
 
   const auto& sa = a.s;
@@ -432,12 +442,9 @@ ELLIPSECT_LANE V certify(const BodyLanes<V, N>& a, const BodyLanes<V, N>& b, V t
     // b inside a shrunk by 1 - margin about c_a: over b, |x - c_a|_a <= |c_b - c_a|_a +
     // |Ma^1/2 Lb| (b = c_b + Lb (unit ball), Lb Lb^T = Sb), and |Ma^1/2 Lb|^2 = lambda_max(Ma Sb)
     // <= tr(Ma Sb); likewise a inside b.
-    const auto aspect_ok = aspect_gate<V, N>(a, b);
     const auto b_in_a = And(aspect_ok, Le(Sqrt(level<V, N>(a, r)) + Sqrt(trace_product<V, N>(a.m, b.s)), deep));
     const auto a_in_b = And(aspect_ok, Le(Sqrt(level<V, N>(b, r)) + Sqrt(trace_product<V, N>(b.m, a.s)), deep));
-    const V two = one + one, three = two + one;
-    return IfThenElse(separated, minus_one,
-                      IfThenElse(proper, one, IfThenElse(b_in_a, two, IfThenElse(a_in_b, three, zero))));
+    return relation_code<V>(separated, proper, b_in_a, a_in_b);
   }
 }
 

@@ -75,16 +75,21 @@ inline FloatBand float_band(double tol) {
           down(in * (1 - slack)), up(out * (1 + slack))};
 }
 
-// |w|^T |M| |w| for w_abs = |w|: what the rounding of w^T M w is measured against.
+// |M| w_abs: what the rounding of M w is measured against (w_abs = |w|).
+template <class V, int N>
+HWY_INLINE void abs_times(const V (&m)[N][N], const V* w_abs, V* out) {
+  for (int i = 0; i < N; ++i) {
+    out[i] = Abs(m[i][0]) * w_abs[0];
+    for (int j = 1; j < N; ++j) out[i] = out[i] + Abs(m[i][j]) * w_abs[j];
+  }
+}
+
+// |w|^T |M| |w|: what the rounding of w^T M w is measured against.
 template <class V, int N>
 HWY_INLINE V abs_level(const V (&m)[N][N], const V* w_abs) {
-  V sum = Splat<V>(0);
-  for (int i = 0; i < N; ++i) {
-    V row = Abs(m[i][0]) * w_abs[0];
-    for (int j = 1; j < N; ++j) row = row + Abs(m[i][j]) * w_abs[j];
-    sum = sum + w_abs[i] * row;
-  }
-  return sum;
+  V row[N];
+  abs_times<V, N>(m, w_abs, row);
+  return dot<V, N>(w_abs, row);
 }
 
 // Codes as certify's in certificates-inl.hpp: -1 separated, +1 a common point (overlap) or
@@ -135,14 +140,8 @@ HWY_INLINE V float_code(const BodyLanes<V, N>& a, const BodyLanes<V, N>& b, cons
       y_abs[i] = Abs(q.y[i]);
       y1 = y1 + y_abs[i];
     }
-    for (int i = 0; i < N; ++i) {
-      ha[i] = Abs(sa[i][0]) * y_abs[0];
-      hb[i] = Abs(sb[i][0]) * y_abs[0];
-      for (int j = 1; j < N; ++j) {
-        ha[i] = ha[i] + Abs(sa[i][j]) * y_abs[j];
-        hb[i] = hb[i] + Abs(sb[i][j]) * y_abs[j];
-      }
-    }
+    abs_times<V, N>(sa, y_abs, ha);
+    abs_times<V, N>(sb, y_abs, hb);
     const V pa = dot<V, N>(y_abs, ha), pb = dot<V, N>(y_abs, hb), q_abs = dot<V, N>(y_abs, r_abs);
     // y^T S y of the exact S is within k_sum P + 1e-14 rmax^2 |y|_1^2 of the float one.
     const V s_a = double_s * ra2 * (y1 * y1), s_b = double_s * rb2 * (y1 * y1);
@@ -220,10 +219,7 @@ HWY_INLINE V float_code(const BodyLanes<V, N>& a, const BodyLanes<V, N>& b, cons
                          Splat<V>(2e-14 * N * N) * (inner.rmax * inner.rmax) / outer_min2;
       return And(gate, Le(Sqrt(level_up) + Sqrt(trace_up), deep));
     };
-    const V two = one + one, three = two + one;
-    const auto b_in_a = AndNot(separated, holds(a, b)), a_in_b = AndNot(separated, holds(b, a));
-    return IfThenElse(separated, minus_one,
-                      IfThenElse(And(shared, proper), one, IfThenElse(b_in_a, two, IfThenElse(a_in_b, three, zero))));
+    return relation_code<V>(separated, And(shared, proper), holds(a, b), holds(b, a));
   }
   return code();
 }

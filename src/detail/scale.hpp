@@ -25,7 +25,10 @@
 #include "shape_access.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
+#include <limits>
 #include <type_traits>
 
 namespace ellipsect::detail {
@@ -89,6 +92,25 @@ int time_exponent(const Scale& scale, const Vec<T, N>& velocity_a, const Vec<T, 
     const int f = std::ilogb(speed) - scale.exponent;
     return f >= -native_exponent && f <= native_exponent ? 0 : f;
   }
+}
+
+// 2^-e for the binary exponent e of `size` (finite, > 0): multiplying by it is exact and
+// brings `size` into [1, 2), so squares and fourth powers of lengths up to `size` stay in
+// range. Read off the exponent field (libm's frexp and ldexp cost more than the tests that
+// use it: a level of the polygonal tests, the spheres' pre-test of capsules).
+template <class T>
+T unit_scale(T size) noexcept {
+  using U = std::conditional_t<sizeof(T) == sizeof(std::uint64_t), std::uint64_t, std::uint32_t>;
+  static_assert(std::numeric_limits<T>::is_iec559 && sizeof(T) == sizeof(U));
+  constexpr int mantissa = std::numeric_limits<T>::digits - 1;
+  constexpr U bias = std::numeric_limits<T>::max_exponent - 1;
+  const U field = (std::bit_cast<U>(size) >> mantissa) & (2 * bias + 1);
+  if (field == 0 || field >= 2 * bias) {  // size subnormal, or 2^-e would be: the nearest finite power
+    int e;
+    (void)std::frexp(size, &e);
+    return std::ldexp(T(1), std::min(1 - e, std::numeric_limits<T>::max_exponent - 1));
+  }
+  return std::bit_cast<T>(static_cast<U>((2 * bias - field) << mantissa));
 }
 
 // A vector times 2^k (exact where the result is normal).
