@@ -237,13 +237,40 @@ Ellipse2<T> make_ellipse(const Vec2<T>& center, T angle, const Vec2<T>& radii) {
   return body<T, 2>(center, axes(), radii, axes);
 }
 
+namespace {
+
+// The rotation matrix of q / |q| for |q|^2 = n2 within 2 tol of 1: R = I + s [products],
+// s = 2 / n2 (the general form of Eigen's toRotationMatrix, whose s = 2 assumes |q| = 1),
+// with s = 4 - 2 n2 in place of the division: 2 / n2 = 2 (1 - d + d^2 - ...) for d =
+// n2 - 1, so the two differ by 2 d^2 <= 8 tol^2 (8e-18 in double, 8e-10 in float), below
+// a rounding of s. No square root and no division: each entry is within a few ulps of the
+// rotation matrix of q / |q| (tests/unit/shapes_test.cpp), and the Gram matrix of body()
+// checks orthonormality as for any axes.
+template <class T>
+[[gnu::always_inline]] inline Mat3<T> unit_rotation(const Quat<T>& q, T n2) {
+  const T s = T(4) - T(2) * n2;
+  const T w = q.w(), x = q.x(), y = q.y(), z = q.z();
+  const T xs = x * s, ys = y * s, zs = z * s;
+  const T wx = w * xs, wy = w * ys, wz = w * zs, xx = x * xs, xy = x * ys, xz = x * zs;
+  const T yy = y * ys, yz = y * zs, zz = z * zs;
+  Mat3<T> m;
+  m << T(1) - (yy + zz), xy - wz, xz + wy,  //
+      xy + wz, T(1) - (xx + zz), yz - wx,   //
+      xz - wy, yz + wx, T(1) - (xx + yy);
+  return m;
+}
+
+}  // namespace
+
 template <class T>
 Ellipsoid3<T> make_ellipsoid(const Vec3<T>& center, const Quat<T>& rotation, const Vec3<T>& radii) {
-  const T n = rotation.norm();  // NaN or inf unless every component is finite
-  if (!(std::abs(n - T(1)) <= quaternion_tolerance<T>)) [[unlikely]]
+  // |q|^2 within 2 tol of 1 (|q| within tol, to tol^2); NaN or inf unless every component
+  // is finite.
+  const T n2 = rotation.w() * rotation.w() + rotation.x() * rotation.x() + rotation.y() * rotation.y() +
+               rotation.z() * rotation.z();
+  if (!(std::abs(n2 - T(1)) <= T(2) * quaternion_tolerance<T>)) [[unlikely]]
     throw_bad_quaternion(rotation);
-  // q / |q|: what rotation.normalized() computes, without a second norm.
-  const auto axes = [&] { return Mat3<T>(Quat<T>(rotation.coeffs() / n).toRotationMatrix()); };
+  const auto axes = [&] { return unit_rotation<T>(rotation, n2); };
   return body<T, 3>(center, axes(), radii, axes);
 }
 
