@@ -13,11 +13,14 @@
 #include <ellipsect/options.hpp>
 #include <ellipsect/shapes.hpp>
 
+#include <cstdint>
 #include <string_view>
 
 namespace ellipsect {
 
-enum class Relation {
+// One byte: batch answers are arrays of it (1 MB per million pairs, and Python's int8 arrays
+// hold them as written).
+enum class Relation : std::int8_t {
   separated,     // no common point
   touching,      // boundaries meet, interiors disjoint (within the tolerance band)
   overlapping,   // interiors intersect, neither contains the other

@@ -226,15 +226,19 @@ py::array_t<bool> overlap_array(std::size_t n, const Run& run) {
   return out;
 }
 
+// Relation is one byte (classify.hpp): the answers are written once, into memory the
+// returned int8 array then owns (no zero fill, no copy).
 template <class Run>
 py::array_t<std::int8_t> classify_array(std::size_t n, const Run& run) {
-  py::array_t<std::int8_t> out(static_cast<py::ssize_t>(n));
-  std::int8_t* p = out.mutable_data();
-  py::gil_scoped_release release;
-  const auto relations = std::make_unique_for_overwrite<Relation[]>(n);  // no zero fill: every entry is written
-  run(std::span<Relation>(relations.get(), n));
-  for (std::size_t i = 0; i < n; ++i) p[i] = static_cast<std::int8_t>(relations[i]);
-  return out;
+  static_assert(sizeof(Relation) == sizeof(std::int8_t));
+  auto relations = std::make_unique_for_overwrite<Relation[]>(n);
+  {
+    py::gil_scoped_release release;
+    run(std::span<Relation>(relations.get(), n));
+  }
+  const py::capsule owner(relations.get(), [](void* p) { delete[] static_cast<Relation*>(p); });
+  const auto* data = reinterpret_cast<const std::int8_t*>(relations.release());
+  return py::array_t<std::int8_t>(static_cast<py::ssize_t>(n), data, owner);
 }
 
 template <int N, class Run>
