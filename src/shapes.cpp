@@ -239,24 +239,23 @@ Ellipse2<T> make_ellipse(const Vec2<T>& center, T angle, const Vec2<T>& radii) {
 
 namespace {
 
-// The rotation matrix of q / |q| for |q|^2 = n2 within 2 tol of 1: R = I + s [products],
-// s = 2 / n2 (the general form of Eigen's toRotationMatrix, whose s = 2 assumes |q| = 1),
-// with s = 4 - 2 n2 in place of the division: 2 / n2 = 2 (1 - d + d^2 - ...) for d =
-// n2 - 1, so the two differ by 2 d^2 <= 8 tol^2 (8e-18 in double, 8e-10 in float), below
-// a rounding of s. No square root and no division: each entry is within a few ulps of the
-// rotation matrix of q / |q| (tests/unit/shapes_test.cpp), and the Gram matrix of body()
-// checks orthonormality as for any axes.
+// The rotation matrix of q / |q| for |q|^2 = n2 within 2 tol of 1: R = I + c P, P the
+// products of Eigen's toRotationMatrix (2 x y - 2 w z, ...; its c = 1 assumes |q| = 1) and
+// c = 2 - n2 in place of 1 / n2 = 1 - d + d^2 - ... (d = n2 - 1): they differ by d^2 <=
+// 4 tol^2 (4e-18 in double, 4e-10 in float), below a rounding of c. No square root and no
+// division, and P is formed while n2 is: each entry is within a few ulps of the rotation
+// matrix of q / |q| (tests/unit/shapes_test.cpp), and body()'s Gram matrix checks
+// orthonormality as for any axes.
 template <class T>
 [[gnu::always_inline]] inline Mat3<T> unit_rotation(const Quat<T>& q, T n2) {
-  const T s = T(4) - T(2) * n2;
-  const T w = q.w(), x = q.x(), y = q.y(), z = q.z();
-  const T xs = x * s, ys = y * s, zs = z * s;
-  const T wx = w * xs, wy = w * ys, wz = w * zs, xx = x * xs, xy = x * ys, xz = x * zs;
-  const T yy = y * ys, yz = y * zs, zz = z * zs;
+  const T c = T(2) - n2;
+  const T w = q.w(), x = q.x(), y = q.y(), z = q.z(), tx = T(2) * x, ty = T(2) * y, tz = T(2) * z;
+  const T wx = tx * w, wy = ty * w, wz = tz * w, xx = tx * x, xy = ty * x, xz = tz * x;
+  const T yy = ty * y, yz = tz * y, zz = tz * z;
   Mat3<T> m;
-  m << T(1) - (yy + zz), xy - wz, xz + wy,  //
-      xy + wz, T(1) - (xx + zz), yz - wx,   //
-      xz - wy, yz + wx, T(1) - (xx + yy);
+  m << T(1) - c * (yy + zz), c * (xy - wz), c * (xz + wy),  //
+      c * (xy + wz), T(1) - c * (xx + zz), c * (yz - wx),   //
+      c * (xz - wy), c * (yz + wx), T(1) - c * (xx + yy);
   return m;
 }
 

@@ -8,10 +8,10 @@
 // field; a constructed Ellipsoid is always valid, so queries on it are noexcept. Validation
 // costs a few comparisons and a Gram matrix (axes^T axes, to check orthonormality), with
 // no allocation or string work unless the input is rejected: about 5 ns for make_ball, 7 ns
-// for an ellipse from axes, 10-15 ns for an ellipsoid from a rotation matrix; a quaternion
-// adds its norm, the division by it and the matrix (about 25 ns in all), an angle its sine
-// and cosine (about 20 ns; bench/RESULTS.md). The factories over arrays (make_ellipsoids,
-// ...) do the same per row, naming the first bad row.
+// for an ellipse from axes, 7-10 ns for an ellipsoid from a rotation matrix; a quaternion
+// adds its matrix (about 11 ns in all), an angle its sine and cosine (about 15 ns;
+// bench/RESULTS.md). The factories over arrays (make_ellipsoids, ...) do the same per row,
+// naming the first bad row.
 //
 // ABI. The public types are laid out the same whatever the compiler flags (-march, -m...)
 // and Eigen settings (EIGEN_MAX_STATIC_ALIGN_BYTES, EIGEN_DONT_ALIGN) of the program that
@@ -195,7 +195,7 @@ Ellipse2<T> make_ellipse(const Vec2<T>& center, T angle, const Vec2<T>& radii);
 
 // An ellipsoid rotated by a unit quaternion (|q|^2 within 2e-9 of 1 for double, 2e-5 for
 // float: |q| within 1e-9, 1e-5). The axes are the columns of the rotation matrix of q / |q|,
-// to 8 ulps of 1 per entry (formed without a square root or a division; at most 4 measured
+// to 8 ulps of 1 per entry (formed without a square root or a division; at most 3.3 measured
 // over 3 million random quaternions, where q.normalized().toRotationMatrix() has 5.5).
 // Errors name the components in Eigen's constructor order Quaternion(w, x, y, z):
 // "quaternion.w", "quaternion.x", ... (an aligned Eigen::Quaterniond converts implicitly).
