@@ -193,10 +193,12 @@ Outcome point_test(const Disk<T>& d) noexcept {
 
 template <class T>
 [[gnu::always_inline]] inline Outcome quadrant_test(const Disk<T>& d, T w, T h, int max_level) noexcept {
-  if (level_zero_collides(d, w, h)) return {Verdict::collision, 0, 0};
-  // Missing the rhombus, the disk meets the enclosing triangle iff it meets the box.
+  // A disk that misses the box [0, w] x [0, h] misses the rhombus inside it (most pairs
+  // apart: decided before the edge test); missing the rhombus, the disk meets the enclosing
+  // triangle iff it meets the box.
   const T dx = std::max(d.p.x - w, T(0)), dy = std::max(d.p.y - h, T(0));
   if (dx * dx + dy * dy > d.rr) return {Verdict::no_collision, 0, 0};
+  if (level_zero_collides(d, w, h)) return {Verdict::collision, 0, 0};
   return bisect_folded(d, {w, 0}, {0, h}, max_level);
 }
 
