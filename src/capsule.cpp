@@ -49,8 +49,7 @@ int by_spheres(const Ellipsoid<T, N>& a, const Capsule<T, N>& b) noexcept {
   const W ee = e.squaredNorm();
   const W u = ee > W(0) ? std::clamp(w.dot(e) / ee, W(0), W(1)) : W(0);
   const W d = (w - u * e).norm();
-  const W margin = W(1e-9) * (d + r_max + R);
-  if (!std::isfinite(d) || !std::isfinite(margin)) return 0;
+  const W margin = W(1e-9) * (d + r_max + R);  // lengths below 2: d and margin are finite
   if (d - r_max - R > margin) return 1;
   if (d - r_min - R < -margin) return -1;
   return 0;

@@ -265,8 +265,7 @@ template <class T>
 Ellipsoid3<T> make_ellipsoid(const Vec3<T>& center, const Quat<T>& rotation, const Vec3<T>& radii) {
   // |q|^2 within 2 tol of 1 (|q| within tol, to tol^2); NaN or inf unless every component
   // is finite.
-  const T n2 = rotation.w() * rotation.w() + rotation.x() * rotation.x() + rotation.y() * rotation.y() +
-               rotation.z() * rotation.z();
+  const T n2 = rotation.squaredNorm();
   if (!(std::abs(n2 - T(1)) <= T(2) * quaternion_tolerance<T>)) [[unlikely]]
     throw_bad_quaternion(rotation);
   const auto axes = [&] { return unit_rotation<T>(rotation, n2); };

@@ -127,8 +127,6 @@ TEST(Capsule, FloatBodies) {
   EXPECT_NEAR(c.time, 3.5f, 1e-5f);
 }
 
-}  // namespace
-
 // A scene at 1e-299 (found by the queries fuzz target): the spheres' pre-test of overlap
 // squared lengths that underflowed to 0 and read a ball 2.3 radii from the capsule as
 // overlapping, while classify said separated. The pre-test now works on lengths scaled by
@@ -145,3 +143,5 @@ TEST(Capsule, OverlapAtTinyScaleAgreesWithClassify) {
   }
   EXPECT_TRUE(overlap(ball, make_capsule<double, 3>({0, 2.5 * x, x}, {2 * x, 2.5 * x, x}, x)));
 }
+
+}  // namespace
