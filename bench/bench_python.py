@@ -5,7 +5,8 @@
     build/venv/bin/python bench/bench_python.py [--pairs N] [--quick]
 
 1. Overhead of ellipsect.overlap / classify on N ellipsoid pairs over the C++ span overloads
-   (build/release/bench/python_baseline on the same bodies; best of 5 each).
+   (build/release/bench/python_baseline on the same bodies; best of 5 each), from the bodies,
+   on pairs prepared once, and on float32 pairs (pairs(..., dtype=float32)).
 2. Ellipse IoU: ellipsect.iou against shapely polygons of 64 and 256 vertices: time per
    pair and error against the exact area (the scalar overlap_area, 1e-12 accurate).
 3. Dask: pairs per second of ellipsect.dask.overlap on LocalCluster(2 workers x 1 thread)
@@ -47,9 +48,14 @@ def overhead(n):
     build = best_of(3, lambda: ellipsect.Ellipsoids(**pa))
     a, b = ellipsect.Ellipsoids(**pa), ellipsect.Ellipsoids(**pb)
     p = ellipsect.pairs(a, b)
+    build_pairs = best_of(3, lambda: ellipsect.pairs(a, b))
+    build_single = best_of(3, lambda: ellipsect.pairs(a, b, dtype=np.float32))
+    single = ellipsect.pairs(a, b, dtype=np.float32)
     py = {"overlap": best_of(5, lambda: ellipsect.overlap(a, b)), "classify": best_of(5, lambda: ellipsect.classify(a, b)),
           "overlap_pairs": best_of(5, lambda: ellipsect.overlap(p)),
-          "classify_pairs": best_of(5, lambda: ellipsect.classify(p))}
+          "classify_pairs": best_of(5, lambda: ellipsect.classify(p)),
+          "overlap_pairs_float": best_of(5, lambda: ellipsect.overlap(single)),
+          "classify_pairs_float": best_of(5, lambda: ellipsect.classify(single))}
     program = os.path.join(ROOT, "build", "release", "bench", "python_baseline")
     with tempfile.TemporaryDirectory() as d:
         for side, p in (("a", pa), ("b", pb)):
@@ -59,11 +65,14 @@ def overhead(n):
     assert cpp["hits"] == int(ellipsect.overlap(a, b).sum())
     print(f"## overhead, {n} ellipsoid pairs (best of 5)")
     print(f"Ellipsoids(...) from arrays: {build:.3f} s ({build / n * 1e9:.0f} ns per body)")
+    print(f"pairs(a, b): {build_pairs:.3f} s; pairs(a, b, dtype=float32): {build_single:.3f} s")
     print("| query | C++ | Python | overhead |")
     print("|---|---|---|---|")
     for q, what in (("overlap", "overlap(a, b)"), ("classify", "classify(a, b)"),
                     ("overlap_pairs", "overlap(pairs), pairs built once"),
-                    ("classify_pairs", "classify(pairs), pairs built once")):
+                    ("classify_pairs", "classify(pairs), pairs built once"),
+                    ("overlap_pairs_float", "overlap(pairs), float32 pairs"),
+                    ("classify_pairs_float", "classify(pairs), float32 pairs")):
         print(f"| {what} | {cpp[q] * 1e3:.1f} ms | {py[q] * 1e3:.1f} ms | {100 * (py[q] / cpp[q] - 1):+.1f}% |")
 
 

@@ -241,70 +241,95 @@ py::array_t<std::int8_t> classify_array(std::size_t n, const Run& run) {
   return py::array_t<std::int8_t>(static_cast<py::ssize_t>(n), data, owner);
 }
 
-template <int N, class Run>
+// Contacts as arrays of T (float64, or float32 for float pairs).
+template <class T, int N, class Run>
 py::object contact_array(std::size_t n, const Run& run) {
   py::array_t<std::int8_t> status(static_cast<py::ssize_t>(n));
-  py::array_t<double> time(static_cast<py::ssize_t>(n));
-  py::array_t<double> point({py::ssize_t(n), py::ssize_t(N)}), normal({py::ssize_t(n), py::ssize_t(N)});
+  py::array_t<T> time(static_cast<py::ssize_t>(n));
+  py::array_t<T> point({py::ssize_t(n), py::ssize_t(N)}), normal({py::ssize_t(n), py::ssize_t(N)});
   std::int8_t* s = status.mutable_data();
-  double *t = time.mutable_data(), *p = point.mutable_data(), *q = normal.mutable_data();
+  T *t = time.mutable_data(), *p = point.mutable_data(), *q = normal.mutable_data();
   {
     py::gil_scoped_release release;
-    std::vector<Contact<double, N>> out(n);
-    run(std::span<Contact<double, N>>(out));
+    std::vector<Contact<T, N>> out(n);
+    run(std::span<Contact<T, N>>(out));
     for (std::size_t i = 0; i < n; ++i) {
       s[i] = static_cast<std::int8_t>(out[i].status);
       t[i] = out[i].time;
-      Eigen::Map<Vec<double, N>>{p + i * N} = out[i].point;
-      Eigen::Map<Vec<double, N>>{q + i * N} = out[i].normal;
+      Eigen::Map<Vec<T, N>>{p + i * N} = out[i].point;
+      Eigen::Map<Vec<T, N>>{q + i * N} = out[i].normal;
     }
   }
   return contact_arrays(status, time, point, normal);
 }
 
+// The bodies rounded to float by the batch factory (make_bodies<float, N>: the single-body
+// checks, axes re-orthonormalized in float where rounding moved them); a body that leaves
+// float's range raises InputError naming it, e.g. "a[17].radii[0]".
 template <int N>
-void def_batch_queries(py::module_& m) {
-  using B = Bodies<N>;
-  using P = Pairs<double, N>;
-  const std::string suffix = std::to_string(N);
-  py::class_<P>(m, ("Pairs" + suffix).c_str(),
-                "Pairs prepared once for repeated overlap / classify / first_contact (batch.hpp's Pairs).")
-      .def("__len__", &P::size);
-  m.def("pairs",
-        [](const B& a, const B& b, py::handle velocity_a, py::handle velocity_b, py::handle t_max) {
-          const std::size_t n = paired(a, b);
-          const bool moving = !velocity_a.is_none() || !velocity_b.is_none();
-          const Motion<N> motion = moving ? motion_of<N>(n, velocity_a, velocity_b, t_max) : Motion<N>{};
-          py::gil_scoped_release release;
-          P out;
-          if (moving)
-            out.assign(span_of(a), motion.velocity_a, span_of(b), motion.velocity_b, motion.t_max);
-          else
-            out.assign(span_of(a), span_of(b));
-          return out;
-        },
-        py::arg("a"), py::arg("b"), py::arg("velocity_a") = py::none(), py::arg("velocity_b") = py::none(),
-        py::arg("t_max") = 0.0,
-        "Pairs (a[i], b[i]), with velocities and time windows for first_contact (static pairs without).");
-  m.def("overlap",
-        [](const B& a, const B& b, const Options& o, int threads) {
-          return overlap_array(paired(a, b), [&](std::span<bool> out) {
-            overlap<double, N>(span_of(a), span_of(b), out, {o, threads});
-          });
-        },
-        py::arg("a"), py::arg("b"), py::arg("options") = Options{}, py::arg("threads") = 0);
+std::vector<Ellipsoid<float, N>> rounded_to_float(const Bodies<N>& bodies, const std::string& name) {
+  const std::size_t n = bodies.items.size();
+  std::vector<float> centers(n * N), rotations(n * N * N), radii(n * N);
+  for (std::size_t i = 0; i < n; ++i) {
+    const Ellipsoid<double, N>& x = bodies.items[i];
+    Eigen::Map<Vec<float, N>>{centers.data() + i * N} = x.center().template cast<float>();
+    Eigen::Map<Eigen::Matrix<float, N, N, Eigen::RowMajor>>{rotations.data() + i * N * N} = x.axes().template cast<float>();
+    Eigen::Map<Vec<float, N>>{radii.data() + i * N} = x.radii().template cast<float>();
+  }
+  std::vector<Ellipsoid<float, N>> out(n);
+  try {
+    make_bodies<float, N>(centers, rotations, radii, out);
+  } catch (const RowInputError& e) {
+    throw InputError(name + "[" + std::to_string(e.row()) + "]." + e.field(), e.detail() + " in float32");
+  }
+  return out;
+}
+
+// Pairs in T from double bodies (float: each body rounded to float, velocities and t_max too).
+template <class T, int N>
+Pairs<T, N> pairs_in(const Bodies<N>& a, const Bodies<N>& b, const Motion<N>* motion) {
+  Pairs<T, N> out;
+  if constexpr (std::is_same_v<T, double>) {
+    py::gil_scoped_release release;
+    if (motion)
+      out.assign(span_of(a), motion->velocity_a, span_of(b), motion->velocity_b, motion->t_max);
+    else
+      out.assign(span_of(a), span_of(b));
+  } else {
+    const std::vector<Ellipsoid<float, N>> fa = rounded_to_float(a, "a"), fb = rounded_to_float(b, "b");
+    py::gil_scoped_release release;
+    if (motion) {
+      const std::size_t n = fa.size();
+      std::vector<Vec<float, N>> va(n), vb(n);
+      std::vector<float> t(n);
+      for (std::size_t i = 0; i < n; ++i) {
+        va[i] = motion->velocity_a[i].template cast<float>();
+        vb[i] = motion->velocity_b[i].template cast<float>();
+        t[i] = float(motion->t_max[i]);
+      }
+      out.assign(std::span<const Ellipsoid<float, N>>(fa), va, std::span<const Ellipsoid<float, N>>(fb), vb, t);
+    } else {
+      out.assign(std::span<const Ellipsoid<float, N>>(fa), std::span<const Ellipsoid<float, N>>(fb));
+    }
+  }
+  return out;
+}
+
+// overlap, classify, first_contact and the GPU forms over Pairs<T, N>, bound as class `name`.
+template <class T, int N>
+void def_pairs_queries(py::module_& m, const std::string& name, const char* dtype) {
+  using P = Pairs<T, N>;
+  py::class_<P>(m, name.c_str(),
+                ("Pairs prepared once for repeated overlap / classify / first_contact (batch.hpp's Pairs), in " +
+                 std::string(dtype) + ".")
+                    .c_str())
+      .def("__len__", &P::size)
+      .def_property_readonly("dtype", [dtype](const P&) { return py::dtype(dtype); });
   m.def("overlap",
         [](const P& pairs, const Options& o, int threads) {
           return overlap_array(pairs.size(), [&](std::span<bool> out) { overlap(pairs, out, {o, threads}); });
         },
         py::arg("pairs"), py::arg("options") = Options{}, py::arg("threads") = 0);
-  m.def("classify",
-        [](const B& a, const B& b, const Options& o, int threads) {
-          return classify_array(paired(a, b), [&](std::span<Relation> out) {
-            classify<double, N>(span_of(a), span_of(b), out, {o, threads});
-          });
-        },
-        py::arg("a"), py::arg("b"), py::arg("options") = Options{}, py::arg("threads") = 0);
   m.def("classify",
         [](const P& pairs, const Options& o, int threads) {
           return classify_array(pairs.size(), [&](std::span<Relation> out) { classify(pairs, out, {o, threads}); });
@@ -329,24 +354,64 @@ void def_batch_queries(py::module_& m) {
         py::arg("pairs"), py::arg("options") = Options{}, py::arg("threads") = 0,
         "classify(pairs) with the filter on a CUDA GPU (gpu.hpp): (relations, 'gpu' or 'cpu', where it ran).");
   m.def("first_contact",
+        [](const P& pairs, const Options& o, int threads) {
+          return contact_array<T, N>(pairs.size(), [&](std::span<Contact<T, N>> out) {
+            first_contact(pairs, out, {o, threads});
+          });
+        },
+        py::arg("pairs"), py::arg("options") = Options{}, py::arg("threads") = 0);
+}
+
+template <int N>
+void def_batch_queries(py::module_& m) {
+  using B = Bodies<N>;
+  const std::string suffix = std::to_string(N);
+  def_pairs_queries<double, N>(m, "Pairs" + suffix, "float64");
+  def_pairs_queries<float, N>(m, "Pairs" + suffix + "f", "float32");
+  m.def("pairs",
+        [](const B& a, const B& b, py::handle velocity_a, py::handle velocity_b, py::handle t_max,
+           const py::object& dtype) -> py::object {
+          const std::size_t n = paired(a, b);
+          const py::dtype type = py::dtype::from_args(dtype);
+          const bool single = type.kind() == 'f' && type.itemsize() == 4;
+          if (!single && !(type.kind() == 'f' && type.itemsize() == 8))
+            throw py::type_error("dtype: expected float64 or float32, got " + std::string(py::str(py::handle(type))));
+          const bool moving = !velocity_a.is_none() || !velocity_b.is_none();
+          const Motion<N> motion = moving ? motion_of<N>(n, velocity_a, velocity_b, t_max) : Motion<N>{};
+          const Motion<N>* moves = moving ? &motion : nullptr;
+          return single ? py::cast(pairs_in<float, N>(a, b, moves)) : py::cast(pairs_in<double, N>(a, b, moves));
+        },
+        py::arg("a"), py::arg("b"), py::arg("velocity_a") = py::none(), py::arg("velocity_b") = py::none(),
+        py::arg("t_max") = 0.0, py::kw_only(), py::arg("dtype") = py::dtype::of<double>(),
+        "Pairs (a[i], b[i]), with velocities and time windows for first_contact (static pairs without). "
+        "dtype float32: every body, velocity and window rounded to float, the columns stored in float and "
+        "overlap / classify filtered in float (batch.hpp), first_contact's arrays float32.");
+  m.def("overlap",
+        [](const B& a, const B& b, const Options& o, int threads) {
+          return overlap_array(paired(a, b), [&](std::span<bool> out) {
+            overlap<double, N>(span_of(a), span_of(b), out, {o, threads});
+          });
+        },
+        py::arg("a"), py::arg("b"), py::arg("options") = Options{}, py::arg("threads") = 0);
+  m.def("classify",
+        [](const B& a, const B& b, const Options& o, int threads) {
+          return classify_array(paired(a, b), [&](std::span<Relation> out) {
+            classify<double, N>(span_of(a), span_of(b), out, {o, threads});
+          });
+        },
+        py::arg("a"), py::arg("b"), py::arg("options") = Options{}, py::arg("threads") = 0);
+  m.def("first_contact",
         [](const B& a, py::handle velocity_a, const B& b, py::handle velocity_b, py::handle t_max, const Options& o,
            int threads) {
           const std::size_t n = paired(a, b);
           const Motion<N> motion = motion_of<N>(n, velocity_a, velocity_b, t_max);
-          return contact_array<N>(n, [&](std::span<Contact<double, N>> out) {
+          return contact_array<double, N>(n, [&](std::span<Contact<double, N>> out) {
             first_contact<double, N>(span_of(a), motion.velocity_a, span_of(b), motion.velocity_b, motion.t_max, out,
                                      {o, threads});
           });
         },
         py::arg("a"), py::arg("velocity_a"), py::arg("b"), py::arg("velocity_b"), py::arg("t_max"),
         py::arg("options") = Options{}, py::arg("threads") = 0);
-  m.def("first_contact",
-        [](const P& pairs, const Options& o, int threads) {
-          return contact_array<N>(pairs.size(), [&](std::span<Contact<double, N>> out) {
-            first_contact(pairs, out, {o, threads});
-          });
-        },
-        py::arg("pairs"), py::arg("options") = Options{}, py::arg("threads") = 0);
   using Query = Distance<double, N> (*)(const Ellipsoid<double, N>&, const Ellipsoid<double, N>&,
                                         const Options&) noexcept;
   for (const auto& [name, query] : {std::pair<const char*, Query>{"distance", &distance<double, N>},

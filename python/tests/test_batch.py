@@ -202,3 +202,115 @@ def test_gpu_entry_points_equal_batch(dim):
     assert flags.tolist() == ellipsect.overlap(p).tolist()
     assert relations.tolist() == ellipsect.classify(p).tolist()
     assert 0 < flags.sum() < len(flags)
+
+
+def float_exact_scene(dim, n, seed):
+    """n pairs of bodies whose every number is a float32: axes signed permutations, centres
+    and radii multiples of 2^-10, b placed along a's axis 0 at gaps of about +-2^-k (k = 4..30)
+    times the pair's size from touching a from outside, or from inside a where it fits, its
+    centre rounded to float32 (so the gaps below float's resolution are 0 or a few ulps).
+    The double bodies are then exactly their float32 roundings; returns a, b and the gaps."""
+    rng = np.random.default_rng(seed)
+
+    def axes():
+        m = np.eye(dim)[rng.permutation(dim)] * rng.choice([-1.0, 1.0], dim)
+        return m if np.linalg.det(m) > 0 else m * np.r_[-1.0, np.ones(dim - 1)]
+
+    grid = 2.0**-10
+    ca, ra, cb, rb, ma, mb, gaps = [], [], [], [], [], [], []
+    for i in range(n):
+        r_a = np.round(rng.uniform(0.5, 4.0, dim) / grid) * grid
+        r_b = np.round(rng.uniform(0.25, 2.0, dim) / grid) * grid
+        m_a = axes()
+        u = m_a[:, 0]
+        # b's extent along u is its radius along the axis that its permutation puts there.
+        m_b = np.eye(dim)
+        inside = i % 3 == 2 and np.all(r_b < r_a.min() / 2)
+        gap = rng.choice([-1.0, 1.0]) * 2.0 ** -rng.integers(4, 31) * (r_a[0] + r_b[0])
+        gap = 0.0 if i % 7 == 0 else gap
+        reach = r_a[0] - r_b[0] if inside else r_a[0] + r_b[0]
+        c_a = np.round(rng.uniform(-8, 8, dim) / grid) * grid
+        c_b = (c_a + u * (reach + gap)).astype(np.float32).astype(np.float64)
+        ca.append(c_a)
+        cb.append(c_b)
+        ra.append(r_a)
+        rb.append(r_b)
+        ma.append(m_a)
+        mb.append(m_b)
+        gaps.append(u @ (c_b - c_a) - reach)  # exact: float32 numbers
+    make = ellipsect.Ellipses if dim == 2 else ellipsect.Ellipsoids
+    a = make(centers=np.array(ca), radii=np.array(ra), rotations=np.array(ma))
+    b = make(centers=np.array(cb), radii=np.array(rb), rotations=np.array(mb))
+    for batch in (a, b):
+        for field in ("centers", "radii", "rotations"):
+            values = getattr(batch, field)
+            assert np.array_equal(values.astype(np.float32), values)
+    return a, b, np.array(gaps)
+
+
+@pytest.mark.parametrize("dim", [2, 3])
+def test_float32_pairs_answer_as_the_bodies_in_float(dim):
+    # The bodies are float32 numbers, so rounding them changes nothing and the float pairs'
+    # answers must be the double ones, at every gap down to 2^-30 of the pair's size.
+    a, b, gaps = float_exact_scene(dim, 300, seed=21)
+    p = ellipsect.pairs(a, b, dtype=np.float32)
+    assert type(p).__name__ == f"Pairs{dim}f" and p.dtype == np.float32 and len(p) == 300
+    relations = ellipsect.classify(p)
+    assert relations.tolist() == ellipsect.classify(a, b).tolist()
+    assert ellipsect.overlap(p, threads=1).tolist() == ellipsect.overlap(a, b).tolist()
+    assert ellipsect.classify_on_gpu(p)[1] == "cpu"  # float pairs are filtered on the host
+    kinds = set(relations.tolist())
+    assert {int(ellipsect.Relation.separated), int(ellipsect.Relation.touching)} <= kinds and len(kinds) >= 4
+    assert np.sum(np.abs(gaps) < 1e-6) > 20  # many pairs closer to tangency than float's epsilon
+
+    rng = np.random.default_rng(22)
+    va = np.round(rng.normal(size=(300, dim)) * 64) / 64
+    vb = np.zeros((300, dim))
+    t_max = np.full(300, 2.0)
+    got = ellipsect.first_contact(ellipsect.pairs(a, b, va, vb, t_max, dtype="float32"))
+    want = ellipsect.first_contact(a, va, b, vb, t_max)
+    assert got.time.dtype == got.point.dtype == got.normal.dtype == np.float32
+    assert got.status.tolist() == want.status.tolist()
+    assert same_bits(got.time, want.time.astype(np.float32))
+    assert same_bits(got.point, want.point.astype(np.float32))
+    assert ellipsect.ContactStatus.hit in got.status
+
+
+@pytest.mark.parametrize("dim", [2, 3])
+def test_float32_pairs_round_each_body(dim):
+    # Rotated bodies are not float numbers: rounding moves them by about 1e-7 of their size,
+    # which can change an answer only for pairs that close to tangency.
+    a, _ = MAKERS[dim](400, seed=23)
+    b, _ = MAKERS[dim](400, seed=24)
+    p = ellipsect.pairs(a, b, dtype=np.float32)
+    got, want = ellipsect.classify(p), ellipsect.classify(a, b)
+    depth = ellipsect.signed_distance(a, b).distance / (a.radii.max(axis=1) + b.radii.max(axis=1))
+    clear = np.abs(depth) > 1e-5
+    assert clear.sum() > 390
+    assert got[clear].tolist() == want[clear].tolist()
+    assert ellipsect.overlap(p).tolist() == (got != int(ellipsect.Relation.separated)).tolist()
+
+
+def test_float32_pairs_name_what_float_cannot_hold():
+    centers, radii = np.zeros((3, 3)), np.ones((3, 3))
+    a = ellipsect.Ellipsoids(centers=centers, radii=radii)
+    big, tiny, far = radii.copy(), radii.copy(), centers.copy()
+    big[1] = 1e39
+    tiny[2] = 1e-46
+    far[1, 0] = -1e39
+    with pytest.raises(ellipsect.InputError, match=r"b\[1\]\.radii\[0\]") as error:
+        ellipsect.pairs(a, ellipsect.Ellipsoids(centers=centers, radii=big), dtype=np.float32)
+    assert error.value.field == "b[1].radii[0]" and "float32" in str(error.value)
+    with pytest.raises(ellipsect.InputError, match=r"a\[2\]\.radii\[0\]"):
+        ellipsect.pairs(ellipsect.Ellipsoids(centers=centers, radii=tiny), a, dtype=np.float32)
+    with pytest.raises(ellipsect.InputError, match=r"a\[1\]\.center\[0\]"):
+        ellipsect.pairs(ellipsect.Ellipsoids(centers=far, radii=radii), a, dtype=np.float32)
+    with pytest.raises(TypeError, match="dtype: expected float64 or float32, got float16"):
+        ellipsect.pairs(a, a, dtype=np.float16)
+    assert len(ellipsect.pairs(a, ellipsect.Ellipsoids(centers=centers, radii=big))) == 3  # double holds it
+    # A velocity beyond float's range is that pair's invalid input, as in the C++ batch.
+    v = np.zeros((3, 3))
+    v[0, 0] = 1e39
+    contact = ellipsect.first_contact(ellipsect.pairs(a, a, v, np.zeros((3, 3)), 1.0, dtype=np.float32))
+    assert contact.status[0] == ellipsect.ContactStatus.invalid_input
+    assert contact.status[1] != ellipsect.ContactStatus.invalid_input
