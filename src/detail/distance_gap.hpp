@@ -86,39 +86,55 @@ struct GapAt {
   Vec<R, N> n;                // unit direction
   R phi;                      // rho_1 + rho_2 - n . r
   Vec<R, N> s1, s2;           // support offsets (point_1 = c_1 + s1, point_2 = c_2 - s2)
+  Vec<R, N> w1, w2;           // B_i n
+  R inv1, inv2;               // 1 / rho_i
   TangentBasis<R, N> q;       // tangent basis at n
   Tangent<R, N> grad;         // Q^T grad phi
   TangentMat<R, N> hess;      // Riemannian Hessian
   R noise;                    // rounding of phi: a few ulps of |r| + rho_1 + rho_2
 };
 
-// Support radius |B n| of one body along n; sets its support offset s = B^T B n / |B n| and
-// adds its term Q^T (B^T B - s s^T) Q / |B n| to the Hessian.
+// One body's term of the Hessian, Q^T (B^T B - s s^T) Q / |B n|, with w = B n and inv = 1 / |w|.
 template <class R, int N>
-R support(const Mat<R, N>& b, const Vec<R, N>& n, const TangentBasis<R, N>& q, Vec<R, N>& s,
-          TangentMat<R, N>& hess) noexcept {
-  const Vec<R, N> w = b * n;
-  const R rho = w.norm(), inv = R(1) / rho;
-  s = b.transpose() * w * inv;
+TangentMat<R, N> curvature(const Mat<R, N>& b, const Vec<R, N>& w, R inv, const TangentBasis<R, N>& q) noexcept {
   const TangentBasis<R, N> v = b * q;
   const Tangent<R, N> st = v.transpose() * w * inv;  // q^T s
-  hess += (v.transpose() * v - st * st.transpose()) * inv;
-  return rho;
+  return (v.transpose() * v - st * st.transpose()) * inv;
 }
 
 template <class R, int N>
-GapAt<R, N> gap_at(const GapBodies<R, N>& g, const Vec<R, N>& n) noexcept {
+void add_hessian(const GapBodies<R, N>& g, GapAt<R, N>& at) noexcept {
+  at.hess = curvature<R, N>(g.b1, at.w1, at.inv1, at.q) + curvature<R, N>(g.b2, at.w2, at.inv2, at.q) -
+            at.phi * TangentMat<R, N>::Identity();
+}
+
+// phi, the support offsets and the gradient at the unit direction n, and the Hessian
+// unless `hessian` is false.
+template <class R, int N>
+GapAt<R, N> gap_at(const GapBodies<R, N>& g, const Vec<R, N>& n, bool hessian = true) noexcept {
   GapAt<R, N> at;
   at.n = n;
   at.q = tangent_basis<R, N>(n);
-  at.hess.setZero();
-  const R rho1 = support<R, N>(g.b1, n, at.q, at.s1, at.hess);
-  const R rho2 = support<R, N>(g.b2, n, at.q, at.s2, at.hess);
+  at.w1 = g.b1 * n;
+  at.w2 = g.b2 * n;
+  const R rho1 = at.w1.norm(), rho2 = at.w2.norm();
+  at.inv1 = R(1) / rho1;
+  at.inv2 = R(1) / rho2;
+  at.s1 = g.b1.transpose() * at.w1 * at.inv1;
+  at.s2 = g.b2.transpose() * at.w2 * at.inv2;
   at.phi = rho1 + rho2 - n.dot(g.r);
   at.grad = at.q.transpose() * (at.s1 + at.s2 - g.r);
-  at.hess -= at.phi * TangentMat<R, N>::Identity();
   at.noise = R(8) * std::numeric_limits<R>::epsilon() * (g.r_norm + rho1 + rho2);
+  if (hessian) add_hessian<R, N>(g, at);
   return at;
+}
+
+// A Hessian h at a nearby direction with tangent basis q_h, written in the basis q: M^T h M
+// with M = q_h^T q (the two tangent planes agree to the angle between the directions).
+template <class R, int N>
+TangentMat<R, N> carried(const TangentMat<R, N>& h, const TangentBasis<R, N>& q_h, const TangentBasis<R, N>& q) noexcept {
+  const TangentMat<R, N> m = q_h.transpose() * q;
+  return m.transpose() * h * m;
 }
 
 // phi alone, for ranking candidate directions.
@@ -259,10 +275,15 @@ Descent<R, N> descend(const GapBodies<R, N>& g, const Vec<R, N>& n0, int max_ite
   d.at = gap_at<R, N>(g, n0);
   R radius = R(0.5);
   R last_pred = std::numeric_limits<R>::infinity();
-  auto trial_at = [&](const Vec<R, N>& m) {
+  auto trial_at = [&](const Vec<R, N>& m, bool hessian = true) {
     ++d.iterations;
-    return gap_at<R, N>(g, Vec<R, N>(m * (R(1) / m.norm())));
+    return gap_at<R, N>(g, Vec<R, N>(m * (R(1) / m.norm())), hessian);
   };
+  // After a step at rounding level the new iterate is nearly always the last: it takes the
+  // Hessian of the one before, carried into its tangent basis, for the convergence test (a
+  // relative change of the order of the step, far below what the thresholds resolve), and
+  // computes its own only if the descent goes on.
+  bool carried_hessian = false;
   while (d.iterations < max_iterations) {
     bool newton;
     const Tangent<R, N> t = trust_step<R, N>(d.at, radius, newton);
@@ -273,9 +294,16 @@ Descent<R, N> descend(const GapBodies<R, N>& g, const Vec<R, N>& n0, int max_ite
       d.converged = true;
       return d;
     }
+    if (carried_hessian) {
+      add_hessian<R, N>(g, d.at);
+      carried_hessian = false;
+      continue;
+    }
     const Vec<R, N> step = d.at.q * t;
-    const GapAt<R, N> trial = trial_at(d.at.n + step);
+    GapAt<R, N> trial = trial_at(d.at.n + step, !rounding_level);
     if (rounding_level && std::isfinite(trial.phi)) {
+      trial.hess = carried<R, N>(d.at.hess, d.at.q, trial.q);
+      carried_hessian = true;
       last_pred = pred;
       d.at = trial;
       continue;
