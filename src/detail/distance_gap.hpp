@@ -308,6 +308,7 @@ Descent<R, N> descend(const GapBodies<R, N>& g, const Vec<R, N>& n0, int max_ite
       d.at = trial;
       continue;
     }
+    if (rounding_level) add_hessian<R, N>(g, trial);  // phi not finite: every iterate has its Hessian
     const R actual = d.at.phi - trial.phi;  // compared with the predicted decrease; NaN rejects
     if (!(actual >= R(0.25) * pred)) {
       const R tau = kink_fraction<R, N>(g, d.at.n, step);
