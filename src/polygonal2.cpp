@@ -359,20 +359,18 @@ bool same_direction(const Vec2<T>& u, const Vec2<T>& v) noexcept {
   return u == v || u == Vec2<T>(-v);
 }
 
-// The segment [a, b] and the circle with a at the origin, scaled by an exact power of two
-// that brings the largest of |b - a|, |center - a| (componentwise) and the radius into
-// [1, 2): fourth powers then neither overflow nor underflow (below rounding). The
-// differences are taken in the given units, so their rounding is relative to themselves;
-// where one overflows (coordinates beyond 2^1022) all inputs are halved first, which is
-// exact but for parts far below that rounding.
+// Whether the closed segment [a, b] meets the closed disk, with a at the origin and two
+// exact powers of two: one brings the largest of |center - a| (componentwise) and the radius
+// into [1, 2), the other e = b - a. Every comparison is homogeneous in e, so a segment far
+// shorter than the circle leaves no product of e with itself subnormal (one common scale
+// did: |e|^2 kept 12 bits for a segment 2^-530 of the radius, too few to see a gap of
+// 1e-4). e at the circle's scale may underflow or overflow; it only decides where the
+// foot of the perpendicular lies, which matters then at a resolution far below the
+// rounding. The differences are taken in the given units, so their rounding is relative to
+// themselves; where one overflows (coordinates beyond 2^1022) all inputs are halved first,
+// which is exact but for parts far below that rounding.
 template <class T>
-struct SegmentFrame {
-  Disk<T> d;
-  Pt<T> end;
-};
-
-template <class T>
-SegmentFrame<T> segment_frame(const Vec2<T>& a, const Vec2<T>& b, const Circle<T>& c) noexcept {
+bool segment_meets_disk(const Vec2<T>& a, const Vec2<T>& b, const Circle<T>& c) noexcept {
   T half = T(1);
   Vec2<T> e = b - a, q = c.center() - a;
   if (!e.allFinite() || !q.allFinite()) {
@@ -380,10 +378,19 @@ SegmentFrame<T> segment_frame(const Vec2<T>& a, const Vec2<T>& b, const Circle<T
     e = half * b - half * a;
     q = half * c.center() - half * a;
   }
-  const T r = half * c.radius();
-  const T s = unit_scale(std::max({e.cwiseAbs().maxCoeff(), q.cwiseAbs().maxCoeff(), r}));
-  const T sr = s * r;
-  return {{{s * q.x(), s * q.y()}, sr * sr}, {s * e.x(), s * e.y()}};
+  const T sq = unit_scale(std::max(q.cwiseAbs().maxCoeff(), half * c.radius()));
+  const T r = sq * (half * c.radius());
+  const T rr = r * r;
+  const Pt<T> p{sq * q.x(), sq * q.y()}, end{sq * e.x(), sq * e.y()};
+  const Pt<T> pb = p - end;
+  if (dot(p, p) <= rr || dot(pb, pb) <= rr) return true;  // an end in the disk
+  if (e.x() == T(0) && e.y() == T(0)) return false;
+  const T se = unit_scale(e.cwiseAbs().maxCoeff());
+  const Pt<T> u{se * e.x(), se * e.y()};
+  const T side = cross(u, p);
+  if (side * side > rr * dot(u, u)) return false;  // the line farther than the radius
+  const T proj = dot(u, p);
+  return proj >= T(0) && proj <= dot(u, end);
 }
 
 // The sign of cross(b - a, c - a), each difference scaled by its own exact power of two
@@ -391,7 +398,7 @@ SegmentFrame<T> segment_frame(const Vec2<T>& a, const Vec2<T>& b, const Circle<T
 template <class T>
 T side_of(const Vec2<T>& a, const Vec2<T>& b, const Vec2<T>& c) noexcept {
   Vec2<T> e = b - a, q = c - a;
-  if (!e.allFinite() || !q.allFinite()) {  // overflow: halved, as in segment_frame
+  if (!e.allFinite() || !q.allFinite()) {  // overflow: halved, as in segment_meets_disk
     e = T(0.5) * b - T(0.5) * a;
     q = T(0.5) * c - T(0.5) * a;
   }
@@ -420,9 +427,7 @@ Ellipse2<T> Circle<T>::ellipse() const {
 template <class T>
 SegmentCircle segment_circle(const VecArg<T, 2>& a, const VecArg<T, 2>& b, const Circle<T>& circle) noexcept {
   if (!a.allFinite() || !b.allFinite()) return {Verdict::invalid_input, Side::on_line};
-  const SegmentFrame<T> f = segment_frame(a, b, circle);
-  T ignored;
-  const bool hit = meets_segment(f.d, {T(0), T(0)}, f.end, ignored);
+  const bool hit = segment_meets_disk(a, b, circle);
   // The side at the scale of the segment and the center alone: in the frame above a radius
   // far larger than both (2^824 against 1) made their cross product underflow to 0.
   const T side = side_of(a, b, circle.center());

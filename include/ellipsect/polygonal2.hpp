@@ -74,8 +74,8 @@
 // exact except within
 //   |dist(center, segment) - radius| <= 8 eps_T (|b - a| + |center - a| + radius),
 // and `side` is exact except for a center within 2 eps_T |center - a| of the line. Any
-// finite inputs are valid (no overflow or underflow: the test runs on inputs rescaled by
-// an exact power of two).
+// finite inputs are valid (no overflow or underflow: the segment, and the circle about a,
+// are each rescaled by an exact power of two).
 #pragma once
 
 #include <ellipsect/shapes.hpp>

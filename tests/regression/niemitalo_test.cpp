@@ -420,4 +420,36 @@ TEST(NiemitaloRegression, SegmentCircleSideWithHugeRadius) {
   }
 }
 
+// Fuzzing: segment_circle said collision for a segment 14 long near the origin and a
+// circle of radius 2^535 whose boundary passed 8.5e-5 of that radius beyond it. One power of
+// two scaled every length (the largest to 1), and the segment's squared length, 2^-1062
+// there, kept 12 bits as a subnormal: too few to tell the distance from the radius. The
+// segment now has a scale of its own. Expected from geometry: the perpendicular from the
+// center ((1 + g) x, 0) meets the segment x = -8, -8 <= y <= 6 at (-8, 0), (1 + g) x + 8 from
+// the center (the old frame failed at x = 2^540 for g = 1e-3 and 1e-5, at 2^535 for 1e-5).
+TEST(NiemitaloRegression, SegmentFarShorterThanTheCircle) {
+  const Vec2<double> a(-8, -8), b(-8, 6);
+  for (const double x : {0x1p+200, 0x1p+535, 0x1p+540, 0x1p+1000}) {
+    for (const double g : {1e-3, 1e-5}) {
+      const auto apart = make_circle<double>({(1 + g) * x, 0}, x);  // the boundary g x + 8 short
+      const auto through = make_circle<double>({(1 + g) * x, 0}, (1 + 2 * g) * x);  // g x - 8 past
+      EXPECT_EQ(segment_circle<double>(a, b, apart).verdict, Verdict::no_collision) << x << " " << g;
+      EXPECT_EQ(segment_circle<double>(b, a, apart).verdict, Verdict::no_collision) << x << " " << g;
+      EXPECT_EQ(segment_circle<double>(a, b, through).verdict, Verdict::collision) << x << " " << g;
+      EXPECT_EQ(segment_circle<double>(b, a, through).verdict, Verdict::collision) << x << " " << g;
+      EXPECT_EQ(segment_circle<double>(a, b, apart).side, Side::right) << x << " " << g;
+    }
+  }
+  const Vec2<double> fa(-0x1p+3, -0x1p+3), fb(-0x1p+3, 0x1.85858584p+2);  // the fuzzer's input
+  const auto c = make_circle<double>({0x1.1616161616161p+535, 0x1.1610061616161p-1017}, 0x1.1610000000063p+535);
+  EXPECT_EQ(segment_circle<double>(fa, fb, c).verdict, Verdict::no_collision);
+  EXPECT_EQ(segment_circle<double>(fb, fa, c).verdict, Verdict::no_collision);
+  const float xf = 0x1p+120f;  // float: the same shape near the top of its range
+  const auto f = make_circle<float>({1.001f * xf, 0}, xf);
+  EXPECT_EQ(segment_circle<float>(a.cast<float>(), b.cast<float>(), f).verdict, Verdict::no_collision);
+  EXPECT_EQ(segment_circle<float>(a.cast<float>(), b.cast<float>(), make_circle<float>({1.001f * xf, 0}, 1.002f * xf))
+                .verdict,
+            Verdict::collision);
+}
+
 }  // namespace
