@@ -359,29 +359,38 @@ bool same_direction(const Vec2<T>& u, const Vec2<T>& v) noexcept {
   return u == v || u == Vec2<T>(-v);
 }
 
-// Whether the closed segment [a, b] meets the closed disk, with a at the origin and two
-// exact powers of two: one brings the largest of |center - a| (componentwise) and the radius
-// into [1, 2), the other e = b - a. Every comparison is homogeneous in e, so a segment far
-// shorter than the circle leaves no product of e with itself subnormal (one common scale
-// did: |e|^2 kept 12 bits for a segment 2^-530 of the radius, too few to see a gap of
-// 1e-4). e at the circle's scale may underflow or overflow; it only decides where the
-// foot of the perpendicular lies, which matters then at a resolution far below the
-// rounding. The differences are taken in the given units, so their rounding is relative to
-// themselves; where one overflows (coordinates beyond 2^1022) all inputs are halved first,
+// b - a and c - a in the given units, so their rounding is relative to themselves; where
+// one overflows (coordinates beyond 2^1022) all three points are halved first (half = 1/2),
 // which is exact but for parts far below that rounding.
 template <class T>
-bool segment_meets_disk(const Vec2<T>& a, const Vec2<T>& b, const Circle<T>& c) noexcept {
-  T half = T(1);
-  Vec2<T> e = b - a, q = c.center() - a;
-  if (!e.allFinite() || !q.allFinite()) {
-    half = T(0.5);
-    e = half * b - half * a;
-    q = half * c.center() - half * a;
-  }
-  const T sq = unit_scale(std::max(q.cwiseAbs().maxCoeff(), half * c.radius()));
-  const T r = sq * (half * c.radius());
+struct Offsets {
+  Vec2<T> e, q;
+  T half;
+};
+
+template <class T>
+Offsets<T> offsets(const Vec2<T>& a, const Vec2<T>& b, const Vec2<T>& c) noexcept {
+  const Offsets<T> given{b - a, c - a, T(1)};
+  if (given.e.allFinite() && given.q.allFinite()) return given;
+  return {T(0.5) * b - T(0.5) * a, T(0.5) * c - T(0.5) * a, T(0.5)};
+}
+
+// Whether the closed segment [a, b] meets the closed disk of the given radius about c, from
+// their offsets (a at the origin) and two exact powers of two: one brings the largest of
+// |c - a| (componentwise) and the radius into [1, 2), the other e = b - a. Every comparison
+// is homogeneous in e, so a segment far shorter than the circle leaves no product of e with
+// itself subnormal (one common scale did: |e|^2 kept 12 bits for a segment 2^-530 of the
+// radius, too few to see a gap of 1e-4). e at the circle's scale may underflow or
+// overflow; it only decides where the foot of the perpendicular lies, which matters then
+// at a resolution far below the rounding.
+template <class T>
+bool segment_meets_disk(const Offsets<T>& o, T radius) noexcept {
+  const Vec2<T>& e = o.e;
+  const T scaled_radius = o.half * radius;
+  const T sq = unit_scale(std::max(o.q.cwiseAbs().maxCoeff(), scaled_radius));
+  const T r = sq * scaled_radius;
   const T rr = r * r;
-  const Pt<T> p{sq * q.x(), sq * q.y()}, end{sq * e.x(), sq * e.y()};
+  const Pt<T> p{sq * o.q.x(), sq * o.q.y()}, end{sq * e.x(), sq * e.y()};
   const Pt<T> pb = p - end;
   if (dot(p, p) <= rr || dot(pb, pb) <= rr) return true;  // an end in the disk
   if (e.x() == T(0) && e.y() == T(0)) return false;
@@ -393,17 +402,12 @@ bool segment_meets_disk(const Vec2<T>& a, const Vec2<T>& b, const Circle<T>& c) 
   return proj >= T(0) && proj <= dot(u, end);
 }
 
-// The sign of cross(b - a, c - a), each difference scaled by its own exact power of two
-// into [1, 2) (a common scale underflowed the product when one was far shorter).
+// The sign of cross(b - a, c - a), each offset scaled by its own exact power of two into
+// [1, 2) (a common scale underflowed the product when one was far shorter).
 template <class T>
-T side_of(const Vec2<T>& a, const Vec2<T>& b, const Vec2<T>& c) noexcept {
-  Vec2<T> e = b - a, q = c - a;
-  if (!e.allFinite() || !q.allFinite()) {  // overflow: halved, as in segment_meets_disk
-    e = T(0.5) * b - T(0.5) * a;
-    q = T(0.5) * c - T(0.5) * a;
-  }
-  const T se = unit_scale(e.cwiseAbs().maxCoeff()), sq = unit_scale(q.cwiseAbs().maxCoeff());
-  return cross(Pt<T>{se * e.x(), se * e.y()}, Pt<T>{sq * q.x(), sq * q.y()});
+T side_of(const Offsets<T>& o) noexcept {
+  const T se = unit_scale(o.e.cwiseAbs().maxCoeff()), sq = unit_scale(o.q.cwiseAbs().maxCoeff());
+  return cross(Pt<T>{se * o.e.x(), se * o.e.y()}, Pt<T>{sq * o.q.x(), sq * o.q.y()});
 }
 
 }  // namespace
@@ -427,10 +431,11 @@ Ellipse2<T> Circle<T>::ellipse() const {
 template <class T>
 SegmentCircle segment_circle(const VecArg<T, 2>& a, const VecArg<T, 2>& b, const Circle<T>& circle) noexcept {
   if (!a.allFinite() || !b.allFinite()) return {Verdict::invalid_input, Side::on_line};
-  const bool hit = segment_meets_disk(a, b, circle);
+  const Offsets<T> o = offsets<T>(a, b, circle.center());
+  const bool hit = segment_meets_disk(o, circle.radius());
   // The side at the scale of the segment and the center alone: in the frame above a radius
   // far larger than both (2^824 against 1) made their cross product underflow to 0.
-  const T side = side_of(a, b, circle.center());
+  const T side = side_of(o);
   return {hit ? Verdict::collision : Verdict::no_collision,
           side > T(0) ? Side::left : side < T(0) ? Side::right : Side::on_line};
 }
