@@ -13,21 +13,95 @@
 // answer beyond multiplying lengths by exactly 2^k. Within one pair, radii within a ratio
 // of 2^160 and coordinates within 2^340 times the largest radius are computed in double;
 // pairs beyond that in long double (docs/method.md, section 7).
+//
+// Validation. Options are input: each field is a value type that checks its value when it
+// is constructed or assigned and throws InputError naming the field ("tolerance",
+// "max_iterations", "max_motion_steps") with the value and the accepted range. So an
+// Options cannot hold an invalid value, and the queries, which read the fields through
+// their implicit conversions to double and int, need no check. Designated initializers
+// (Options{.tolerance = 1e-9, .max_iterations = 16}) and assignments (o.tolerance = 1e-9)
+// work as for plain members.
 #pragma once
+
+#include <charconv>
+#include <concepts>
+#include <utility>
 
 namespace ellipsect {
 
+namespace detail {
+// Throw InputError(field, "must be in [low, high] (got value)"), an integer given by its
+// decimal digits (src/options.cpp).
+[[noreturn]] void reject_option(const char* field, double value, double low, double high);
+[[noreturn]] void reject_option(const char* field, const char* digits, int low, int high);
+inline constexpr char max_iterations_field[] = "max_iterations";
+inline constexpr char max_motion_steps_field[] = "max_motion_steps";
+}  // namespace detail
+
+// Options::tolerance: a relative gap in [min, max]; NaN, infinities, zero, negative values
+// and values outside the range throw InputError("tolerance").
+//   min = 1e-14: about 45 ulps, above the rounding the queries' decisions carry in double
+//        (32 ulps of the reduced frame's lengths, detail/classify_impl.hpp), so that an
+//        exactly tangent pair, or one an ulp or two from tangent, is touching for every
+//        query alike. A band of 0 is not one: an exact tangency would be overlapping for
+//        classify (gap <= -tol) and touching for first_contact and signed_distance
+//        (gap >= -tol).
+//   max = 1e-9: the early outs prove their answers beyond a relative margin of 1e-9 (the
+//        inscribed balls of classify's certificates, the broad phase's boxes padded by 1e-9
+//        of each radius, capsule's two-ball test); a wider band would let them contradict
+//        the exact path on pairs within it.
+class Tolerance {
+public:
+  static constexpr double min = 1e-14;
+  static constexpr double max = 1e-9;
+
+  constexpr Tolerance(double value) : value_(value) {
+    if (!(value >= min && value <= max)) detail::reject_option("tolerance", value, min, max);
+  }
+  constexpr operator double() const noexcept { return value_; }
+
+private:
+  double value_;
+};
+
+// An iteration cap: an integer in [1, Max], of any integer type (out of range, the value as
+// given is rejected: InputError(Field)). The maximum bounds a query's time; every loop so
+// capped converges well inside the default caps on the tested pairs.
+template <const char* Field, int Max>
+class IterationCap {
+public:
+  static constexpr const char* field = Field;
+  static constexpr int min = 1;
+  static constexpr int max = Max;
+
+  template <std::integral I>
+  constexpr IterationCap(I value) : value_(static_cast<int>(value)) {
+    if (!(std::cmp_greater_equal(value, min) && std::cmp_less_equal(value, max))) reject(value);
+  }
+  constexpr operator int() const noexcept { return value_; }
+
+private:
+  template <class I>
+  [[noreturn]] static void reject(I value) {
+    char digits[24] = {};  // 20 digits and a sign at most
+    std::to_chars(digits, digits + sizeof digits - 1, value);
+    detail::reject_option(Field, digits, min, max);
+  }
+  int value_;
+};
+
 struct Options {
-  // Relative tangency band (see above). Pairs whose gap lies within it are reported as
-  // touching; outside it, answers are exact up to the accuracy stated per query.
-  double tolerance = 1e-12;
-  // Cap on the outer (contact-time) iteration. Reaching it is reported as a status
-  // (ContactStatus::did_not_converge), never returned as an answer.
-  int max_iterations = 64;
+  // Relative tangency band (see above), in [Tolerance::min, Tolerance::max] = [1e-14, 1e-9].
+  // Pairs whose gap lies within it are reported as touching; outside it, answers are exact
+  // up to the accuracy stated per query.
+  Tolerance tolerance = 1e-12;
+  // Cap on the outer (contact-time) iteration, in [1, 100000]. Reaching it is reported as a
+  // status (ContactStatus::did_not_converge), never returned as an answer.
+  IterationCap<detail::max_iterations_field, 100000> max_iterations = 64;
   // Cap on the advancement steps of first_contact under rigid motion (contact.hpp), where
-  // each step costs one signed distance. Reaching it is reported as did_not_converge, with
-  // a certified lower bound on the contact time.
-  int max_motion_steps = 10000;
+  // each step costs one signed distance, in [1, 1000000]. Reaching it is reported as
+  // did_not_converge, with a certified lower bound on the contact time.
+  IterationCap<detail::max_motion_steps_field, 1000000> max_motion_steps = 10000;
 };
 
 }  // namespace ellipsect
