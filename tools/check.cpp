@@ -587,6 +587,7 @@ int check_bodies(const Input& in, const CheckOptions& opt, const Window& w, cons
   // computed.
   const PairResult<N> sep = separated_result<N>();
   Queries distance_only;
+  distance_only.options = q.options;
   distance_only.relation = false;
   distance_only.distance = true;
   std::uint64_t next_index = 0;
@@ -640,17 +641,17 @@ PairResult<N> evaluate(const Body<N>& a, const Body<N>& b, const Window& window,
                        const std::string& file) {
   PairResult<N> r;
   if (window.t0 == 0.0) {
-    if (queries.relation) r.relation = classify(a.shape, b.shape);
-    if (queries.contact) r.contact = first_contact(a.shape, a.motion, b.shape, b.motion, window.t1);
-    if (queries.distance) r.distance = signed_distance(a.shape, b.shape);
+    if (queries.relation) r.relation = classify(a.shape, b.shape, queries.options);
+    if (queries.contact) r.contact = first_contact(a.shape, a.motion, b.shape, b.motion, window.t1, queries.options);
+    if (queries.distance) r.distance = signed_distance(a.shape, b.shape, queries.options);
     return r;
   }
   // Move (and turn) both bodies to t0; search [t0, t1] as [0, t1 - t0] from there.
   const Ellipsoid<double, N> a0 = shape_at<N>(a, window.t0, file), b0 = shape_at<N>(b, window.t0, file);
-  if (queries.relation) r.relation = classify(a0, b0);
-  if (queries.distance) r.distance = signed_distance(a0, b0);
+  if (queries.relation) r.relation = classify(a0, b0, queries.options);
+  if (queries.distance) r.distance = signed_distance(a0, b0, queries.options);
   if (queries.contact) {
-    r.contact = first_contact(a0, a.motion, b0, b.motion, window.t1 - window.t0);
+    r.contact = first_contact(a0, a.motion, b0, b.motion, window.t1 - window.t0, queries.options);
     r.contact.time += window.t0;
   }
   return r;
@@ -667,24 +668,24 @@ PairResult<N> evaluate(const Body<N>& a, const Obstacle<N>& b, const Window& win
         if constexpr (std::is_same_v<S, TriangleMesh<double, N>>) {
           r.mesh = true;
           if (queries.relation) {
-            const MeshRelation m = classify(a0, shape);
+            const MeshRelation m = classify(a0, shape, queries.options);
             r.relation = m.relation;
             r.relation_triangle = m.triangle;
           }
           if (queries.contact) {
-            const MeshContact<double, N> m = first_contact(a0, a.motion, shape, b.velocity, window.t1 - window.t0);
+            const MeshContact<double, N> m = first_contact(a0, a.motion, shape, b.velocity, window.t1 - window.t0, queries.options);
             r.contact = m.contact;
             r.contact_triangle = m.triangle;
           }
           if (queries.distance) {
-            const MeshDistance<double, N> m = signed_distance(a0, shape);
+            const MeshDistance<double, N> m = signed_distance(a0, shape, queries.options);
             r.distance = m.distance;
             r.distance_triangle = m.triangle;
           }
         } else {
-          if (queries.relation) r.relation = classify(a0, shape);
-          if (queries.contact) r.contact = first_contact(a0, a.motion, shape, b.velocity, window.t1 - window.t0);
-          if (queries.distance) r.distance = signed_distance(a0, shape);
+          if (queries.relation) r.relation = classify(a0, shape, queries.options);
+          if (queries.contact) r.contact = first_contact(a0, a.motion, shape, b.velocity, window.t1 - window.t0, queries.options);
+          if (queries.distance) r.distance = signed_distance(a0, shape, queries.options);
         }
       },
       b.shape);
@@ -746,6 +747,7 @@ int run_check(const CheckOptions& opt) {
   const Window w = effective_window(in, opt.common);
   Queries q = resolve_queries(opt.queries, in.has_velocity);
   q.triangles = in.has_mesh;
+  q.options = opt.options;
   const Format format = opt.format == "csv" ? Format::csv : Format::json;
   const int threads = resolve_threads(opt.common.threads);
   if (in.kind == InputKind::pairs_csv) {

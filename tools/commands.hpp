@@ -14,13 +14,14 @@
 
 namespace ellipsect::cli {
 
-// Which answers `check` computes per pair. A new query family adds a flag here, a key in
-// the JSON record and columns at the end of the CSV record.
+// Which answers `check` computes per pair, and with which Options. A new query family adds
+// a flag here, a key in the JSON record and columns at the end of the CSV record.
 struct Queries {
   bool relation = true;
   bool contact = false;
   bool distance = false;  // signed distance: separation, or minus the penetration depth
   bool triangles = false;  // the scene has meshes: CSV records end with the deciding triangles
+  Options options;         // tolerance and iteration caps of every query
 };
 
 template <int N>
@@ -75,6 +76,7 @@ struct CheckOptions {
   std::string report = "auto";        // auto | all | candidates
   bool broad_phase = true;
   bool stats = false;
+  Options options;                    // --tolerance, --max-iterations, --max-motion-steps
 };
 
 struct RenderOptions {

@@ -10,9 +10,13 @@
 
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
+#include <cstdint>
 #include <cstdio>
 #include <exception>
 #include <new>
+#include <optional>
+#include <string>
 
 namespace {
 
@@ -32,6 +36,40 @@ void add_common(CLI::App& cmd, Common& c, std::vector<double>& window, std::stri
   cmd.add_option("--progress", progress, "Progress bar on stderr: auto (when stderr is a terminal), always, never")
       ->check(CLI::IsMember({"auto", "always", "never"}))
       ->default_str("auto");
+}
+
+// The queries' Options from --tolerance, --max-iterations and --max-motion-steps (absent:
+// the defaults); a value Options rejects is a usage error naming the option.
+struct OptionValues {
+  std::optional<double> tolerance;
+  std::optional<std::int64_t> max_iterations, max_motion_steps;
+};
+
+void add_query_options(CLI::App& cmd, OptionValues& v) {
+  cmd.add_option("--tolerance", v.tolerance,
+                 "Relative tangency band of the queries, in [1e-14, 1e-9] (default 1e-12; docs/method.md)")
+      ->type_name("X");
+  cmd.add_option("--max-iterations", v.max_iterations,
+                 "Cap on the queries' iterations, in [1, 100000] (default 64); reaching it is did_not_converge")
+      ->type_name("N");
+  cmd.add_option("--max-motion-steps", v.max_motion_steps,
+                 "Cap on the advancement steps of first contact under rigid motion, in [1, 1000000] (default 10000)")
+      ->type_name("N");
+}
+
+ellipsect::Options finish_query_options(const OptionValues& v) {
+  ellipsect::Options o;
+  try {
+    if (v.tolerance) o.tolerance = *v.tolerance;
+    if (v.max_iterations) o.max_iterations = *v.max_iterations;
+    if (v.max_motion_steps) o.max_motion_steps = *v.max_motion_steps;
+  } catch (const ellipsect::InputError& e) {
+    // what() is "ellipsect: <field>: <detail>"; the option is the field with dashes.
+    std::string option = "--" + e.field();
+    std::replace(option.begin(), option.end(), '_', '-');
+    throw UsageError(option + std::string(e.what()).substr(std::string("ellipsect: ").size() + e.field().size()));
+  }
+  return o;
 }
 
 void finish_common(Common& c, const std::vector<double>& window, const std::string& progress) {
@@ -64,6 +102,7 @@ int main(int argc, char** argv) {
   RenderOptions render;
   BenchOptions bench;
   std::vector<double> check_window, render_window, bench_window;
+  OptionValues check_options;
   std::string check_progress = "auto", render_progress = "auto", bench_progress = "auto";
 
   CLI::App* c = app.add_subcommand(
@@ -87,12 +126,14 @@ int main(int argc, char** argv) {
   c->add_flag("--no-broad-phase", [&](std::int64_t) { check.broad_phase = false; },
               "Evaluate every pair exactly, without the bounding-box broad phase (implies --report all)");
   c->add_flag("--stats", check.stats, "Print the pair count, time and throughput to stderr");
+  add_query_options(*c, check_options);
   c->footer(
       "Examples:\n"
       "  ellipsect check examples/scenes/swept_2d.json\n"
       "  ellipsect check examples/scenes/bodies_10k.csv --format csv -o overlaps.csv\n"
       "  ellipsect check examples/scenes/swept_3d.json --query relation,distance\n"
-      "  ellipsect check pairs.csv --window 0 10 -o results.json --stats");
+      "  ellipsect check pairs.csv --window 0 10 -o results.json --stats\n"
+      "  ellipsect check examples/scenes/swept_2d.json --tolerance 1e-9 --max-iterations 128");
 
   CLI::App* r = app.add_subcommand("render", "Draw the scene at one time as SVG (or PNG through rsvg-convert)");
   add_common(*r, render.common, render_window, render_progress);
@@ -144,6 +185,7 @@ int main(int argc, char** argv) {
   try {
     if (c->parsed()) {
       finish_common(check.common, check_window, check_progress);
+      check.options = finish_query_options(check_options);
       return run_check(check);
     }
     if (r->parsed()) {

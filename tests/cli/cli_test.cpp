@@ -900,6 +900,91 @@ TEST(CliDistance, UnknownQueryNamesListTheAvailableOnes) {
 }
 
 // ------------------------------------------------------------------------------------------
+// Query options: --tolerance, --max-iterations, --max-motion-steps
+// ------------------------------------------------------------------------------------------
+
+// Each invalid value is a usage error (exit 1) naming the option and the accepted range,
+// with no output written.
+TEST(CliOptions, InvalidValuesNameTheOption) {
+  const auto dir = work_dir();
+  const std::string scene = (scenes / "swept_2d.json").string();
+  const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
+      {{"--tolerance", "nan"}, "--tolerance: must be in [1e-14, 1e-09] (got nan)"},
+      {{"--tolerance", "0"}, "--tolerance: must be in [1e-14, 1e-09] (got 0)"},
+      {{"--tolerance", "-1e-12"}, "--tolerance: must be in [1e-14, 1e-09] (got -1e-12)"},
+      {{"--tolerance", "inf"}, "--tolerance: must be in [1e-14, 1e-09] (got inf)"},
+      {{"--tolerance", "1e-3"}, "--tolerance: must be in [1e-14, 1e-09] (got 0.001)"},
+      {{"--tolerance", "1e-15"}, "--tolerance: must be in [1e-14, 1e-09] (got 1e-15)"},
+      {{"--tolerance", "tiny"}, "--tolerance"},
+      {{"--max-iterations", "0"}, "--max-iterations: must be in [1, 100000] (got 0)"},
+      {{"--max-iterations", "-3"}, "--max-iterations: must be in [1, 100000] (got -3)"},
+      {{"--max-iterations", "100001"}, "--max-iterations: must be in [1, 100000] (got 100001)"},
+      {{"--max-iterations", "4294967360"}, "--max-iterations: must be in [1, 100000] (got 4294967360)"},
+      {{"--max-iterations", "2.5"}, "--max-iterations"},
+      {{"--max-motion-steps", "0"}, "--max-motion-steps: must be in [1, 1000000] (got 0)"},
+      {{"--max-motion-steps", "1000001"}, "--max-motion-steps: must be in [1, 1000000] (got 1000001)"},
+  };
+  for (const auto& [extra, message] : cases) {
+    std::vector<std::string> args = {"check", scene, "-o", (dir / "out.json").string()};
+    args.insert(args.end(), extra.begin(), extra.end());
+    const Outcome r = run_cli(args, dir);
+    EXPECT_EQ(r.code, 1) << extra[0] << " " << extra[1] << "\n" << describe(r);
+    EXPECT_NE(r.err.find(message), std::string::npos) << "expected \"" << message << "\" in: " << r.err;
+    expect_no_output(dir, "out.json");
+  }
+}
+
+// The options reach every query. Unit circles with centres 2 + 5e-10 apart have the relative
+// gap 5e-10: separated in the default band (1e-12), touching in a band of 1e-9, for the
+// relation, the first contact and the signed distance alike. B of the circles scene meets A at
+// t = 3 after Newton steps on a curved path: one step is not enough (did_not_converge).
+TEST(CliOptions, OptionsReachTheQueries) {
+  const auto dir = work_dir();
+  write_file(dir / "near.json", R"({
+  "bodies": [
+    {"id": "A", "center": [0, 0], "radius": 1},
+    {"id": "B", "center": [2.0000000005, 0], "radius": 1}
+  ]
+})");
+  const std::string near = (dir / "near.json").string();
+  const Outcome plain = run_cli({"check", near, "--query", "relation,contact,distance"}, dir);
+  ASSERT_EQ(plain.code, 0) << describe(plain);
+  const json p = parse_json(plain.out)["results"][0];
+  EXPECT_EQ(p["relation"], "separated");
+  EXPECT_EQ(p["contact"]["status"], "no_contact_in_window");
+  EXPECT_EQ(p["distance"]["status"], "separated");
+  const Outcome wide = run_cli({"check", near, "--query", "relation,contact,distance", "--tolerance", "1e-9"}, dir);
+  ASSERT_EQ(wide.code, 0) << describe(wide);
+  const json w = parse_json(wide.out)["results"][0];
+  EXPECT_EQ(w["relation"], "touching");
+  EXPECT_EQ(w["contact"]["status"], "touching_at_start");
+  EXPECT_EQ(w["distance"]["status"], "touching");
+
+  write_file(dir / "circles.json", circles_scene);
+  const std::string circles = (dir / "circles.json").string();
+  const Outcome capped = run_cli({"check", circles, "--max-iterations", "1"}, dir);
+  ASSERT_EQ(capped.code, 0) << describe(capped);
+  EXPECT_EQ(parse_json(capped.out)["results"][0]["contact"]["status"], "did_not_converge");
+  const Outcome enough = run_cli({"check", circles, "--max-iterations", "100000", "--max-motion-steps", "1000000"}, dir);
+  ASSERT_EQ(enough.code, 0) << describe(enough);
+  EXPECT_EQ(parse_json(enough.out)["results"][0]["contact"]["status"], "hit");
+}
+
+// A turning body's first contact advances in steps, each a signed distance: one step does
+// not reach the contact of the bundled tipping rod.
+TEST(CliOptions, MotionStepsCapTheRigidMotionSearch) {
+  const auto dir = work_dir();
+  const std::string rod = (scenes / "turning_rod.json").string();
+  const Outcome plain = run_cli({"check", rod}, dir);
+  ASSERT_EQ(plain.code, 0) << describe(plain);
+  const Outcome capped = run_cli({"check", rod, "--max-motion-steps", "1"}, dir);
+  ASSERT_EQ(capped.code, 0) << describe(capped);
+  const json p = parse_json(plain.out)["summary"]["contact"], c = parse_json(capped.out)["summary"]["contact"];
+  EXPECT_EQ(p.value("did_not_converge", 0), 0) << p;
+  EXPECT_GT(c.value("did_not_converge", 0), 0) << c;
+}
+
+// ------------------------------------------------------------------------------------------
 // Bad input: message (file, line or JSON path, field), exit code 2, no output file.
 // ------------------------------------------------------------------------------------------
 
