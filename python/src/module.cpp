@@ -581,18 +581,43 @@ void def_enums(py::module_& m) {
 
 void def_scalar(py::module_& m) {
   def_enums(m);
-  py::class_<Options>(m, "Options", "Tolerance and iteration cap (options.hpp).")
-      .def(py::init([](double tolerance, int max_iterations, int max_motion_steps) {
-             return Options{tolerance, max_iterations, max_motion_steps};
+  // Options: each field is validated by its C++ type, in the constructor, the setters and
+  // unpickling alike (InputError naming the field). A cap is any Python integer (int, numpy
+  // integers; a float is a TypeError), one beyond long long rejected with its digits.
+  using MaxIterations = decltype(Options::max_iterations);
+  using MaxMotionSteps = decltype(Options::max_motion_steps);
+  const auto cap = []<class Cap>(std::type_identity<Cap>, const py::handle& given) -> Cap {
+    const auto value = py::reinterpret_steal<py::int_>(PyNumber_Index(given.ptr()));
+    if (!value) throw py::error_already_set();
+    int overflow = 0;
+    const long long n = PyLong_AsLongLongAndOverflow(value.ptr(), &overflow);
+    if (overflow != 0) ellipsect::detail::reject_option(Cap::field, std::string(py::str(value)).c_str(), Cap::min, Cap::max);
+    return n;
+  };
+  py::class_<Options>(m, "Options", "Tolerance and iteration caps, validated (options.hpp).")
+      .def(py::init([cap](double tolerance, const py::object& max_iterations, const py::object& max_motion_steps) {
+             return Options{tolerance, cap(std::type_identity<MaxIterations>{}, max_iterations),
+                            cap(std::type_identity<MaxMotionSteps>{}, max_motion_steps)};
            }),
-           py::arg("tolerance") = Options{}.tolerance, py::arg("max_iterations") = Options{}.max_iterations,
-           py::arg("max_motion_steps") = Options{}.max_motion_steps)
-      .def_readwrite("tolerance", &Options::tolerance)
-      .def_readwrite("max_iterations", &Options::max_iterations)
-      .def_readwrite("max_motion_steps", &Options::max_motion_steps)
+           py::arg("tolerance") = double(Options{}.tolerance), py::arg("max_iterations") = int(Options{}.max_iterations),
+           py::arg("max_motion_steps") = int(Options{}.max_motion_steps))
+      .def_property(
+          "tolerance", [](const Options& o) { return double(o.tolerance); },
+          [](Options& o, double tolerance) { o.tolerance = tolerance; })
+      .def_property(
+          "max_iterations", [](const Options& o) { return int(o.max_iterations); },
+          [cap](Options& o, const py::object& n) { o.max_iterations = cap(std::type_identity<MaxIterations>{}, n); })
+      .def_property(
+          "max_motion_steps", [](const Options& o) { return int(o.max_motion_steps); },
+          [cap](Options& o, const py::object& n) { o.max_motion_steps = cap(std::type_identity<MaxMotionSteps>{}, n); })
       .def(py::pickle(
-          [](const Options& o) { return py::make_tuple(o.tolerance, o.max_iterations, o.max_motion_steps); },
-          [](const py::tuple& t) { return Options{t[0].cast<double>(), t[1].cast<int>(), t[2].cast<int>()}; }));
+          [](const Options& o) {
+            return py::make_tuple(double(o.tolerance), int(o.max_iterations), int(o.max_motion_steps));
+          },
+          [cap](const py::tuple& t) {
+            return Options{t[0].cast<double>(), cap(std::type_identity<MaxIterations>{}, t[1]),
+                           cap(std::type_identity<MaxMotionSteps>{}, t[2])};
+          }));
 
   py::class_<Ellipse2<double>> ellipse(m, "Ellipse", "A validated ellipse (shapes.hpp).");
   ellipse.def(py::init([](const Row<2>& center, const Row<2>& radii, std::optional<double> angle,

@@ -1,0 +1,83 @@
+"""Options are input: every field rejects what it cannot mean with an InputError naming it."""
+
+import math
+import pickle
+
+import numpy as np
+import pytest
+
+import ellipsect
+
+BAD_TOLERANCES = [math.nan, math.inf, -math.inf, 0.0, -0.0, -1e-12, 5e-324, 9e-15, 1.1e-9, 1e-6, 1.0]
+BAD_CAPS = [0, -1, -(2**31), 100001, 2**31 - 1, 2**40, 2**64, 10**30, -(10**30)]
+
+
+def test_defaults_and_range_ends():
+    o = ellipsect.Options()
+    assert (o.tolerance, o.max_iterations, o.max_motion_steps) == (1e-12, 64, 10000)
+    low = ellipsect.Options(tolerance=1e-14, max_iterations=1, max_motion_steps=np.int64(1))
+    assert (low.tolerance, low.max_iterations, low.max_motion_steps) == (1e-14, 1, 1)
+    high = ellipsect.Options(tolerance=1e-9, max_iterations=100000, max_motion_steps=1000000)
+    assert (high.tolerance, high.max_iterations, high.max_motion_steps) == (1e-9, 100000, 1000000)
+    again = pickle.loads(pickle.dumps(high))
+    assert (again.tolerance, again.max_iterations, again.max_motion_steps) == (1e-9, 100000, 1000000)
+
+
+@pytest.mark.parametrize("value", BAD_TOLERANCES)
+def test_bad_tolerance_names_the_field(value):
+    with pytest.raises(ellipsect.InputError) as info:
+        ellipsect.Options(tolerance=value)
+    assert info.value.field == "tolerance" and isinstance(info.value, ValueError)
+    o = ellipsect.Options(tolerance=1e-10)
+    with pytest.raises(ellipsect.InputError) as info:
+        o.tolerance = value
+    assert info.value.field == "tolerance"
+    assert o.tolerance == 1e-10  # a rejected assignment leaves the old value
+
+
+def test_message_gives_the_value_and_the_range():
+    with pytest.raises(ellipsect.InputError, match=r"tolerance: must be in \[1e-14, 1e-09\] \(got nan\)"):
+        ellipsect.Options(tolerance=math.nan)
+    with pytest.raises(ellipsect.InputError, match=r"max_iterations: must be in \[1, 100000\] \(got 10{30}\)"):
+        ellipsect.Options(max_iterations=10**30)
+
+
+@pytest.mark.parametrize("field", ["max_iterations", "max_motion_steps"])
+@pytest.mark.parametrize("value", BAD_CAPS)
+def test_bad_cap_names_the_field(field, value):
+    with pytest.raises(ellipsect.InputError) as info:
+        ellipsect.Options(**{field: value})
+    assert info.value.field == field
+    o = ellipsect.Options()
+    before = getattr(o, field)
+    with pytest.raises(ellipsect.InputError) as info:
+        setattr(o, field, value)
+    assert info.value.field == field and getattr(o, field) == before
+
+
+@pytest.mark.parametrize("field", ["max_iterations", "max_motion_steps"])
+def test_a_cap_is_an_integer(field):
+    with pytest.raises(TypeError):
+        ellipsect.Options(**{field: 10.0})
+    o = ellipsect.Options()
+    setattr(o, field, np.int32(7))
+    assert getattr(o, field) == 7
+
+
+def test_unpickling_validates():
+    o = ellipsect.Options.__new__(ellipsect.Options)
+    with pytest.raises(ellipsect.InputError) as info:
+        o.__setstate__((math.nan, 64, 10000))
+    assert info.value.field == "tolerance"
+    with pytest.raises(ellipsect.InputError) as info:
+        o.__setstate__((1e-12, 0, 10000))
+    assert info.value.field == "max_iterations"
+
+
+def test_exact_tangency_is_touching_for_every_query_at_the_smallest_band():
+    o = ellipsect.Options(tolerance=1e-14)
+    a, b = ellipsect.Ellipse([0, 0], [1, 1]), ellipsect.Ellipse([2, 0], [1, 1])
+    assert ellipsect.classify(a, b, o) == ellipsect.Relation.touching
+    assert ellipsect.overlap(a, b, o)
+    assert ellipsect.first_contact(a, [0, 0], b, [0, 0], 1.0, o).status == ellipsect.ContactStatus.touching_at_start
+    assert ellipsect.signed_distance(a, b, o).status == ellipsect.DistanceStatus.touching
