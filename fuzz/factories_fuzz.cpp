@@ -9,10 +9,17 @@
 //     are orthonormal to 4 N eps (from_axes, matrix make_ellipsoid);
 //   - from_quadric: positive finite radii, orthonormal axes, and quadric() within
 //     64 eps cond(M) of M (relative, largest entry).
+// Then Options from the bytes left (options.hpp): each field throws InputError naming it
+// exactly when its value lies outside the stated range, and otherwise holds the value given;
+// all three at once throw for the first invalid one, in declaration order.
 #include "fuzz_support.hpp"
 
+#include <ellipsect/options.hpp>
+
 #include <algorithm>
+#include <cstdint>
 #include <initializer_list>
+#include <string>
 #include <string_view>
 
 namespace {
@@ -171,6 +178,52 @@ void ball_and_translated(Bytes& in) {
   }
 }
 
+// A cap value: any 64-bit pattern shifted right by 0 to 63 bits (small values and
+// negatives as often as huge ones).
+std::int64_t cap_value(Bytes& in) {
+  const auto bits = static_cast<std::int64_t>(in.u64());
+  return bits >> (in.byte() % 64);
+}
+
+// The field of the InputError that make() throws, or "" when it returns.
+template <class Make>
+std::string field_of(Make make) {
+  try {
+    make();
+  } catch (const InputError& e) {
+    return e.field();
+  }
+  return "";
+}
+
+void options(Bytes& in) {
+  const double tolerance = in.number();
+  const std::int64_t iterations = cap_value(in), steps = cap_value(in);
+  trace() += "options " + hex(tolerance) + " " + std::to_string(iterations) + " " + std::to_string(steps) + "; ";
+  const bool tolerance_ok = tolerance >= 1e-14 && tolerance <= 1e-9;  // NaN: false
+  const bool iterations_ok = iterations >= 1 && iterations <= 100000, steps_ok = steps >= 1 && steps <= 1000000;
+  double kept_tolerance = 0;
+  const std::string t = field_of([&] { kept_tolerance = Options{.tolerance = tolerance}.tolerance; });
+  FUZZ_CHECK(t == (tolerance_ok ? "" : "tolerance"), << "tolerance " << hex(tolerance) << ": \"" << t << "\"");
+  FUZZ_CHECK(!tolerance_ok || same_bits(kept_tolerance, tolerance), << "tolerance kept as " << hex(kept_tolerance));
+  int kept_iterations = 0;
+  const std::string i = field_of([&] { kept_iterations = Options{.max_iterations = iterations}.max_iterations; });
+  FUZZ_CHECK(i == (iterations_ok ? "" : "max_iterations"), << "max_iterations " << iterations << ": \"" << i << "\"");
+  FUZZ_CHECK(!iterations_ok || kept_iterations == iterations, << "max_iterations kept as " << kept_iterations);
+  Options o;
+  const std::string s = field_of([&] { o.max_motion_steps = steps; });
+  FUZZ_CHECK(s == (steps_ok ? "" : "max_motion_steps"), << "max_motion_steps " << steps << ": \"" << s << "\"");
+  FUZZ_CHECK(o.max_motion_steps == (steps_ok ? steps : 10000), << "max_motion_steps after assignment " << o.max_motion_steps);
+  const std::string first = !tolerance_ok     ? "tolerance"
+                            : !iterations_ok  ? "max_iterations"
+                            : !steps_ok       ? "max_motion_steps"
+                                              : "";
+  const std::string all = field_of([&] {
+    (void)Options{.tolerance = tolerance, .max_iterations = iterations, .max_motion_steps = steps};
+  });
+  FUZZ_CHECK(all == first, << "all three at once: \"" << all << "\", expected \"" << first << "\"");
+}
+
 template <class T>
 void run(Bytes& in, int which) {
   switch (which) {
@@ -195,5 +248,6 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   } else {
     run<double>(in, which);
   }
+  options(in);
   return 0;
 }
