@@ -38,18 +38,18 @@ inline constexpr char max_iterations_field[] = "max_iterations";
 inline constexpr char max_motion_steps_field[] = "max_motion_steps";
 }  // namespace detail
 
-// Options::tolerance: a relative gap in [min, max]; NaN, infinities, zero, negative values
-// and values outside the range throw InputError("tolerance").
-//   min = 1e-14: about 45 ulps, above the rounding the queries' decisions carry in double
-//        (32 ulps of the reduced frame's lengths, detail/classify_impl.hpp), so that an
-//        exactly tangent pair, or one an ulp or two from tangent, is touching for every
-//        query alike. A band of 0 is not one: an exact tangency would be overlapping for
-//        classify (gap <= -tol) and touching for first_contact and signed_distance
-//        (gap >= -tol).
-//   max = 1e-9: the early outs prove their answers beyond a relative margin of 1e-9 (the
+// Options::tolerance: a relative gap in [min, max]; NaN, infinities, 0, negative values and
+// values outside the range throw InputError("tolerance"). Why these ends:
+//   min = 1e-14 (45 ulps): near its edges the band is decided in long double (or compensated
+//        arithmetic), whose rounding, 32 ulps (3.5e-18) of the reduced frame's lengths,
+//        stays below it while those lengths are within about 3000 of the sphere body's size;
+//        a narrower band would be decided by rounding, differently by each query. A band of
+//        0 is none: an exact tangency would be overlapping for classify (gap <= -tol) and
+//        touching for first_contact and signed_distance (gap >= -tol).
+//   max = 1e-9: the early outs prove answers beyond a fixed relative margin of 1e-9 (the
 //        inscribed balls of classify's certificates, the broad phase's boxes padded by 1e-9
-//        of each radius, capsule's two-ball test); a wider band would let them contradict
-//        the exact path on pairs within it.
+//        of each radius); in a wider band they contradict the exact path (1e-6: unit balls
+//        2 - 1e-8 apart are overlapping for classify, touching_at_start for first_contact).
 class Tolerance {
 public:
   static constexpr double min = 1e-14;
