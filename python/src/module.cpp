@@ -591,7 +591,10 @@ void def_scalar(py::module_& m) {
     if (!value) throw py::error_already_set();
     int overflow = 0;
     const long long n = PyLong_AsLongLongAndOverflow(value.ptr(), &overflow);
-    if (overflow != 0) ellipsect::detail::reject_option(Cap::field, std::string(py::str(value)).c_str(), Cap::min, Cap::max);
+    if (overflow != 0) {
+      const std::string digits = py::str(py::handle(value));
+      ellipsect::detail::reject_option(Cap::field, digits.c_str(), Cap::min, Cap::max);
+    }
     return n;
   };
   py::class_<Options>(m, "Options", "Tolerance and iteration caps, validated (options.hpp).")
