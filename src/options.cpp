@@ -1,17 +1,22 @@
 #include <ellipsect/options.hpp>
 #include <ellipsect/shapes.hpp>
 
-#include <charconv>
+#include <cstdio>
+#include <cstdlib>
 #include <string>
 
 namespace ellipsect::detail {
 
 namespace {
 
-// The shortest decimal that reads back as x ("1e-14", "nan", "-inf").
+// The shortest decimal that reads back as x ("1e-14", "0.001", "nan", "-inf"). (printf, not
+// std::to_chars: the wasm build's standard library has no floating-point to_chars.)
 std::string shortest(double x) {
   char buffer[32];
-  return std::string(buffer, std::to_chars(buffer, buffer + sizeof buffer, x).ptr);
+  for (int digits = 1;; ++digits) {
+    std::snprintf(buffer, sizeof buffer, "%.*g", digits, x);
+    if (digits == 17 || std::strtod(buffer, nullptr) == x) return buffer;
+  }
 }
 
 }  // namespace
