@@ -93,9 +93,10 @@ def witnesses(ax, result, *, plane="xy", color="seagreen"):
 
 
 def pairs(ax, bodies, index_pairs, *, plane="xy", color="orange"):
-    """Segments between the centers of the bodies of each pair (e.g. overlapping_pairs)."""
+    """Segments between the centers of the bodies of each pair (e.g. overlapping_pairs);
+    `bodies`: a batch or a sequence of bodies."""
     ax = _axes(ax)
-    centers = _points(bodies.centers, plane)
+    centers = _points([center for center, _, _ in _rows(bodies)], plane)
     for i, j in np.asarray(index_pairs):
         ax.plot(centers[[i, j], 0], centers[[i, j], 1], "-", color=color, linewidth=0.8)
     return ax
