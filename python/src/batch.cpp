@@ -293,7 +293,7 @@ py::array_t<std::int8_t> classify_array(std::size_t n, const Run& run) {
 
 // Contacts as arrays of T (float64, or float32 for float pairs).
 template <class T, int N, class Run>
-py::object contact_array(std::size_t n, const Run& run) {
+ContactArraysObject contact_array(std::size_t n, const Run& run) {
   py::array_t<std::int8_t> status(static_cast<py::ssize_t>(n));
   py::array_t<T> time(static_cast<py::ssize_t>(n));
   py::array_t<T> point({py::ssize_t(n), py::ssize_t(N)}), normal({py::ssize_t(n), py::ssize_t(N)});
@@ -310,7 +310,7 @@ py::object contact_array(std::size_t n, const Run& run) {
       Eigen::Map<Vec<T, N>>{q + i * N} = out[i].normal;
     }
   }
-  return contact_arrays(status, time, point, normal);
+  return py::reinterpret_steal<ContactArraysObject>(contact_arrays(status, time, point, normal).release());
 }
 
 // The bodies rounded to float by the batch factory (make_bodies<float, N>: the single-body
@@ -423,7 +423,7 @@ void def_pairs_queries(py::module_& m, const std::string& name, const char* dtyp
         [](const P& pairs, const Options& o, int threads) {
           return overlap_array(pairs.size(), [&](std::span<bool> out) { overlap(pairs, out, {o, threads}); });
         },
-        py::arg("pairs"), py::arg("options") = Options{}, py::arg("threads") = 0,
+        py::arg("pairs"), options_arg(), py::arg("threads") = 0,
         docs::doc("Whether the bodies of each prepared pair share a point (batch.hpp).", docs::pairs_arg,
                   "bool array (n,).", docs::no_overload)
             .c_str());
@@ -431,7 +431,7 @@ void def_pairs_queries(py::module_& m, const std::string& name, const char* dtyp
         [](const P& pairs, const Options& o, int threads) {
           return classify_array(pairs.size(), [&](std::span<Relation> out) { classify(pairs, out, {o, threads}); });
         },
-        py::arg("pairs"), py::arg("options") = Options{}, py::arg("threads") = 0,
+        py::arg("pairs"), options_arg(), py::arg("threads") = 0,
         docs::doc("The relation of the bodies of each prepared pair (batch.hpp).", docs::pairs_arg,
                   "int8 array (n,) of Relation values.", docs::no_overload)
             .c_str());
@@ -442,7 +442,7 @@ void def_pairs_queries(py::module_& m, const std::string& name, const char* dtyp
                                    [&](std::span<bool> s) { backend = overlap_on_gpu(pairs, s, {o, threads}); });
           return py::make_tuple(out, std::string(to_string(backend)));
         },
-        py::arg("pairs"), py::arg("options") = Options{}, py::arg("threads") = 0,
+        py::arg("pairs"), options_arg(), py::arg("threads") = 0,
         docs::doc("overlap(pairs) with the filter on a CUDA GPU where there is one (gpu.hpp).", docs::pairs_arg,
                   "(flags, backend): the bool array (n,) and 'gpu' or 'cpu', where the filter ran.", docs::no_overload)
             .c_str());
@@ -453,7 +453,7 @@ void def_pairs_queries(py::module_& m, const std::string& name, const char* dtyp
                                     [&](std::span<Relation> s) { backend = classify_on_gpu(pairs, s, {o, threads}); });
           return py::make_tuple(out, std::string(to_string(backend)));
         },
-        py::arg("pairs"), py::arg("options") = Options{}, py::arg("threads") = 0,
+        py::arg("pairs"), options_arg(), py::arg("threads") = 0,
         docs::doc("classify(pairs) with the filter on a CUDA GPU where there is one (gpu.hpp).", docs::pairs_arg,
                   "(relations, backend): the int8 array (n,) and 'gpu' or 'cpu', where the filter ran.",
                   docs::no_overload)
@@ -464,7 +464,7 @@ void def_pairs_queries(py::module_& m, const std::string& name, const char* dtyp
             first_contact(pairs, out, {o, threads});
           });
         },
-        py::arg("pairs"), py::arg("options") = Options{}, py::arg("threads") = 0,
+        py::arg("pairs"), options_arg(), py::arg("threads") = 0,
         docs::doc("First contact of each prepared moving pair in its window (batch.hpp).", docs::pairs_arg,
                   "ContactArrays(status int8 (n,), time (n,), point (n, N), normal (n, N)), in the pairs' dtype.",
                   docs::no_overload)
@@ -479,7 +479,8 @@ void def_batch_queries(py::module_& m) {
   def_pairs_queries<float, N>(m, "Pairs" + suffix + "f", "float32");
   m.def("pairs",
         [](const B& a, const B& b, const std::optional<ArrayLike>& velocity_a_given,
-           const std::optional<ArrayLike>& velocity_b_given, const ArrayLike& t_max, const py::object& dtype) -> py::object {
+           const std::optional<ArrayLike>& velocity_b_given, const ArrayLike& t_max,
+           const py::object& dtype) -> PairsObject<N> {
           const py::handle velocity_a = or_none(velocity_a_given), velocity_b = or_none(velocity_b_given);
           const std::size_t n = paired(a, b);
           const py::dtype type = py::dtype::from_args(dtype);
@@ -489,10 +490,11 @@ void def_batch_queries(py::module_& m) {
           const bool moving = !velocity_a.is_none() || !velocity_b.is_none();
           const Motion<N> motion = moving ? motion_of<N>(n, velocity_a, velocity_b, t_max) : Motion<N>{};
           const Motion<N>* moves = moving ? &motion : nullptr;
-          return single ? py::cast(pairs_in<float, N>(a, b, moves)) : py::cast(pairs_in<double, N>(a, b, moves));
+          py::object out = single ? py::cast(pairs_in<float, N>(a, b, moves)) : py::cast(pairs_in<double, N>(a, b, moves));
+          return py::reinterpret_steal<PairsObject<N>>(out.release());
         },
         py::arg("a"), py::arg("b"), py::arg("velocity_a") = py::none(), py::arg("velocity_b") = py::none(),
-        py::arg("t_max") = 0.0, py::kw_only(), py::arg("dtype") = py::dtype::of<double>(),
+        py::arg("t_max") = 0.0, py::arg("dtype") = py::dtype::of<double>(),
         docs::doc("The pairs (a[i], b[i]) prepared once for overlap, classify and first_contact (batch.hpp's Pairs).",
                   "a, b: two Ellipses or two Ellipsoids of equal length.\nvelocity_a, velocity_b: (n, N) velocities "
                   "for first_contact (None: static pairs).\nt_max: the window [0, t_max], a number or (n,).\n"
@@ -508,7 +510,7 @@ void def_batch_queries(py::module_& m) {
             overlap<double, N>(span_of(a), span_of(b), out, {o, threads});
           });
         },
-        py::arg("a"), py::arg("b"), py::arg("options") = Options{}, py::arg("threads") = 0,
+        py::arg("a"), py::arg("b"), options_arg(), py::arg("threads") = 0,
         docs::doc("Whether the bodies of each pair share a point (batch.hpp).", docs::batch_pair, "bool array (n,).",
                   docs::batch_raises)
             .c_str());
@@ -518,7 +520,7 @@ void def_batch_queries(py::module_& m) {
             classify<double, N>(span_of(a), span_of(b), out, {o, threads});
           });
         },
-        py::arg("a"), py::arg("b"), py::arg("options") = Options{}, py::arg("threads") = 0,
+        py::arg("a"), py::arg("b"), options_arg(), py::arg("threads") = 0,
         docs::doc("The relation of the bodies of each pair (batch.hpp).", docs::batch_pair,
                   "int8 array (n,) of Relation values.", docs::batch_raises)
             .c_str());
@@ -533,7 +535,7 @@ void def_batch_queries(py::module_& m) {
           });
         },
         py::arg("a"), py::arg("velocity_a"), py::arg("b"), py::arg("velocity_b"), py::arg("t_max"),
-        py::arg("options") = Options{}, py::arg("threads") = 0,
+        options_arg(), py::arg("threads") = 0,
         docs::doc("First contact of each pair of moving bodies in [0, t_max] (batch.hpp).",
                   "a, b: two Ellipses or two Ellipsoids of equal length.\nvelocity_a, velocity_b: (n, N).\n"
                   "t_max: a number or (n,).\n" + docs::options + "\n" + docs::threads,
@@ -565,9 +567,10 @@ void def_batch_queries(py::module_& m) {
                 Eigen::Map<Vec<double, N>>{z + i * N} = r.normal;
               });
             }
-            return distance_arrays(status, dist, pa, pb, normal);
+            return py::reinterpret_steal<DistanceArraysObject>(
+                distance_arrays(status, dist, pa, pb, normal).release());
           },
-          py::arg("a"), py::arg("b"), py::arg("options") = Options{}, py::arg("threads") = 0,
+          py::arg("a"), py::arg("b"), options_arg(), py::arg("threads") = 0,
           docs::doc(std::string(name) + " of each pair, the scalar function in a thread pool (distance.hpp).",
                     docs::batch_pair,
                     "DistanceArrays(status int8 (n,), distance (n,), point_a, point_b, normal (n, N)).",
@@ -598,7 +601,7 @@ void def_batch_queries(py::module_& m) {
           }
           return out;
         },
-        py::arg("bodies"), py::arg("options") = Options{}, py::arg("threads") = 0, py::arg("box") = py::none(),
+        py::arg("bodies"), options_arg(), py::arg("threads") = 0, py::arg("box") = py::none(),
         docs::doc("Every pair of bodies that overlap (broad_phase.hpp).",
                   "bodies: Ellipses / Ellipsoids.\n" + docs::options + "\n" + docs::threads +
                       "\nbox: None, or the sides of a periodic box (N,).",
@@ -640,8 +643,8 @@ void def_earliest_contact(py::module_& m) {
           }
           return py::make_tuple(e.pair.i, e.pair.j, py::tuple(py::cast(e.pair.image)), e.contact);
         },
-        py::arg("bodies"), py::arg("velocities"), py::arg("t_max"), py::kw_only(),
-        py::arg("angular_velocities") = py::none(), py::arg("box") = py::none(), py::arg("options") = Options{},
+        py::arg("bodies"), py::arg("velocities"), py::arg("t_max"),
+        py::arg("angular_velocities") = py::none(), py::arg("box") = py::none(), options_arg(),
         docs::doc("The first contact among all pairs of bodies moving with constant linear and angular velocities "
                   "in [0, t_max] (broad_phase.hpp).",
                   "bodies: Ellipses / Ellipsoids.\nvelocities: (n, N).\nt_max: the window's end.\n"
@@ -676,7 +679,7 @@ void def_areas(py::module_& m) {
             parallel_for(n, threads, [&](std::size_t i) { p[i] = query(a.items[i], b.items[i], o); });
             return out;
           },
-          py::arg("a"), py::arg("b"), py::arg("options") = Options{}, py::arg("threads") = 0,
+          py::arg("a"), py::arg("b"), options_arg(), py::arg("threads") = 0,
           docs::doc(std::string(name) + " of each pair of ellipses, the scalar function in a thread pool "
                                         "(intersect2.hpp).",
                     "a, b: two Ellipses of equal length.\n" + docs::options + "\n" + docs::threads,
@@ -701,7 +704,7 @@ void def_batch(py::module_& m) {
                        const std::optional<ArrayLike>& rotations, bool normalize) {
              return make_ellipses(centers, radii, or_none(angles), or_none(rotations), normalize);
            }),
-           py::kw_only(), py::arg("centers"), py::arg("radii"),
+           py::arg("centers"), py::arg("radii"),
            py::arg("angles") = py::none(), py::arg("rotations") = py::none(), py::arg("normalize") = false,
            docs::doc("n ellipses from arrays, one per row, by the library's batch factory (shapes.hpp).",
                      "centers: (n, 2).\nradii: (n, 2).\nangles: (n,) radians, or rotations: (n, 2, 2), the axes as "
@@ -719,7 +722,7 @@ void def_batch(py::module_& m) {
                        const std::optional<ArrayLike>& rotations, bool normalize) {
              return make_ellipsoids(centers, radii, or_none(quaternions), or_none(rotations), normalize);
            }),
-           py::kw_only(), py::arg("centers"), py::arg("radii"),
+           py::arg("centers"), py::arg("radii"),
            py::arg("quaternions") = py::none(), py::arg("rotations") = py::none(), py::arg("normalize") = false,
            docs::doc("n ellipsoids from arrays, one per row, by the library's batch factory (shapes.hpp).",
                      "centers: (n, 3).\nradii: (n, 3).\nquaternions: (n, 4) as (w, x, y, z), or rotations: "

@@ -8,6 +8,7 @@
 
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
 
 #include <algorithm>
 #include <atomic>
@@ -202,7 +203,26 @@ class ArrayLike : public py::object {
 public:
   PYBIND11_OBJECT_DEFAULT(ArrayLike, py::object, any_object)
 };
-// An optional one (None: absent) as a handle that is None when absent.
+// Results that are Python objects, named in signatures and type stubs by what they are:
+// the namedtuples ContactArrays and DistanceArrays, and the prepared pairs of either dtype.
+class ContactArraysObject : public py::object {
+public:
+  PYBIND11_OBJECT_DEFAULT(ContactArraysObject, py::object, any_object)
+};
+class DistanceArraysObject : public py::object {
+public:
+  PYBIND11_OBJECT_DEFAULT(DistanceArraysObject, py::object, any_object)
+};
+template <int N>
+class PairsObject : public py::object {
+public:
+  PYBIND11_OBJECT_DEFAULT(PairsObject, py::object, any_object)
+};
+
+// The `options` argument of every query, shown as Options() in signatures and stubs.
+inline py::arg_v options_arg() { return py::arg_v("options", Options{}, "Options()"); }
+
+// An optional ArrayLike (None: absent) as a handle that is None when absent.
 inline py::handle or_none(const std::optional<ArrayLike>& x) { return x ? py::handle(*x) : py::handle(Py_None); }
 
 // Argument `name` as a numpy array of numbers, by numpy's array_like convention (lists and
@@ -291,6 +311,39 @@ template <>
 struct handle_type_name<ellipsect::python::ArrayLike> {
   static constexpr auto name = const_name("numpy.typing.ArrayLike");
 };
+template <>
+struct handle_type_name<ellipsect::python::ContactArraysObject> {
+  static constexpr auto name = const_name("ContactArrays");
+};
+template <>
+struct handle_type_name<ellipsect::python::DistanceArraysObject> {
+  static constexpr auto name = const_name("DistanceArrays");
+};
+template <int N>
+struct handle_type_name<ellipsect::python::PairsObject<N>> {
+  static constexpr auto name =
+      const_name("Union[Pairs") + const_name<N>() + const_name(", Pairs") + const_name<N>() + const_name("f]");
+};
+
+// Fixed-size numbers (a point, a quaternion, a matrix as rows) take any sequence of numbers,
+// named numpy.typing.ArrayLike in signatures and type stubs (pybind11's own name, List[float[2]],
+// is not a type).
+template <class Array, class Value, std::size_t Size>
+struct array_like_caster : array_caster<Array, Value, false, Size> {
+  static constexpr auto name = const_name("numpy.typing.ArrayLike");
+};
+template <std::size_t N>
+using Row = std::array<double, N>;
+template <>
+struct type_caster<Row<2>> : array_like_caster<Row<2>, double, 2> {};
+template <>
+struct type_caster<Row<3>> : array_like_caster<Row<3>, double, 3> {};
+template <>
+struct type_caster<Row<4>> : array_like_caster<Row<4>, double, 4> {};
+template <>
+struct type_caster<std::array<Row<2>, 2>> : array_like_caster<std::array<Row<2>, 2>, Row<2>, 2> {};
+template <>
+struct type_caster<std::array<Row<3>, 3>> : array_like_caster<std::array<Row<3>, 3>, Row<3>, 3> {};
 
 // A C++ enum of the library <-> its Python IntEnum (ints are accepted too).
 template <class E>

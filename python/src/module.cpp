@@ -418,7 +418,7 @@ void def_shape_contact(py::module_& m, const std::string& shape, const std::stri
           return first_contact(a, motion<N>(va, wa), b, vec<N>(vb), t_max, o);
         },
         py::arg("a"), py::arg("velocity_a"), py::arg("b"), py::arg("velocity_b"), py::arg("t_max"),
-        py::arg("options") = Options{}, py::kw_only(), py::arg("angular_velocity_a") = py::none(),
+        options_arg(), py::arg("angular_velocity_a") = py::none(),
         docs::doc("First contact of a moving body and a moving " + shape + " in [0, t_max] (contact.hpp).",
                   "a: the body (Ellipse / Ellipsoid).\nb: the " + shape + " (it moves at velocity_b and does not turn).\n" +
                       docs::motion,
@@ -435,25 +435,25 @@ void def_shape_queries(py::module_& m, const std::string& shape, const std::stri
   using E = Ellipsoid<double, N>;
   const std::string args = "a: the body (Ellipse / Ellipsoid).\nb: the " + shape + ".\n" + docs::options;
   m.def("classify", [call](const E& a, const S& b, const Options& o) { return call([&] { return classify(a, b, o); }); },
-        py::arg("a"), py::arg("b"), py::arg("options") = Options{},
+        py::arg("a"), py::arg("b"), options_arg(),
         docs::doc("The relation of a body and a " + shape + " (" + header + "; " + containment + ").", args,
                   std::is_same_v<S, Mesh<N>> ? "MeshRelation: relation and the lowest-index triangle with it (-1: none)."
                                               : "Relation.",
                   docs::no_overload)
             .c_str());
   m.def("overlap", [call](const E& a, const S& b, const Options& o) { return call([&] { return overlap(a, b, o); }); },
-        py::arg("a"), py::arg("b"), py::arg("options") = Options{},
+        py::arg("a"), py::arg("b"), options_arg(),
         docs::doc("Whether a body and a " + shape + " share a point (" + header + ").", args, "bool.",
                   docs::no_overload)
             .c_str());
   m.def("distance", [call](const E& a, const S& b, const Options& o) { return call([&] { return distance(a, b, o); }); },
-        py::arg("a"), py::arg("b"), py::arg("options") = Options{},
+        py::arg("a"), py::arg("b"), options_arg(),
         docs::doc("Separation distance of a body and a " + shape + ", 0 when they meet (" + header + ").", args,
                   distance_returns, docs::no_overload)
             .c_str());
   m.def("signed_distance",
         [call](const E& a, const S& b, const Options& o) { return call([&] { return signed_distance(a, b, o); }); },
-        py::arg("a"), py::arg("b"), py::arg("options") = Options{},
+        py::arg("a"), py::arg("b"), options_arg(),
         docs::doc("Signed distance of a body and a " + shape + ": the separation, or minus the penetration depth (" +
                       header + ").",
                   args, distance_returns, docs::no_overload)
@@ -472,12 +472,12 @@ void def_queries(py::module_& m) {
   };
   const std::string two = "a, b: two Ellipse, or two Ellipsoid.\n" + docs::options;
   m.def("classify", py::overload_cast<const E&, const E&, const Options&>(&classify<double, N>), py::arg("a"),
-        py::arg("b"), py::arg("options") = Options{},
+        py::arg("b"), options_arg(),
         docs::doc("The relation of two bodies (classify.hpp), certified near tangency.", two,
                   "Relation: separated, touching, overlapping, a_contains_b, b_contains_a or equal.", docs::no_overload)
             .c_str());
   m.def("overlap", py::overload_cast<const E&, const E&, const Options&>(&overlap<double, N>), py::arg("a"),
-        py::arg("b"), py::arg("options") = Options{},
+        py::arg("b"), options_arg(),
         docs::doc("Whether two bodies share a point (overlap.hpp).", two, "bool.", docs::no_overload).c_str());
   m.def("first_contact",
         [](const E& a, const Row<N>& va, const E& b, const Row<N>& vb, double t_max, const Options& o,
@@ -486,7 +486,7 @@ void def_queries(py::module_& m) {
           return first_contact(a, motion<N>(va, wa), b, motion<N>(vb, wb), t_max, o);
         },
         py::arg("a"), py::arg("velocity_a"), py::arg("b"), py::arg("velocity_b"), py::arg("t_max"),
-        py::arg("options") = Options{}, py::kw_only(), py::arg("angular_velocity_a") = py::none(),
+        options_arg(), py::arg("angular_velocity_a") = py::none(),
         py::arg("angular_velocity_b") = py::none(),
         docs::doc("First contact of two moving bodies in [0, t_max] (contact.hpp); with an angular velocity, under "
                   "rigid motion.",
@@ -508,12 +508,12 @@ void def_queries(py::module_& m) {
                                        ": status (DistanceStatus), distance, point_a, point_b (witness points), "
                                        "normal (unit, from a towards b), iterations.";
   m.def("distance", py::overload_cast<const E&, const E&, const Options&>(&distance<double, N>), py::arg("a"),
-        py::arg("b"), py::arg("options") = Options{},
+        py::arg("b"), options_arg(),
         docs::doc("Separation distance of two bodies, 0 when they meet (distance.hpp).", two, distance_returns,
                   docs::no_overload)
             .c_str());
   m.def("signed_distance", py::overload_cast<const E&, const E&, const Options&>(&signed_distance<double, N>),
-        py::arg("a"), py::arg("b"), py::arg("options") = Options{},
+        py::arg("a"), py::arg("b"), options_arg(),
         docs::doc("Signed distance of two bodies: the separation, or minus the penetration depth (distance.hpp).", two,
                   distance_returns, docs::no_overload)
             .c_str());
@@ -524,7 +524,7 @@ void def_queries(py::module_& m) {
                   "ClosestPoint" + suffix + ": point, signed_distance (negative inside).", docs::no_overload)
             .c_str());
   m.def("perram_wertheim", py::overload_cast<const E&, const E&, const Options&>(&perram_wertheim<double, N>),
-        py::arg("a"), py::arg("b"), py::arg("options") = Options{},
+        py::arg("a"), py::arg("b"), options_arg(),
         docs::doc("Perram and Wertheim's contact function of two bodies (contact_function.hpp): f < 1 overlapping, "
                   "f = 1 touching, f > 1 separated.",
                   two, "ContactFunction: status, f, f_upper, lambda_, iterations.", docs::no_overload)
@@ -533,7 +533,7 @@ void def_queries(py::module_& m) {
         [](const E& a, const E& b, const Row<N>& direction, const Options& o) {
           return closest_approach(a, b, vec<N>(direction), o);
         },
-        py::arg("a"), py::arg("b"), py::arg("direction"), py::arg("options") = Options{},
+        py::arg("a"), py::arg("b"), py::arg("direction"), options_arg(),
         docs::doc("How far b may move along `direction` until it touches a (contact_function.hpp).",
                   "a, b: two Ellipse, or two Ellipsoid.\ndirection: the direction of b's motion (N,).\n" + docs::options,
                   "ClosestApproach" + suffix + ": status, distance, distance_lower, point, normal, lambda_, iterations.",
@@ -570,7 +570,7 @@ void def_queries(py::module_& m) {
           py::gil_scoped_release release;
           return collide_and_slide(body, vec<N>(displacement), std::span<const H>(world), o);
         },
-        py::arg("body"), py::arg("displacement"), py::arg("world"), py::arg("options") = Options{},
+        py::arg("body"), py::arg("displacement"), py::arg("world"), options_arg(),
         docs::doc("Moves the body by the displacement through half-spaces, sliding along what it touches (slide.hpp).",
                   "body: Ellipse / Ellipsoid.\ndisplacement: the wanted motion (N,).\nworld: a list of HalfPlane / "
                   "HalfSpace.\n" + docs::options,
@@ -581,7 +581,7 @@ void def_queries(py::module_& m) {
           py::gil_scoped_release release;
           return collide_and_slide(body, vec<N>(displacement), world, o);
         },
-        py::arg("body"), py::arg("displacement"), py::arg("world"), py::arg("options") = Options{},
+        py::arg("body"), py::arg("displacement"), py::arg("world"), options_arg(),
         docs::doc("Moves the body by the displacement through a triangle mesh, sliding along what it touches "
                   "(slide.hpp).",
                   "body: Ellipse / Ellipsoid.\ndisplacement: the wanted motion (N,).\nworld: TriangleMesh2 / "
@@ -648,18 +648,18 @@ void def_two_d(py::module_& m) {
 
   const std::string two = "a, b: two Ellipse.\n" + docs::options;
   m.def("intersect_boundaries", &intersect_boundaries<double>, py::arg("a"), py::arg("b"),
-        py::arg("options") = Options{},
+        options_arg(),
         docs::doc("The points where the boundaries of two ellipses meet (intersect2.hpp).", two,
                   "BoundaryIntersection: status, count (0 to 4), points (count, 2) counter-clockwise along a, kinds.",
                   docs::no_overload)
             .c_str());
   m.def("overlap_area", py::overload_cast<const E&, const E&, const Options&>(&overlap_area<double>), py::arg("a"),
-        py::arg("b"), py::arg("options") = Options{},
+        py::arg("b"), options_arg(),
         docs::doc("The area two ellipses share (intersect2.hpp).", two, "OverlapArea: area, relation.",
                   docs::no_overload)
             .c_str());
   m.def("iou", py::overload_cast<const E&, const E&, const Options&>(&intersection_over_union<double>),
-        py::arg("a"), py::arg("b"), py::arg("options") = Options{},
+        py::arg("a"), py::arg("b"), options_arg(),
         docs::doc("Intersection over union of two ellipses (intersect2.hpp).", two, "float in [0, 1].",
                   docs::no_overload)
             .c_str());
@@ -783,7 +783,7 @@ void def_scalar(py::module_& m) {
                 return make_ellipse<double>(vec<2>(center), angle.value_or(0.0), vec<2>(radii));
               }),
               py::arg("center"), py::arg("radii"), py::arg("angle") = py::none(), py::arg("rotation") = py::none(),
-              py::kw_only(), py::arg("normalize") = false,
+              py::arg("normalize") = false,
               docs::doc("The ellipse whose first axis makes `angle` radians with x, or whose axes are the columns of "
                         "`rotation`.",
                         "center: (2,).\nradii: (2,), > 0, aspect ratio at most 1e8.\nangle: radians (default 0).\n"
@@ -805,7 +805,7 @@ void def_scalar(py::module_& m) {
                   return make_ellipsoid<double>(vec<3>(center), Quat<double>(q[0], q[1], q[2], q[3]), vec<3>(radii));
                 }),
                 py::arg("center"), py::arg("radii"), py::arg("quaternion") = py::none(),
-                py::arg("rotation") = py::none(), py::kw_only(), py::arg("normalize") = false,
+                py::arg("rotation") = py::none(), py::arg("normalize") = false,
                 docs::doc("The ellipsoid rotated by a unit quaternion, or whose axes are the columns of `rotation`.",
                           "center: (3,).\nradii: (3,), > 0, aspect ratio at most 1e8.\nquaternion: (w, x, y, z), unit "
                           "norm within 1e-9 (default: no rotation).\nrotation: (3, 3), orthonormal columns (within "
