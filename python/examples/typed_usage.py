@@ -1,7 +1,9 @@
 """The package under `mypy --strict` (python/tests/test_typing.py checks this file): scalar
-bodies and shapes, batches from numpy arrays, prepared pairs, results and their fields."""
+bodies and shapes, batches from numpy arrays, prepared pairs, results and their fields, and a
+picture (`python typed_usage.py scene.png`)."""
 
 import pickle
+import sys
 
 import numpy as np
 import numpy.typing as npt
@@ -14,6 +16,15 @@ def earliest_hit(a: ellipsect.Ellipsoids, b: ellipsect.Ellipsoids, velocities: n
     contact = ellipsect.first_contact(a, velocities, b, -velocities, 2.0)
     hits = contact.time[contact.status == ellipsect.ContactStatus.hit]
     return float(hits.min()) if hits.size else float("inf")
+
+
+def picture(bodies: ellipsect.Ellipsoids, path: str) -> None:
+    """The bodies' outlines on the xy plane joined by their overlapping pairs, saved to path."""
+    import ellipsect.plot as ep
+
+    ax = ep.bodies(None, bodies)
+    ep.pairs(ax, bodies, ellipsect.overlapping_pairs(bodies))
+    ax.figure.savefig(path)
 
 
 def main() -> None:
@@ -36,6 +47,8 @@ def main() -> None:
     pairs = ellipsect.pairs(bodies, others, dtype=np.float32)
     print(int(flags.sum()), len(pairs), ellipsect.overlapping_pairs(bodies).shape,
           earliest_hit(bodies, others, rng.normal(size=(n, 3))))
+    if len(sys.argv) > 1:
+        picture(bodies, sys.argv[1])
 
 
 if __name__ == "__main__":
