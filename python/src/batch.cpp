@@ -37,7 +37,8 @@ std::string row_field(const std::string& field, py::ssize_t row) {
   if (cut != std::string::npos && field[cut] == '[')
     index += ", " + field.substr(cut + 1, field.size() - cut - 2);
   else if (cut != std::string::npos && field[cut] == '(')
-    for (const char ch : "," + field.substr(cut + 1, field.size() - cut - 2)) index += ch == ',' ? ", " : std::string(1, ch);
+    for (const char ch : "," + field.substr(cut + 1, field.size() - cut - 2))
+      index += ch == ',' ? ", " : std::string(1, ch);
   else if (cut != std::string::npos)
     index += ", " + std::to_string(std::string("wxyz").find(field[cut + 1]));
   return arg + "[" + index + "]";
@@ -70,7 +71,8 @@ Vec<double, N> row_vec(const double* p) {
 
 // A checked array's n rows of `per_row` values as a span (empty for a missing argument).
 std::span<const double> values(const std::optional<py::array_t<double>>& data, py::ssize_t n, int per_row) {
-  return data ? std::span<const double>(data->data(), std::size_t(n) * std::size_t(per_row)) : std::span<const double>();
+  return data ? std::span<const double>(data->data(), std::size_t(n) * std::size_t(per_row))
+              : std::span<const double>();
 }
 
 // checked() for an optional argument (None: absent).
@@ -389,7 +391,8 @@ template <class T, int N>
 Pairs<T, N> pairs_from_state(const py::tuple& state) {
   if (state.size() != 9) throw py::value_error("pickled Pairs: expected 9 arrays");
   std::vector<py::array_t<T, py::array::c_style | py::array::forcecast>> arrays;
-  for (const py::handle x : state) arrays.push_back(py::array_t<T, py::array::c_style | py::array::forcecast>::ensure(x));
+  for (const py::handle x : state)
+    arrays.push_back(py::array_t<T, py::array::c_style | py::array::forcecast>::ensure(x));
   const auto span = [&](std::size_t k) { return std::span<const T>(arrays[k].data(), std::size_t(arrays[k].size())); };
   const std::size_t n = span(8).size();
   if (span(6).size() != n * N || span(7).size() != n * N) throw py::value_error("pickled Pairs: inconsistent sizes");
@@ -490,7 +493,8 @@ void def_batch_queries(py::module_& m) {
           const bool moving = !velocity_a.is_none() || !velocity_b.is_none();
           const Motion<N> motion = moving ? motion_of<N>(n, velocity_a, velocity_b, t_max) : Motion<N>{};
           const Motion<N>* moves = moving ? &motion : nullptr;
-          py::object out = single ? py::cast(pairs_in<float, N>(a, b, moves)) : py::cast(pairs_in<double, N>(a, b, moves));
+          py::object out =
+              single ? py::cast(pairs_in<float, N>(a, b, moves)) : py::cast(pairs_in<double, N>(a, b, moves));
           return py::reinterpret_steal<PairsObject<N>>(out.release());
         },
         py::arg("a"), py::arg("b"), py::arg("velocity_a") = py::none(), py::arg("velocity_b") = py::none(),
@@ -716,7 +720,8 @@ void def_batch(py::module_& m) {
                      "both angles and rotations.\nInputError: the first bad value, named by argument, row and "
                      "column: centers[4, 1], rotations[3, 0, 1].")
                .c_str())
-      .def(py::pickle(&state_of<2>, [](const py::tuple& t) { return make_ellipses(t[0], t[1], py::none(), t[2], false); }));
+      .def(py::pickle(&state_of<2>,
+                      [](const py::tuple& t) { return make_ellipses(t[0], t[1], py::none(), t[2], false); }));
   def_bodies<3>(m, "Ellipsoids", "Ellipsoid")
       .def(py::init([](const ArrayLike& centers, const ArrayLike& radii, const std::optional<ArrayLike>& quaternions,
                        const std::optional<ArrayLike>& rotations, bool normalize) {
@@ -735,7 +740,8 @@ void def_batch(py::module_& m) {
                      "both quaternions and rotations.\nInputError: the first bad value, named by argument, row and "
                      "column: quaternions[1], rotations[3, 0, 1].")
                .c_str())
-      .def(py::pickle(&state_of<3>, [](const py::tuple& t) { return make_ellipsoids(t[0], t[1], py::none(), t[2], false); }));
+      .def(py::pickle(&state_of<3>,
+                      [](const py::tuple& t) { return make_ellipsoids(t[0], t[1], py::none(), t[2], false); }));
   def_batch_queries<2>(m);
   def_batch_queries<3>(m);
   m.def(

@@ -72,7 +72,8 @@ void def_body(py::class_<Ellipsoid<double, N>>& c) {
                   docs::doc("A ball (circle, sphere).", "center: (N,).\nradius: > 0.", "The body.",
                             "InputError: a bad value, named (center[i], radius).")
                       .c_str())
-      .def_property_readonly("center", [](const E& e) { return to_array<N>(e.center()); }, "numpy.ndarray: The center (N,), a copy.")
+      .def_property_readonly("center", [](const E& e) { return to_array<N>(e.center()); },
+                             "numpy.ndarray: The center (N,), a copy.")
       .def_property_readonly("axes", [](const E& e) { return to_array<N>(e.axes()); },
                              "numpy.ndarray: The principal directions as columns (N, N), a copy.")
       .def_property_readonly("radii", [](const E& e) { return to_array<N>(e.radii()); },
@@ -108,7 +109,8 @@ void def_half_space(py::module_& m, const char* name) {
                      "unit vector).",
                      "The half-space.", "InputError: a non-finite value or a zero normal, named.")
                .c_str())
-      .def_property_readonly("point", [](const H& h) { return to_array<N>(h.point()); }, "numpy.ndarray: A boundary point (N,).")
+      .def_property_readonly("point", [](const H& h) { return to_array<N>(h.point()); },
+                             "numpy.ndarray: A boundary point (N,).")
       .def_property_readonly("normal", [](const H& h) { return to_array<N>(h.normal()); },
                              "numpy.ndarray: The unit outward normal (N,).")
       .def("translated", [](const H& h, const Row<N>& offset) { return h.translated(vec<N>(offset)); },
@@ -199,7 +201,9 @@ void def_triangle(py::module_& m, const char* name) {
   using M = Mesh<N>;
   py::class_<M>(m, ("TriangleMesh" + std::to_string(N)).c_str(),
                 "Triangles sharing vertices, with a box hierarchy for the queries (mesh.hpp).")
-      .def(py::init([](const ArrayLike& vertices, const ArrayLike& triangles) { return make_mesh<N>(vertices, triangles); }),
+      .def(py::init([](const ArrayLike& vertices, const ArrayLike& triangles) {
+             return make_mesh<N>(vertices, triangles);
+           }),
            py::arg("vertices"), py::arg("triangles"),
            docs::doc("The mesh of these triangles.",
                      "vertices: array_like of numbers (n, N).\ntriangles: array_like of integers (m, 3), vertex indices.",
@@ -208,7 +212,8 @@ void def_triangle(py::module_& m, const char* name) {
                      "InputError: a non-finite vertex or an index outside the vertices, named "
                      "(vertices[i][j], triangles[k][j]).")
                .c_str())
-      .def_property_readonly("vertex_count", [](const M& mesh) { return mesh.vertex_count(); }, "int: The number of vertices.")
+      .def_property_readonly("vertex_count", [](const M& mesh) { return mesh.vertex_count(); },
+                             "int: The number of vertices.")
       .def_property_readonly("triangle_count", [](const M& mesh) { return mesh.triangle_count(); },
                              "int: The number of triangles.")
       .def_property_readonly("vertices", [](const M& mesh) { return mesh_array<double>(mesh.vertices, N); },
@@ -245,8 +250,10 @@ void def_box(py::module_& m, const char* name) {
                      "coordinate axes).",
                      "The box.", "InputError: a bad value, named.")
                .c_str())
-      .def_property_readonly("center", [](const B& b) { return to_array<N>(b.center()); }, "numpy.ndarray: The center (N,).")
-      .def_property_readonly("axes", [](const B& b) { return to_array<N>(b.axes()); }, "numpy.ndarray: The axes as columns (N, N).")
+      .def_property_readonly("center", [](const B& b) { return to_array<N>(b.center()); },
+                             "numpy.ndarray: The center (N,).")
+      .def_property_readonly("axes", [](const B& b) { return to_array<N>(b.axes()); },
+                             "numpy.ndarray: The axes as columns (N, N).")
       .def_property_readonly("half_extents", [](const B& b) { return to_array<N>(b.half_extents()); },
                              "numpy.ndarray: The half side lengths along the axes (N,).")
       .def("corner", [](const B& b, int k) {
@@ -289,8 +296,10 @@ void def_capsule(py::module_& m, const char* name) {
                      "p0, p1: the segment's ends (N,).\nradius: > 0.", "The capsule.",
                      "InputError: a bad value, named.")
                .c_str())
-      .def_property_readonly("p0", [](const C& c) { return to_array<N>(c.point(0)); }, "numpy.ndarray: The segment's first end (N,).")
-      .def_property_readonly("p1", [](const C& c) { return to_array<N>(c.point(1)); }, "numpy.ndarray: The segment's second end (N,).")
+      .def_property_readonly("p0", [](const C& c) { return to_array<N>(c.point(0)); },
+                             "numpy.ndarray: The segment's first end (N,).")
+      .def_property_readonly("p1", [](const C& c) { return to_array<N>(c.point(1)); },
+                             "numpy.ndarray: The segment's second end (N,).")
       .def_property_readonly("radius", &C::radius, "float: The radius.")
       .def("translated", [](const C& c, const Row<N>& offset) { return c.translated(vec<N>(offset)); },
            py::arg("offset"),
@@ -325,9 +334,12 @@ void def_results(py::module_& m, const char* suffix) {
   using C = Contact<double, N>;
   result_class<C>(m, ("Contact" + s).c_str(), "first_contact's answer (see contact.hpp).")
       .def_property_readonly("status", [](const C& c) { return c.status; }, "ContactStatus: The outcome.")
-      .def_property_readonly("time", [](const C& c) { return c.time; }, "float: The first contact time in [0, t_max] (NaN without contact).")
-      .def_property_readonly("point", [](const C& c) { return to_array<N>(c.point); }, "numpy.ndarray: The contact point at that time, world frame (N,).")
-      .def_property_readonly("normal", [](const C& c) { return to_array<N>(c.normal); }, "numpy.ndarray: Unit, from a towards b.")
+      .def_property_readonly("time", [](const C& c) { return c.time; },
+                             "float: The first contact time in [0, t_max] (NaN without contact).")
+      .def_property_readonly("point", [](const C& c) { return to_array<N>(c.point); },
+                             "numpy.ndarray: The contact point at that time, world frame (N,).")
+      .def_property_readonly("normal", [](const C& c) { return to_array<N>(c.normal); },
+                             "numpy.ndarray: Unit, from a towards b.")
       .def_property_readonly("iterations", [](const C& c) { return c.iterations; }, "int: Iterations used.")
       .def("__repr__", [](const C& c) {
         return "Contact(status=" + std::string(to_string(c.status)) + ", time=" + std::to_string(c.time) + ")";
@@ -335,9 +347,12 @@ void def_results(py::module_& m, const char* suffix) {
   using S = Slide<double, N>;
   result_class<S>(m, ("Slide" + s).c_str(), "collide_and_slide's answer (see slide.hpp).")
       .def_property_readonly("status", [](const S& r) { return r.status; }, "SlideStatus: The outcome.")
-      .def_property_readonly("body", [](const S& r) { return r.body; }, (std::string(N == 2 ? "Ellipse" : "Ellipsoid") + ": The body where it ends.").c_str())
-      .def_property_readonly("moved", [](const S& r) { return to_array<N>(r.moved); }, "numpy.ndarray: The displacement made (N,).")
-      .def_property_readonly("contacts", [](const S& r) { return r.contacts; }, "int: The number of contacts on the way.")
+      .def_property_readonly("body", [](const S& r) { return r.body; },
+                             (std::string(N == 2 ? "Ellipse" : "Ellipsoid") + ": The body where it ends.").c_str())
+      .def_property_readonly("moved", [](const S& r) { return to_array<N>(r.moved); },
+                             "numpy.ndarray: The displacement made (N,).")
+      .def_property_readonly("contacts", [](const S& r) { return r.contacts; },
+                             "int: The number of contacts on the way.")
       .def_property_readonly("last_contact", [](const S& r) { return r.last_contact; },
                              "int: Index of the last half-space or triangle hit, or -1.")
       .def("__repr__", [](const S& r) {
@@ -345,7 +360,8 @@ void def_results(py::module_& m, const char* suffix) {
       });
   using MC = MeshContact<double, N>;
   result_class<MC>(m, ("MeshContact" + s).c_str(), "first_contact's answer against a mesh (see mesh.hpp).")
-      .def_property_readonly("contact", [](const MC& c) { return c.contact; }, ("Contact" + s + ": The contact (Contact2 / Contact3).").c_str())
+      .def_property_readonly("contact", [](const MC& c) { return c.contact; },
+                             ("Contact" + s + ": The contact (Contact2 / Contact3).").c_str())
       .def_property_readonly("triangle", [](const MC& c) { return c.triangle; }, "int: The triangle hit, or -1.")
       .def("__repr__", [](const MC& c) {
         return "MeshContact(status=" + std::string(to_string(c.contact.status)) + ", time=" +
@@ -353,8 +369,10 @@ void def_results(py::module_& m, const char* suffix) {
       });
   using MD = MeshDistance<double, N>;
   result_class<MD>(m, ("MeshDistance" + s).c_str(), "distance / signed_distance's answer against a mesh (see mesh.hpp).")
-      .def_property_readonly("distance", [](const MD& d) { return d.distance; }, ("Distance" + s + ": The distance answer (Distance2 / Distance3).").c_str())
-      .def_property_readonly("triangle", [](const MD& d) { return d.triangle; }, "int: The nearest (deepest) triangle, or -1.")
+      .def_property_readonly("distance", [](const MD& d) { return d.distance; },
+                             ("Distance" + s + ": The distance answer (Distance2 / Distance3).").c_str())
+      .def_property_readonly("triangle", [](const MD& d) { return d.triangle; },
+                             "int: The nearest (deepest) triangle, or -1.")
       .def("__repr__", [](const MD& d) {
         return "MeshDistance(status=" + std::string(to_string(d.distance.status)) + ", distance=" +
                std::to_string(d.distance.distance) + ", triangle=" + std::to_string(d.triangle) + ")";
@@ -362,10 +380,14 @@ void def_results(py::module_& m, const char* suffix) {
   using D = Distance<double, N>;
   result_class<D>(m, ("Distance" + s).c_str(), "distance / signed_distance's answer (see distance.hpp).")
       .def_property_readonly("status", [](const D& d) { return d.status; }, "DistanceStatus: The outcome.")
-      .def_property_readonly("distance", [](const D& d) { return d.distance; }, "float: The distance (signed: negative for the penetration depth).")
-      .def_property_readonly("point_a", [](const D& d) { return to_array<N>(d.point_a); }, "numpy.ndarray: The witness point on a (N,).")
-      .def_property_readonly("point_b", [](const D& d) { return to_array<N>(d.point_b); }, "numpy.ndarray: The witness point on b (N,).")
-      .def_property_readonly("normal", [](const D& d) { return to_array<N>(d.normal); }, "numpy.ndarray: Unit, from a towards b (N,).")
+      .def_property_readonly("distance", [](const D& d) { return d.distance; },
+                             "float: The distance (signed: negative for the penetration depth).")
+      .def_property_readonly("point_a", [](const D& d) { return to_array<N>(d.point_a); },
+                             "numpy.ndarray: The witness point on a (N,).")
+      .def_property_readonly("point_b", [](const D& d) { return to_array<N>(d.point_b); },
+                             "numpy.ndarray: The witness point on b (N,).")
+      .def_property_readonly("normal", [](const D& d) { return to_array<N>(d.normal); },
+                             "numpy.ndarray: Unit, from a towards b (N,).")
       .def_property_readonly("iterations", [](const D& d) { return d.iterations; }, "int: Iterations used.")
       .def("__repr__", [](const D& d) {
         return "Distance(status=" + std::string(to_string(d.status)) + ", distance=" + std::to_string(d.distance) +
@@ -373,16 +395,22 @@ void def_results(py::module_& m, const char* suffix) {
       });
   using P = ClosestPoint<double, N>;
   result_class<P>(m, ("ClosestPoint" + s).c_str(), "closest_point's answer (see point.hpp).")
-      .def_property_readonly("point", [](const P& p) { return to_array<N>(p.point); }, "numpy.ndarray: The closest boundary point (N,).")
-      .def_property_readonly("signed_distance", [](const P& p) { return p.signed_distance; }, "float: Its signed distance to x (negative inside).");
+      .def_property_readonly("point", [](const P& p) { return to_array<N>(p.point); },
+                             "numpy.ndarray: The closest boundary point (N,).")
+      .def_property_readonly("signed_distance", [](const P& p) { return p.signed_distance; },
+                             "float: Its signed distance to x (negative inside).");
   using A = ClosestApproach<double, N>;
   result_class<A>(m, ("ClosestApproach" + s).c_str(), "closest_approach's answer (see contact_function.hpp).")
       .def_property_readonly("status", [](const A& a) { return a.status; }, "ContactFunctionStatus: The outcome.")
       .def_property_readonly("distance", [](const A& a) { return a.distance; }, "float: How far b moves until contact.")
-      .def_property_readonly("distance_lower", [](const A& a) { return a.distance_lower; }, "float: A certified lower bound of distance.")
-      .def_property_readonly("point", [](const A& a) { return to_array<N>(a.point); }, "numpy.ndarray: The contact point (N,).")
-      .def_property_readonly("normal", [](const A& a) { return to_array<N>(a.normal); }, "numpy.ndarray: Unit, from a towards b.")
-      .def_property_readonly("lambda_", [](const A& a) { return a.lambda; }, "float: The maximizing lambda of the contact function.")
+      .def_property_readonly("distance_lower", [](const A& a) { return a.distance_lower; },
+                             "float: A certified lower bound of distance.")
+      .def_property_readonly("point", [](const A& a) { return to_array<N>(a.point); },
+                             "numpy.ndarray: The contact point (N,).")
+      .def_property_readonly("normal", [](const A& a) { return to_array<N>(a.normal); },
+                             "numpy.ndarray: Unit, from a towards b.")
+      .def_property_readonly("lambda_", [](const A& a) { return a.lambda; },
+                             "float: The maximizing lambda of the contact function.")
       .def_property_readonly("iterations", [](const A& a) { return a.iterations; }, "int: Iterations used.")
       .def("__repr__", [](const A& a) {
         return "ClosestApproach(status=" + std::string(to_string(a.status)) + ", distance=" + std::to_string(a.distance) +
@@ -434,7 +462,8 @@ void def_shape_queries(py::module_& m, const std::string& shape, const std::stri
                        const std::string& containment, const std::string& distance_returns, const Call& call) {
   using E = Ellipsoid<double, N>;
   const std::string args = "a: the body (Ellipse / Ellipsoid).\nb: the " + shape + ".\n" + docs::options;
-  m.def("classify", [call](const E& a, const S& b, const Options& o) { return call([&] { return classify(a, b, o); }); },
+  m.def("classify",
+        [call](const E& a, const S& b, const Options& o) { return call([&] { return classify(a, b, o); }); },
         py::arg("a"), py::arg("b"), options_arg(),
         docs::doc("The relation of a body and a " + shape + " (" + header + "; " + containment + ").", args,
                   std::is_same_v<S, Mesh<N>> ? "MeshRelation: relation and the lowest-index triangle with it (-1: none)."
@@ -446,7 +475,8 @@ void def_shape_queries(py::module_& m, const std::string& shape, const std::stri
         docs::doc("Whether a body and a " + shape + " share a point (" + header + ").", args, "bool.",
                   docs::no_overload)
             .c_str());
-  m.def("distance", [call](const E& a, const S& b, const Options& o) { return call([&] { return distance(a, b, o); }); },
+  m.def("distance",
+        [call](const E& a, const S& b, const Options& o) { return call([&] { return distance(a, b, o); }); },
         py::arg("a"), py::arg("b"), options_arg(),
         docs::doc("Separation distance of a body and a " + shape + ", 0 when they meet (" + header + ").", args,
                   distance_returns, docs::no_overload)
@@ -594,7 +624,8 @@ void def_two_d(py::module_& m) {
   using E = Ellipse2<double>;
   using B = BoundaryIntersection<double>;
   result_class<B>(m, "BoundaryIntersection", "intersect_boundaries' answer (see intersect2.hpp).")
-      .def_property_readonly("status", [](const B& b) { return b.status; }, "BoundaryStatus: points, or equal boundaries.")
+      .def_property_readonly("status", [](const B& b) { return b.status; },
+                             "BoundaryStatus: points, or equal boundaries.")
       .def_property_readonly("count", [](const B& b) { return b.count; }, "int: The number of points (0 to 4).")
       .def_property_readonly("points",
                              [](const B& b) {
@@ -610,7 +641,8 @@ void def_two_d(py::module_& m) {
   using A = OverlapArea<double>;
   result_class<A>(m, "OverlapArea", "overlap_area's answer (see intersect2.hpp).")
       .def_property_readonly("area", [](const A& a) { return a.area; }, "float: The shared area.")
-      .def_property_readonly("relation", [](const A& a) { return a.relation; }, "Relation: The relation of the ellipses.");
+      .def_property_readonly("relation", [](const A& a) { return a.relation; },
+                             "Relation: The relation of the ellipses.");
   using C = Circle<double>;
   py::class_<C> circle(m, "Circle", "The closed disk of Niemitalo's tests; radius 0 is a point.");
   circle.def(py::init([](const Row<2>& center, double radius) { return make_circle<double>(vec<2>(center), radius); }),
@@ -618,7 +650,8 @@ void def_two_d(py::module_& m) {
              docs::doc("The disk of this center and radius.", "center: (2,).\nradius: >= 0.", "The circle.",
                        "InputError: a bad value, named (center[i], radius).")
                  .c_str())
-      .def_property_readonly("center", [](const C& c) { return to_array<2>(c.center()); }, "numpy.ndarray: The center (2,).")
+      .def_property_readonly("center", [](const C& c) { return to_array<2>(c.center()); },
+                             "numpy.ndarray: The center (2,).")
       .def_property_readonly("radius", &C::radius, "float: The radius.")
       .def("ellipse", &C::ellipse,
            docs::doc("The circle as an Ellipse.", "(none)", "Ellipse.", "InputError: radius 0 (a point).").c_str())
@@ -638,13 +671,17 @@ void def_two_d(py::module_& m) {
       .def_property_readonly("verdict", [](const P& p) { return p.verdict; }, "Verdict: The answer.")
       .def_property_readonly("level", [](const P& p) { return p.level; }, "int: The polygon level that decided.")
       .def_property_readonly("iterations", [](const P& p) { return p.iterations; }, "int: Iterations used.")
-      .def_property_readonly("gap_lo", [](const P& p) { return p.gap_lo; }, "float: Lower end of the certified band of the gap.")
-      .def_property_readonly("gap_hi", [](const P& p) { return p.gap_hi; }, "float: Upper end of the certified band of the gap.");
+      .def_property_readonly("gap_lo", [](const P& p) { return p.gap_lo; },
+                             "float: Lower end of the certified band of the gap.")
+      .def_property_readonly("gap_hi", [](const P& p) { return p.gap_hi; },
+                             "float: Upper end of the certified band of the gap.");
   using Q = QuarticPoint<double>;
   result_class<Q>(m, "QuarticPoint", "closest_point_quartic / closest_point_closed_form's answer (quartic2.hpp).")
       .def_property_readonly("status", [](const Q& q) { return q.status; }, "QuarticStatus: The outcome.")
-      .def_property_readonly("point", [](const Q& q) { return to_array<2>(q.point); }, "numpy.ndarray: The closest boundary point (2,) (NaN unless outside).")
-      .def_property_readonly("distance", [](const Q& q) { return q.distance; }, "float: Its distance to x (NaN unless outside).");
+      .def_property_readonly("point", [](const Q& q) { return to_array<2>(q.point); },
+                             "numpy.ndarray: The closest boundary point (2,) (NaN unless outside).")
+      .def_property_readonly("distance", [](const Q& q) { return q.distance; },
+                             "float: Its distance to x (NaN unless outside).");
 
   const std::string two = "a, b: two Ellipse.\n" + docs::options;
   m.def("intersect_boundaries", &intersect_boundaries<double>, py::arg("a"), py::arg("b"),
@@ -779,7 +816,8 @@ void def_scalar(py::module_& m) {
                           std::optional<Rows<2>> rotation, bool normalize) {
                 if (angle && rotation) throw py::value_error("Ellipse: give angle or rotation, not both");
                 if (rotation)
-                  return Ellipse2<double>::from_axes(vec<2>(center), normalized<2>(*rotation, normalize), vec<2>(radii));
+                  return Ellipse2<double>::from_axes(vec<2>(center), normalized<2>(*rotation, normalize),
+                                                     vec<2>(radii));
                 return make_ellipse<double>(vec<2>(center), angle.value_or(0.0), vec<2>(radii));
               }),
               py::arg("center"), py::arg("radii"), py::arg("angle") = py::none(), py::arg("rotation") = py::none(),
@@ -825,7 +863,8 @@ void def_scalar(py::module_& m) {
   def_triangle<2>(m, "Triangle2");
   def_triangle<3>(m, "Triangle3");
   result_class<MeshRelation>(m, "MeshRelation", "classify's answer against a mesh (see mesh.hpp).")
-      .def_property_readonly("relation", [](const MeshRelation& r) { return r.relation; }, "Relation: The relation to the whole mesh.")
+      .def_property_readonly("relation", [](const MeshRelation& r) { return r.relation; },
+                             "Relation: The relation to the whole mesh.")
       .def_property_readonly("triangle", [](const MeshRelation& r) { return r.triangle; },
                              "int: The lowest-index triangle with that relation, or -1.")
       .def("__repr__", [](const MeshRelation& r) {
@@ -836,9 +875,11 @@ void def_scalar(py::module_& m) {
   using F = ContactFunction<double>;
   result_class<F>(m, "ContactFunction", "perram_wertheim's answer (see contact_function.hpp).")
       .def_property_readonly("status", [](const F& f) { return f.status; }, "ContactFunctionStatus: The outcome.")
-      .def_property_readonly("f", [](const F& f) { return f.f; }, "float: The contact function's value (a lower bound).")
+      .def_property_readonly("f", [](const F& f) { return f.f; },
+                             "float: The contact function's value (a lower bound).")
       .def_property_readonly("f_upper", [](const F& f) { return f.f_upper; }, "float: An upper bound of the value.")
-      .def_property_readonly("lambda_", [](const F& f) { return f.lambda; }, "float: The maximizing lambda (weight of b).")
+      .def_property_readonly("lambda_", [](const F& f) { return f.lambda; },
+                             "float: The maximizing lambda (weight of b).")
       .def_property_readonly("iterations", [](const F& f) { return f.iterations; }, "int: Iterations used.")
       .def("__repr__", [](const F& f) {
         return "ContactFunction(status=" + std::string(to_string(f.status)) + ", f=" + std::to_string(f.f) + ")";
