@@ -64,7 +64,7 @@ def _rows(x, row_chunks):
 
 
 def bodies(centers, radii, *, angles=None, quaternions=None, rotations=None, chunks="auto") -> Bodies:
-    """Bodies from float64 arrays (numpy or dask). `chunks`: rows per task for numpy
+    """Bodies from arrays of numbers (numpy or dask). `chunks`: rows per task for numpy
     centers (dask centers keep their row chunks); every other array is rechunked to match."""
     given = {name: v for name, v in zip(_ORIENTATIONS, (angles, quaternions, rotations)) if v is not None}
     if len(given) > 1:

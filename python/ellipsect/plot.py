@@ -13,7 +13,10 @@ The answers drawn come from the queries (points, normals); only the drawing is d
 
 from __future__ import annotations
 
+from typing import Any, Iterable, Iterator, Optional, Sequence, Tuple, Union
+
 import numpy as np
+import numpy.typing as npt
 from matplotlib import patches
 from matplotlib import pyplot as plt
 
@@ -21,15 +24,21 @@ import ellipsect
 
 _PLANES = {"xy": (0, 1), "xz": (0, 2), "yz": (1, 2)}
 
+# A matplotlib Axes (matplotlib ships no type information); bodies: a body, a batch or a
+# sequence of bodies.
+Axes = Any
+Body = Union[ellipsect.Ellipse, ellipsect.Ellipsoid]
+Bodies = Union[Body, ellipsect.Ellipses, ellipsect.Ellipsoids, Iterable[Body]]
 
-def _axes(ax):
+
+def _axes(ax: Optional[Axes]) -> Axes:
     if ax is None:
         _, ax = plt.subplots()
         ax.set_aspect("equal")
     return ax
 
 
-def _outline(center, axes, radii, plane):
+def _outline(center: np.ndarray, axes: np.ndarray, radii: np.ndarray, plane: str) -> Tuple[Any, float, float, float]:
     """Center, width, height and angle (degrees) of the body's outline on `plane`: the
     ellipse {x : x^T S^-1 x <= 1} with S the plane's block of axes diag(radii^2) axes^T."""
     i, j = _PLANES[plane]
@@ -40,7 +49,7 @@ def _outline(center, axes, radii, plane):
     return center[[i, j]], 2 * np.sqrt(values[1]), 2 * np.sqrt(values[0]), angle
 
 
-def _rows(bodies):
+def _rows(bodies: Bodies) -> Iterator[Tuple[np.ndarray, np.ndarray, np.ndarray]]:
     """(center, axes, radii) of each body of an Ellipse / Ellipsoid, a batch or a sequence."""
     if isinstance(bodies, (ellipsect.Ellipses, ellipsect.Ellipsoids)):
         return zip(bodies.centers, bodies.rotations, bodies.radii)
@@ -49,7 +58,8 @@ def _rows(bodies):
     return ((b.center, b.axes, b.radii) for b in bodies)
 
 
-def bodies(ax, bodies, *, plane="xy", labels=None, **style):
+def bodies(ax: Optional[Axes], bodies: Bodies, *, plane: str = "xy", labels: Optional[Sequence[Any]] = None,
+           **style: Any) -> Axes:
     """Draws the outline of each body; `style`: matplotlib patch options (defaults: no fill).
     Rescales the view to the bodies."""
     ax = _axes(ax)
@@ -63,12 +73,13 @@ def bodies(ax, bodies, *, plane="xy", labels=None, **style):
     return ax
 
 
-def _points(x, plane):
+def _points(x: npt.ArrayLike, plane: str) -> np.ndarray:
     x = np.atleast_2d(np.asarray(x, dtype=float))
     return x[:, list(_PLANES[plane])] if x.shape[1] == 3 else x
 
 
-def contact(ax, result, *, plane="xy", normal_length=1.0, color="crimson"):
+def contact(ax: Optional[Axes], result: Any, *, plane: str = "xy", normal_length: float = 1.0,
+            color: str = "crimson") -> Axes:
     """Contact points and normals (arrows from a towards b) of a first_contact answer (a
     Contact or ContactArrays); rows without a contact (NaN point) are skipped."""
     ax = _axes(ax)
@@ -80,7 +91,7 @@ def contact(ax, result, *, plane="xy", normal_length=1.0, color="crimson"):
     return ax
 
 
-def witnesses(ax, result, *, plane="xy", color="seagreen"):
+def witnesses(ax: Optional[Axes], result: Any, *, plane: str = "xy", color: str = "seagreen") -> Axes:
     """Witness points of a distance / signed_distance answer (Distance or DistanceArrays),
     joined by a segment; rows without points (NaN) are skipped."""
     ax = _axes(ax)
@@ -92,10 +103,12 @@ def witnesses(ax, result, *, plane="xy", color="seagreen"):
     return ax
 
 
-def pairs(ax, bodies, index_pairs, *, plane="xy", color="orange"):
-    """Segments between the centers of the bodies of each pair (e.g. overlapping_pairs)."""
+def pairs(ax: Optional[Axes], bodies: Bodies, index_pairs: npt.ArrayLike, *, plane: str = "xy",
+          color: str = "orange") -> Axes:
+    """Segments between the centers of the bodies of each pair (e.g. overlapping_pairs);
+    `bodies`: a batch or a sequence of bodies."""
     ax = _axes(ax)
-    centers = _points(bodies.centers, plane)
+    centers = _points([center for center, _, _ in _rows(bodies)], plane)
     for i, j in np.asarray(index_pairs):
         ax.plot(centers[[i, j], 0], centers[[i, j], 1], "-", color=color, linewidth=0.8)
     return ax

@@ -5,12 +5,14 @@
 // overlap_area, iou). Arrays are checked (type, dtype, shape, contiguity, rows) before
 // any work; the GIL is released while the library runs.
 #include "common.hpp"
+#include "docs.hpp"
 
 #include <pybind11/stl.h>
 
 #include <ellipsect/ellipsect.hpp>
 
 #include <array>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <span>
@@ -22,8 +24,9 @@ namespace {
 
 // The argument name and index for a factory's field at row `row`: "radii[1]" -> "radii[17, 1]",
 // "quaternion.x" -> "quaternions[17, 1]", "angle" -> "angles[17]".
+// "axes(0,1)" -> "rotations[17, 0, 1]".
 std::string row_field(const std::string& field, py::ssize_t row) {
-  const std::size_t cut = field.find_first_of("[.");
+  const std::size_t cut = field.find_first_of("[.(");
   const std::string head = field.substr(0, cut);
   const std::string arg = head == "center"       ? "centers"
                           : head == "angle"      ? "angles"
@@ -33,6 +36,9 @@ std::string row_field(const std::string& field, py::ssize_t row) {
   std::string index = std::to_string(row);
   if (cut != std::string::npos && field[cut] == '[')
     index += ", " + field.substr(cut + 1, field.size() - cut - 2);
+  else if (cut != std::string::npos && field[cut] == '(')
+    for (const char ch : "," + field.substr(cut + 1, field.size() - cut - 2))
+      index += ch == ',' ? ", " : std::string(1, ch);
   else if (cut != std::string::npos)
     index += ", " + std::to_string(std::string("wxyz").find(field[cut + 1]));
   return arg + "[" + index + "]";
@@ -64,53 +70,86 @@ Vec<double, N> row_vec(const double* p) {
 }
 
 // A checked array's n rows of `per_row` values as a span (empty for a missing argument).
-std::span<const double> values(const double* data, py::ssize_t n, int per_row) {
-  return data ? std::span<const double>(data, std::size_t(n) * std::size_t(per_row)) : std::span<const double>();
+std::span<const double> values(const std::optional<py::array_t<double>>& data, py::ssize_t n, int per_row) {
+  return data ? std::span<const double>(data->data(), std::size_t(n) * std::size_t(per_row))
+              : std::span<const double>();
 }
 
-Bodies<2> make_ellipses(py::handle centers, py::handle radii, py::handle angles, py::handle rotations) {
+// checked() for an optional argument (None: absent).
+std::optional<py::array_t<double>> checked_if(py::handle obj, const std::string& name,
+                                              std::vector<py::ssize_t> trailing, py::ssize_t& rows,
+                                              const std::string& rows_from) {
+  if (obj.is_none()) return std::nullopt;
+  return checked(obj, name, std::move(trailing), rows, rows_from);
+}
+
+// The orientation rows (quaternions, or N x N rotations), `normalized` when asked or when the
+// array holds fewer digits than float64 (float32: the tolerance follows the input's precision).
+struct Orientation {
+  std::optional<py::array_t<double>> array;
+  std::vector<double> normalized;
+  std::span<const double> rows;
+};
+
+Orientation orientation(py::handle obj, const std::string& name, std::vector<py::ssize_t> trailing, py::ssize_t& n,
+                        bool normalize, const std::function<void(std::span<double>)>& normalize_rows) {
+  Orientation out;
+  out.array = checked_if(obj, name, trailing, n, "centers");
+  if (!out.array) return out;
+  out.rows = std::span<const double>(out.array->data(), std::size_t(out.array->size()));
+  const py::dtype given = py::reinterpret_borrow<py::array>(numbers(obj, name)).dtype();
+  if (normalize || (given.kind() == 'f' && given.itemsize() < 8)) {
+    out.normalized.assign(out.rows.begin(), out.rows.end());
+    normalize_rows(out.normalized);
+    out.rows = out.normalized;
+  }
+  return out;
+}
+
+Bodies<2> make_ellipses(py::handle centers, py::handle radii, py::handle angles, py::handle rotations,
+                        bool normalize) {
   py::ssize_t n = -1;
   const auto c = checked(centers, "centers", {2}, n, "");
   const auto r = checked(radii, "radii", {2}, n, "centers");
   if (!angles.is_none() && !rotations.is_none()) throw py::value_error("Ellipses: give angles or rotations, not both");
   if (!rotations.is_none()) {
-    const auto m = checked(rotations, "rotations", {2, 2}, n, "centers");
+    const Orientation m = orientation(rotations, "rotations", {2, 2}, n, normalize, &normalize_rotations<2>);
     return bodies_from<2>(n, [&](std::span<Ellipse2<double>> out) {
-      ellipsect::make_bodies<double, 2>(values(c, n, 2), values(m, n, 4), values(r, n, 2), out);
+      ellipsect::make_bodies<double, 2>(values(c, n, 2), m.rows, values(r, n, 2), out);
     });
   }
-  const double* a = angles.is_none() ? nullptr : checked(angles, "angles", {}, n, "centers");
+  const auto a = checked_if(angles, "angles", {}, n, "centers");
   return bodies_from<2>(n, [&](std::span<Ellipse2<double>> out) {
     ellipsect::make_ellipses<double>(values(c, n, 2), values(a, n, 1), values(r, n, 2), out);
   });
 }
 
-Bodies<3> make_ellipsoids(py::handle centers, py::handle radii, py::handle quaternions, py::handle rotations) {
+Bodies<3> make_ellipsoids(py::handle centers, py::handle radii, py::handle quaternions, py::handle rotations,
+                          bool normalize) {
   py::ssize_t n = -1;
   const auto c = checked(centers, "centers", {3}, n, "");
   const auto r = checked(radii, "radii", {3}, n, "centers");
   if (!quaternions.is_none() && !rotations.is_none())
     throw py::value_error("Ellipsoids: give quaternions or rotations, not both");
-  if (!rotations.is_none()) {
-    const auto m = checked(rotations, "rotations", {3, 3}, n, "centers");
-    return bodies_from<3>(n, [&](std::span<Ellipsoid3<double>> out) {
-      ellipsect::make_bodies<double, 3>(values(c, n, 3), values(m, n, 9), values(r, n, 3), out);
-    });
-  }
-  const double* q = quaternions.is_none() ? nullptr : checked(quaternions, "quaternions", {4}, n, "centers");
+  const Orientation o = rotations.is_none()
+                            ? orientation(quaternions, "quaternions", {4}, n, normalize, &normalize_quaternions)
+                            : orientation(rotations, "rotations", {3, 3}, n, normalize, &normalize_rotations<3>);
   return bodies_from<3>(n, [&](std::span<Ellipsoid3<double>> out) {
-    ellipsect::make_ellipsoids<double>(values(c, n, 3), values(q, n, 4), values(r, n, 3), out);
+    if (rotations.is_none())
+      ellipsect::make_ellipsoids<double>(values(c, n, 3), o.rows, values(r, n, 3), out);
+    else
+      ellipsect::make_bodies<double, 3>(values(c, n, 3), o.rows, values(r, n, 3), out);
   });
 }
 
 // A (n, dims...) float64 array filled by fill(i, row pointer).
-template <class Fill>
-py::array_t<double> rows_of(std::size_t n, std::vector<py::ssize_t> dims, const Fill& fill) {
+template <class T = double, class Fill>
+py::array_t<T> rows_of(std::size_t n, std::vector<py::ssize_t> dims, const Fill& fill) {
   dims.insert(dims.begin(), py::ssize_t(n));
-  py::array_t<double> out(dims);
+  py::array_t<T> out(dims);
   py::ssize_t row = 1;
   for (std::size_t k = 1; k < dims.size(); ++k) row *= dims[k];
-  double* p = out.mutable_data();
+  T* p = out.mutable_data();
   for (std::size_t i = 0; i < n; ++i) fill(i, p + py::ssize_t(i) * row);
   return out;
 }
@@ -144,31 +183,42 @@ py::tuple state_of(const Bodies<N>& b) {
 template <int N>
 py::class_<Bodies<N>> def_bodies(py::module_& m, const char* name, const char* scalar) {
   using B = Bodies<N>;
-  py::class_<B> c(m, name);
-  c.def("__len__", [](const B& b) { return b.items.size(); })
+  py::class_<B> c(m, name,
+                  (std::string("A batch of ") + scalar + " bodies, validated, one per row (shapes.hpp); they "
+                   "pickle bit for bit.").c_str());
+  c.def("__len__", [](const B& b) { return b.items.size(); }, "The number of bodies.")
       .def("__getitem__",
            [scalar](const B& b, py::ssize_t i) {
              const auto n = py::ssize_t(b.items.size());
              if (i < -n || i >= n) throw py::index_error(std::string(scalar) + " index out of range");
              return b.items[std::size_t(i < 0 ? i + n : i)];
-           })
+           },
+           py::arg("i"),
+           docs::doc("Body i (negative: from the end).", "i: the index.", scalar, "IndexError: i out of range.")
+               .c_str())
       .def("take",
-           [](const B& b, const py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>& indices) {
+           [](const B& b, const ArrayLike& indices_like) {
+             const auto indices = integers(indices_like, "indices");
              if (indices.ndim() != 1) throw py::value_error("indices: expected a 1-D array");
+             const auto n = std::int64_t(b.items.size());
              B out;
              out.items.reserve(std::size_t(indices.size()));
              for (const std::int64_t i : std::span(indices.data(), std::size_t(indices.size()))) {
-               if (i < 0 || std::size_t(i) >= b.items.size())
-                 throw py::index_error("indices: " + std::to_string(i) + " out of range");
-               out.items.push_back(b.items[std::size_t(i)]);
+               if (i < -n || i >= n) throw py::index_error("indices: " + std::to_string(i) + " out of range");
+               out.items.push_back(b.items[std::size_t(i < 0 ? i + n : i)]);
              }
              return out;
            },
-           py::arg("indices"), "The bodies at `indices` (a 1-D integer array), in that order.")
-      .def_property_readonly("centers", &centers_of<N>)
-      .def_property_readonly("radii", &radii_of<N>)
+           py::arg("indices"),
+           docs::doc("The bodies at `indices`, in that order.",
+                     "indices: a 1-D array_like of integers (negative ones count from the end).", "The same type.",
+                     "TypeError: indices that are not integers (1.7 is not truncated).\nValueError: not 1-D.\n"
+                     "IndexError: an index out of range.")
+               .c_str())
+      .def_property_readonly("centers", &centers_of<N>, "numpy.ndarray: (n, N) float64, a copy.")
+      .def_property_readonly("radii", &radii_of<N>, "numpy.ndarray: (n, N) float64, a copy.")
       .def_property_readonly("rotations", &rotations_of<N>,
-                             "(n, N, N): the axes of body i are the columns of rotations[i].");
+                             "numpy.ndarray: (n, N, N) float64, a copy: the axes of body i are the columns of rotations[i].");
   return c;
 }
 
@@ -197,14 +247,16 @@ struct Motion {
 template <int N>
 Motion<N> motion_of(std::size_t n, py::handle velocity_a, py::handle velocity_b, py::handle t_max) {
   py::ssize_t rows = static_cast<py::ssize_t>(n);
-  const double* va = checked(velocity_a, "velocity_a", {N}, rows, "a");
-  const double* vb = checked(velocity_b, "velocity_b", {N}, rows, "a");
+  const auto va_array = checked(velocity_a, "velocity_a", {N}, rows, "a");
+  const auto vb_array = checked(velocity_b, "velocity_b", {N}, rows, "a");
+  const double *va = va_array.data(), *vb = vb_array.data();
   Motion<N> m;
-  if (py::isinstance<py::float_>(t_max) || py::isinstance<py::int_>(t_max)) {
-    m.t_max.assign(n, t_max.cast<double>());
+  const py::array window = numbers(t_max, "t_max");  // a number (Python or numpy scalar), or one per pair
+  if (window.ndim() == 0) {
+    m.t_max.assign(n, *py::array_t<double, py::array::forcecast>::ensure(window).data());
   } else {
-    const double* t = checked(t_max, "t_max", {}, rows, "a");
-    m.t_max.assign(t, t + n);
+    const auto t = checked(window, "t_max", {}, rows, "a");
+    m.t_max.assign(t.data(), t.data() + n);
   }
   m.velocity_a.resize(n);
   m.velocity_b.resize(n);
@@ -243,7 +295,7 @@ py::array_t<std::int8_t> classify_array(std::size_t n, const Run& run) {
 
 // Contacts as arrays of T (float64, or float32 for float pairs).
 template <class T, int N, class Run>
-py::object contact_array(std::size_t n, const Run& run) {
+ContactArraysObject contact_array(std::size_t n, const Run& run) {
   py::array_t<std::int8_t> status(static_cast<py::ssize_t>(n));
   py::array_t<T> time(static_cast<py::ssize_t>(n));
   py::array_t<T> point({py::ssize_t(n), py::ssize_t(N)}), normal({py::ssize_t(n), py::ssize_t(N)});
@@ -260,7 +312,7 @@ py::object contact_array(std::size_t n, const Run& run) {
       Eigen::Map<Vec<T, N>>{q + i * N} = out[i].normal;
     }
   }
-  return contact_arrays(status, time, point, normal);
+  return py::reinterpret_steal<ContactArraysObject>(contact_arrays(status, time, point, normal).release());
 }
 
 // The bodies rounded to float by the batch factory (make_bodies<float, N>: the single-body
@@ -315,6 +367,49 @@ Pairs<T, N> pairs_in(const Bodies<N>& a, const Bodies<N>& b, const Motion<N>* mo
   return out;
 }
 
+// Pairs pickled as their bodies (centers, rotations, radii of a, then of b, in T), velocities
+// and windows, which the batch factory (axes kept as given) and assign rebuild bit for bit.
+template <class T, int N>
+py::tuple pairs_state(const Pairs<T, N>& pairs) {
+  const std::size_t n = pairs.size();
+  py::list state;
+  for (const bool first : {true, false}) {
+    const auto body = [&](std::size_t i) -> const Ellipsoid<T, N>& { return first ? pairs.a(i) : pairs.b(i); };
+    state.append(rows_of<T>(n, {N}, [&](std::size_t i, T* p) { Eigen::Map<Vec<T, N>>{p} = body(i).center(); }));
+    state.append(rows_of<T>(n, {N, N}, [&](std::size_t i, T* p) {
+      Eigen::Map<Eigen::Matrix<T, N, N, Eigen::RowMajor>>{p} = body(i).axes();
+    }));
+    state.append(rows_of<T>(n, {N}, [&](std::size_t i, T* p) { Eigen::Map<Vec<T, N>>{p} = body(i).radii(); }));
+  }
+  state.append(rows_of<T>(n, {N}, [&](std::size_t i, T* p) { Eigen::Map<Vec<T, N>>{p} = pairs.velocity_a(i); }));
+  state.append(rows_of<T>(n, {N}, [&](std::size_t i, T* p) { Eigen::Map<Vec<T, N>>{p} = pairs.velocity_b(i); }));
+  state.append(rows_of<T>(n, {}, [&](std::size_t i, T* p) { *p = pairs.t_max(i); }));
+  return py::tuple(state);
+}
+
+template <class T, int N>
+Pairs<T, N> pairs_from_state(const py::tuple& state) {
+  if (state.size() != 9) throw py::value_error("pickled Pairs: expected 9 arrays");
+  std::vector<py::array_t<T, py::array::c_style | py::array::forcecast>> arrays;
+  for (const py::handle x : state)
+    arrays.push_back(py::array_t<T, py::array::c_style | py::array::forcecast>::ensure(x));
+  const auto span = [&](std::size_t k) { return std::span<const T>(arrays[k].data(), std::size_t(arrays[k].size())); };
+  const std::size_t n = span(8).size();
+  if (span(6).size() != n * N || span(7).size() != n * N) throw py::value_error("pickled Pairs: inconsistent sizes");
+  std::vector<Ellipsoid<T, N>> a(n), b(n);
+  make_bodies<T, N>(span(0), span(1), span(2), a);
+  make_bodies<T, N>(span(3), span(4), span(5), b);
+  const auto velocities = [&](std::size_t k) {
+    std::vector<Vec<T, N>> v(n);
+    for (std::size_t i = 0; i < n; ++i) v[i] = Eigen::Map<const Vec<T, N>>(span(k).data() + i * N);
+    return v;
+  };
+  Pairs<T, N> out;
+  out.assign(std::span<const Ellipsoid<T, N>>(a), velocities(6), std::span<const Ellipsoid<T, N>>(b), velocities(7),
+             span(8));
+  return out;
+}
+
 // overlap, classify, first_contact and the GPU forms over Pairs<T, N>, bound as class `name`.
 template <class T, int N>
 void def_pairs_queries(py::module_& m, const std::string& name, const char* dtype) {
@@ -323,18 +418,26 @@ void def_pairs_queries(py::module_& m, const std::string& name, const char* dtyp
                 ("Pairs prepared once for repeated overlap / classify / first_contact (batch.hpp's Pairs), in " +
                  std::string(dtype) + ".")
                     .c_str())
-      .def("__len__", &P::size)
-      .def_property_readonly("dtype", [dtype](const P&) { return py::dtype(dtype); });
+      .def("__len__", &P::size, "The number of pairs.")
+      .def_property_readonly("dtype", [dtype](const P&) { return py::dtype(dtype); },
+                             "numpy.dtype: numpy.float64 or numpy.float32: the precision of its columns.")
+      .def(py::pickle(&pairs_state<T, N>, &pairs_from_state<T, N>));
   m.def("overlap",
         [](const P& pairs, const Options& o, int threads) {
           return overlap_array(pairs.size(), [&](std::span<bool> out) { overlap(pairs, out, {o, threads}); });
         },
-        py::arg("pairs"), py::arg("options") = Options{}, py::arg("threads") = 0);
+        py::arg("pairs"), options_arg(), py::arg("threads") = 0,
+        docs::doc("Whether the bodies of each prepared pair share a point (batch.hpp).", docs::pairs_arg,
+                  "bool array (n,).", docs::no_overload)
+            .c_str());
   m.def("classify",
         [](const P& pairs, const Options& o, int threads) {
           return classify_array(pairs.size(), [&](std::span<Relation> out) { classify(pairs, out, {o, threads}); });
         },
-        py::arg("pairs"), py::arg("options") = Options{}, py::arg("threads") = 0);
+        py::arg("pairs"), options_arg(), py::arg("threads") = 0,
+        docs::doc("The relation of the bodies of each prepared pair (batch.hpp).", docs::pairs_arg,
+                  "int8 array (n,) of Relation values.", docs::no_overload)
+            .c_str());
   m.def("overlap_on_gpu",
         [](const P& pairs, const Options& o, int threads) {
           Backend backend{};
@@ -342,8 +445,10 @@ void def_pairs_queries(py::module_& m, const std::string& name, const char* dtyp
                                    [&](std::span<bool> s) { backend = overlap_on_gpu(pairs, s, {o, threads}); });
           return py::make_tuple(out, std::string(to_string(backend)));
         },
-        py::arg("pairs"), py::arg("options") = Options{}, py::arg("threads") = 0,
-        "overlap(pairs) with the filter on a CUDA GPU (gpu.hpp): (flags, 'gpu' or 'cpu', where it ran).");
+        py::arg("pairs"), options_arg(), py::arg("threads") = 0,
+        docs::doc("overlap(pairs) with the filter on a CUDA GPU where there is one (gpu.hpp).", docs::pairs_arg,
+                  "(flags, backend): the bool array (n,) and 'gpu' or 'cpu', where the filter ran.", docs::no_overload)
+            .c_str());
   m.def("classify_on_gpu",
         [](const P& pairs, const Options& o, int threads) {
           Backend backend{};
@@ -351,15 +456,22 @@ void def_pairs_queries(py::module_& m, const std::string& name, const char* dtyp
                                     [&](std::span<Relation> s) { backend = classify_on_gpu(pairs, s, {o, threads}); });
           return py::make_tuple(out, std::string(to_string(backend)));
         },
-        py::arg("pairs"), py::arg("options") = Options{}, py::arg("threads") = 0,
-        "classify(pairs) with the filter on a CUDA GPU (gpu.hpp): (relations, 'gpu' or 'cpu', where it ran).");
+        py::arg("pairs"), options_arg(), py::arg("threads") = 0,
+        docs::doc("classify(pairs) with the filter on a CUDA GPU where there is one (gpu.hpp).", docs::pairs_arg,
+                  "(relations, backend): the int8 array (n,) and 'gpu' or 'cpu', where the filter ran.",
+                  docs::no_overload)
+            .c_str());
   m.def("first_contact",
         [](const P& pairs, const Options& o, int threads) {
           return contact_array<T, N>(pairs.size(), [&](std::span<Contact<T, N>> out) {
             first_contact(pairs, out, {o, threads});
           });
         },
-        py::arg("pairs"), py::arg("options") = Options{}, py::arg("threads") = 0);
+        py::arg("pairs"), options_arg(), py::arg("threads") = 0,
+        docs::doc("First contact of each prepared moving pair in its window (batch.hpp).", docs::pairs_arg,
+                  "ContactArrays(status int8 (n,), time (n,), point (n, N), normal (n, N)), in the pairs' dtype.",
+                  docs::no_overload)
+            .c_str());
 }
 
 template <int N>
@@ -369,8 +481,10 @@ void def_batch_queries(py::module_& m) {
   def_pairs_queries<double, N>(m, "Pairs" + suffix, "float64");
   def_pairs_queries<float, N>(m, "Pairs" + suffix + "f", "float32");
   m.def("pairs",
-        [](const B& a, const B& b, py::handle velocity_a, py::handle velocity_b, py::handle t_max,
-           const py::object& dtype) -> py::object {
+        [](const B& a, const B& b, const std::optional<ArrayLike>& velocity_a_given,
+           const std::optional<ArrayLike>& velocity_b_given, const ArrayLike& t_max,
+           const py::object& dtype) -> PairsObject<N> {
+          const py::handle velocity_a = or_none(velocity_a_given), velocity_b = or_none(velocity_b_given);
           const std::size_t n = paired(a, b);
           const py::dtype type = py::dtype::from_args(dtype);
           const bool single = type.kind() == 'f' && type.itemsize() == 4;
@@ -379,30 +493,44 @@ void def_batch_queries(py::module_& m) {
           const bool moving = !velocity_a.is_none() || !velocity_b.is_none();
           const Motion<N> motion = moving ? motion_of<N>(n, velocity_a, velocity_b, t_max) : Motion<N>{};
           const Motion<N>* moves = moving ? &motion : nullptr;
-          return single ? py::cast(pairs_in<float, N>(a, b, moves)) : py::cast(pairs_in<double, N>(a, b, moves));
+          py::object out =
+              single ? py::cast(pairs_in<float, N>(a, b, moves)) : py::cast(pairs_in<double, N>(a, b, moves));
+          return py::reinterpret_steal<PairsObject<N>>(out.release());
         },
         py::arg("a"), py::arg("b"), py::arg("velocity_a") = py::none(), py::arg("velocity_b") = py::none(),
-        py::arg("t_max") = 0.0, py::kw_only(), py::arg("dtype") = py::dtype::of<double>(),
-        "Pairs (a[i], b[i]), with velocities and time windows for first_contact (static pairs without). "
-        "dtype float32: every body, velocity and window rounded to float, the columns stored in float and "
-        "overlap / classify filtered in float (batch.hpp), first_contact's arrays float32.");
+        py::arg("t_max") = 0.0, py::arg("dtype") = py::dtype::of<double>(),
+        docs::doc("The pairs (a[i], b[i]) prepared once for overlap, classify and first_contact (batch.hpp's Pairs).",
+                  "a, b: two Ellipses or two Ellipsoids of equal length.\nvelocity_a, velocity_b: (n, N) velocities "
+                  "for first_contact (None: static pairs).\nt_max: the window [0, t_max], a number or (n,).\n"
+                  "dtype: float64, or float32 (every body, velocity and window rounded to float; overlap and classify "
+                  "then filter in float, first_contact returns float32 arrays).",
+                  "Pairs2 / Pairs3 (float64), Pairs2f / Pairs3f (float32).",
+                  "TypeError: another dtype, or arrays not of numbers.\nValueError: lengths or shapes that differ.\n"
+                  "InputError: a body that leaves float's range (float32), named: b[17].radii[0].")
+            .c_str());
   m.def("overlap",
         [](const B& a, const B& b, const Options& o, int threads) {
           return overlap_array(paired(a, b), [&](std::span<bool> out) {
             overlap<double, N>(span_of(a), span_of(b), out, {o, threads});
           });
         },
-        py::arg("a"), py::arg("b"), py::arg("options") = Options{}, py::arg("threads") = 0);
+        py::arg("a"), py::arg("b"), options_arg(), py::arg("threads") = 0,
+        docs::doc("Whether the bodies of each pair share a point (batch.hpp).", docs::batch_pair, "bool array (n,).",
+                  docs::batch_raises)
+            .c_str());
   m.def("classify",
         [](const B& a, const B& b, const Options& o, int threads) {
           return classify_array(paired(a, b), [&](std::span<Relation> out) {
             classify<double, N>(span_of(a), span_of(b), out, {o, threads});
           });
         },
-        py::arg("a"), py::arg("b"), py::arg("options") = Options{}, py::arg("threads") = 0);
+        py::arg("a"), py::arg("b"), options_arg(), py::arg("threads") = 0,
+        docs::doc("The relation of the bodies of each pair (batch.hpp).", docs::batch_pair,
+                  "int8 array (n,) of Relation values.", docs::batch_raises)
+            .c_str());
   m.def("first_contact",
-        [](const B& a, py::handle velocity_a, const B& b, py::handle velocity_b, py::handle t_max, const Options& o,
-           int threads) {
+        [](const B& a, const ArrayLike& velocity_a, const B& b, const ArrayLike& velocity_b, const ArrayLike& t_max,
+           const Options& o, int threads) {
           const std::size_t n = paired(a, b);
           const Motion<N> motion = motion_of<N>(n, velocity_a, velocity_b, t_max);
           return contact_array<double, N>(n, [&](std::span<Contact<double, N>> out) {
@@ -411,7 +539,13 @@ void def_batch_queries(py::module_& m) {
           });
         },
         py::arg("a"), py::arg("velocity_a"), py::arg("b"), py::arg("velocity_b"), py::arg("t_max"),
-        py::arg("options") = Options{}, py::arg("threads") = 0);
+        options_arg(), py::arg("threads") = 0,
+        docs::doc("First contact of each pair of moving bodies in [0, t_max] (batch.hpp).",
+                  "a, b: two Ellipses or two Ellipsoids of equal length.\nvelocity_a, velocity_b: (n, N).\n"
+                  "t_max: a number or (n,).\n" + docs::options + "\n" + docs::threads,
+                  "ContactArrays(status int8 (n,), time (n,), point (n, N), normal (n, N)).",
+                  "TypeError: arrays not of numbers.\nValueError: lengths or shapes that differ.")
+            .c_str());
   using Query = Distance<double, N> (*)(const Ellipsoid<double, N>&, const Ellipsoid<double, N>&,
                                         const Options&) noexcept;
   for (const auto& [name, query] : {std::pair<const char*, Query>{"distance", &distance<double, N>},
@@ -437,9 +571,15 @@ void def_batch_queries(py::module_& m) {
                 Eigen::Map<Vec<double, N>>{z + i * N} = r.normal;
               });
             }
-            return distance_arrays(status, dist, pa, pb, normal);
+            return py::reinterpret_steal<DistanceArraysObject>(
+                distance_arrays(status, dist, pa, pb, normal).release());
           },
-          py::arg("a"), py::arg("b"), py::arg("options") = Options{}, py::arg("threads") = 0);
+          py::arg("a"), py::arg("b"), options_arg(), py::arg("threads") = 0,
+          docs::doc(std::string(name) + " of each pair, the scalar function in a thread pool (distance.hpp).",
+                    docs::batch_pair,
+                    "DistanceArrays(status int8 (n,), distance (n,), point_a, point_b, normal (n, N)).",
+                    docs::batch_raises)
+              .c_str());
   }
   m.def("overlapping_pairs",
         [](const B& bodies, const Options& o, int threads, std::optional<std::array<double, N>> size) {
@@ -465,10 +605,14 @@ void def_batch_queries(py::module_& m) {
           }
           return out;
         },
-        py::arg("bodies"), py::arg("options") = Options{}, py::arg("threads") = 0, py::arg("box") = py::none(),
-        "Every pair (i, j), i < j, of bodies that overlap, sorted: an (m, 2) int64 array. With box "
-        "(the sides of a periodic box), every pair and image m through which they overlap (body j "
-        "translated by m * box meets body i): an (m, 2 + dim) int64 array of i, j, m.");
+        py::arg("bodies"), options_arg(), py::arg("threads") = 0, py::arg("box") = py::none(),
+        docs::doc("Every pair of bodies that overlap (broad_phase.hpp).",
+                  "bodies: Ellipses / Ellipsoids.\n" + docs::options + "\n" + docs::threads +
+                      "\nbox: None, or the sides of a periodic box (N,).",
+                  "(m, 2) int64 array of i < j, sorted; with box, (m, 2 + N): i, j and the image m of j (j translated "
+                  "by m * box meets i).",
+                  docs::no_overload)
+            .c_str());
 }
 
 // earliest_contact among n bodies with velocities (n, dim) and, optionally, angular
@@ -476,15 +620,16 @@ void def_batch_queries(py::module_& m) {
 template <int N>
 void def_earliest_contact(py::module_& m) {
   m.def("earliest_contact",
-        [](const Bodies<N>& bodies, py::handle velocities, double t_max, py::handle angular_velocities,
-           std::optional<std::array<double, N>> size, const Options& o) {
+        [](const Bodies<N>& bodies, const ArrayLike& velocities, double t_max,
+           const std::optional<ArrayLike>& angular_velocities, std::optional<std::array<double, N>> size,
+           const Options& o) {
           py::ssize_t rows = static_cast<py::ssize_t>(bodies.items.size());
-          const double* v = checked(velocities, "velocities", {N}, rows, "bodies");
-          const double* w = angular_velocities.is_none()
-                                ? nullptr
-                                : checked(angular_velocities, "angular_velocities",
+          const auto v_array = checked(velocities, "velocities", {N}, rows, "bodies");
+          const auto w_array = checked_if(or_none(angular_velocities), "angular_velocities",
                                           N == 2 ? std::vector<py::ssize_t>{} : std::vector<py::ssize_t>{3}, rows,
                                           "bodies");
+          const double* v = v_array.data();
+          const double* w = w_array ? w_array->data() : nullptr;
           std::vector<RigidMotion<double, N>> motions(bodies.items.size());
           for (std::size_t i = 0; i < motions.size(); ++i) {
             motions[i].velocity = row_vec<N>(v + i * N);
@@ -502,11 +647,17 @@ void def_earliest_contact(py::module_& m) {
           }
           return py::make_tuple(e.pair.i, e.pair.j, py::tuple(py::cast(e.pair.image)), e.contact);
         },
-        py::arg("bodies"), py::arg("velocities"), py::arg("t_max"), py::kw_only(),
-        py::arg("angular_velocities") = py::none(), py::arg("box") = py::none(), py::arg("options") = Options{},
-        "The first contact among all pairs of bodies moving with constant linear and angular velocities in "
-        "[0, t_max] (broad_phase.hpp): (i, j, image, Contact). With box (the sides of a periodic box), body j "
-        "translated by image * box meets body i.");
+        py::arg("bodies"), py::arg("velocities"), py::arg("t_max"),
+        py::arg("angular_velocities") = py::none(), py::arg("box") = py::none(), options_arg(),
+        docs::doc("The first contact among all pairs of bodies moving with constant linear and angular velocities "
+                  "in [0, t_max] (broad_phase.hpp).",
+                  "bodies: Ellipses / Ellipsoids.\nvelocities: (n, N).\nt_max: the window's end.\n"
+                  "angular_velocities: None, (n,) in 2D or (n, 3) in 3D.\nbox: None, or the sides of a periodic box "
+                  "(N,).\n" + docs::options,
+                  "(i, j, image, Contact): the pair, the image of j (j translated by image * box meets i; zeros "
+                  "without box) and the contact.",
+                  "TypeError: arrays not of numbers.\nValueError: shapes or row counts that differ from bodies.")
+            .c_str());
 }
 
 // overlap_area and iou over pairs of ellipses.
@@ -532,7 +683,12 @@ void def_areas(py::module_& m) {
             parallel_for(n, threads, [&](std::size_t i) { p[i] = query(a.items[i], b.items[i], o); });
             return out;
           },
-          py::arg("a"), py::arg("b"), py::arg("options") = Options{}, py::arg("threads") = 0);
+          py::arg("a"), py::arg("b"), options_arg(), py::arg("threads") = 0,
+          docs::doc(std::string(name) + " of each pair of ellipses, the scalar function in a thread pool "
+                                        "(intersect2.hpp).",
+                    "a, b: two Ellipses of equal length.\n" + docs::options + "\n" + docs::threads,
+                    "float64 array (n,).", docs::batch_raises)
+              .c_str());
   }
 }
 
@@ -548,16 +704,44 @@ void def_batch(py::module_& m) {
   m.attr("DistanceArrays") = distance_arrays;
 
   def_bodies<2>(m, "Ellipses", "Ellipse")
-      .def(py::init(&make_ellipses), py::kw_only(), py::arg("centers"), py::arg("radii"),
-           py::arg("angles") = py::none(), py::arg("rotations") = py::none(),
-           "n ellipses from float64 arrays: centers (n, 2), radii (n, 2), and angles (n,) or rotations (n, 2, 2).")
-      .def(py::pickle(&state_of<2>, [](const py::tuple& t) { return make_ellipses(t[0], t[1], py::none(), t[2]); }));
+      .def(py::init([](const ArrayLike& centers, const ArrayLike& radii, const std::optional<ArrayLike>& angles,
+                       const std::optional<ArrayLike>& rotations, bool normalize) {
+             return make_ellipses(centers, radii, or_none(angles), or_none(rotations), normalize);
+           }),
+           py::arg("centers"), py::arg("radii"),
+           py::arg("angles") = py::none(), py::arg("rotations") = py::none(), py::arg("normalize") = false,
+           docs::doc("n ellipses from arrays, one per row, by the library's batch factory (shapes.hpp).",
+                     "centers: (n, 2).\nradii: (n, 2).\nangles: (n,) radians, or rotations: (n, 2, 2), the axes as "
+                     "columns.\nnormalize: make each rotation within float32's tolerance (1e-5) orthonormal first "
+                     "(automatic for float32 rotations).\nArrays: any array_like of real numbers; a C-contiguous "
+                     "float64 array is read without a copy.",
+                     "Ellipses.",
+                     "TypeError: an array that is not real numbers.\nValueError: a wrong shape or row count, or "
+                     "both angles and rotations.\nInputError: the first bad value, named by argument, row and "
+                     "column: centers[4, 1], rotations[3, 0, 1].")
+               .c_str())
+      .def(py::pickle(&state_of<2>,
+                      [](const py::tuple& t) { return make_ellipses(t[0], t[1], py::none(), t[2], false); }));
   def_bodies<3>(m, "Ellipsoids", "Ellipsoid")
-      .def(py::init(&make_ellipsoids), py::kw_only(), py::arg("centers"), py::arg("radii"),
-           py::arg("quaternions") = py::none(), py::arg("rotations") = py::none(),
-           "n ellipsoids from float64 arrays: centers (n, 3), radii (n, 3), and quaternions (n, 4) as (w, x, y, z) "
-           "or rotations (n, 3, 3).")
-      .def(py::pickle(&state_of<3>, [](const py::tuple& t) { return make_ellipsoids(t[0], t[1], py::none(), t[2]); }));
+      .def(py::init([](const ArrayLike& centers, const ArrayLike& radii, const std::optional<ArrayLike>& quaternions,
+                       const std::optional<ArrayLike>& rotations, bool normalize) {
+             return make_ellipsoids(centers, radii, or_none(quaternions), or_none(rotations), normalize);
+           }),
+           py::arg("centers"), py::arg("radii"),
+           py::arg("quaternions") = py::none(), py::arg("rotations") = py::none(), py::arg("normalize") = false,
+           docs::doc("n ellipsoids from arrays, one per row, by the library's batch factory (shapes.hpp).",
+                     "centers: (n, 3).\nradii: (n, 3).\nquaternions: (n, 4) as (w, x, y, z), or rotations: "
+                     "(n, 3, 3), the axes as columns.\nnormalize: divide each quaternion within float32's tolerance "
+                     "(1e-5) of unit norm by its norm, make each such rotation orthonormal, first (automatic for "
+                     "float32 arrays).\nArrays: any array_like of real numbers; a C-contiguous float64 array is read "
+                     "without a copy.",
+                     "Ellipsoids.",
+                     "TypeError: an array that is not real numbers.\nValueError: a wrong shape or row count, or "
+                     "both quaternions and rotations.\nInputError: the first bad value, named by argument, row and "
+                     "column: quaternions[1], rotations[3, 0, 1].")
+               .c_str())
+      .def(py::pickle(&state_of<3>,
+                      [](const py::tuple& t) { return make_ellipsoids(t[0], t[1], py::none(), t[2], false); }));
   def_batch_queries<2>(m);
   def_batch_queries<3>(m);
   m.def(
@@ -570,7 +754,10 @@ void def_batch(py::module_& m) {
         d["name"] = info.name;
         return d;
       },
-      "{'built': the library holds the CUDA path, 'devices': CUDA devices present, 'name': the current one's}.");
+      docs::doc("The CUDA path of the batch filter (gpu.hpp).", "(none)",
+                "{'built': the library holds the CUDA path, 'devices': CUDA devices present, 'name': the current "
+                "one's}.")
+          .c_str());
   def_earliest_contact<2>(m);
   def_earliest_contact<3>(m);
   def_areas(m);
@@ -578,6 +765,7 @@ void def_batch(py::module_& m) {
 
 void def_errors(py::module_& m) {
   static py::handle type = py::exception<InputError>(m, "InputError", PyExc_ValueError).release();
+  type.attr("__doc__") = "A bad input value: a ValueError whose `field` names it (radii[1], centers[4, 1]).";
   py::register_exception_translator([](std::exception_ptr p) {
     try {
       if (p) std::rethrow_exception(p);

@@ -4,12 +4,21 @@
 
 #include <ellipsect/ellipsect.hpp>
 
+#include <Eigen/SVD>
+
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
 
 #include <algorithm>
 #include <atomic>
+#include <charconv>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <initializer_list>
+#include <optional>
+#include <span>
 #include <string>
 #include <thread>
 #include <type_traits>
@@ -28,6 +37,26 @@ inline constexpr bool is_bound_enum =
     std::is_same_v<E, Side> || std::is_same_v<E, QuarticStatus> || std::is_same_v<E, ContactFunctionStatus> ||
     std::is_same_v<E, SlideStatus>;
 
+// The name of the IntEnum that stands for the C++ enum E, for signatures and type stubs.
+template <class E>
+struct enum_name;
+#define ELLIPSECT_ENUM_NAME(E) \
+  template <>              \
+  struct enum_name<E> {    \
+    static constexpr auto name = py::detail::const_name(#E); \
+  };
+ELLIPSECT_ENUM_NAME(Relation)
+ELLIPSECT_ENUM_NAME(ContactStatus)
+ELLIPSECT_ENUM_NAME(DistanceStatus)
+ELLIPSECT_ENUM_NAME(CrossingKind)
+ELLIPSECT_ENUM_NAME(BoundaryStatus)
+ELLIPSECT_ENUM_NAME(Verdict)
+ELLIPSECT_ENUM_NAME(Side)
+ELLIPSECT_ENUM_NAME(QuarticStatus)
+ELLIPSECT_ENUM_NAME(ContactFunctionStatus)
+ELLIPSECT_ENUM_NAME(SlideStatus)
+#undef ELLIPSECT_ENUM_NAME
+
 // The Python class (an enum.IntEnum) that stands for the C++ enum E; set by def_enum.
 template <class E>
 inline PyObject* enum_class = nullptr;
@@ -39,6 +68,7 @@ void def_enum(py::module_& m, const char* name, std::initializer_list<std::pair<
   py::list members;
   for (const auto& [key, value] : values) members.append(py::make_tuple(key, static_cast<int>(value)));
   py::object cls = py::module_::import("enum").attr("IntEnum")(name, members, py::arg("module") = "ellipsect");
+  cls.attr("__doc__") = std::string("The library's enum ellipsect::") + name + ", its names and values (to_string).";
   m.attr(name) = cls;
   enum_class<E> = cls.release().ptr();
 }
@@ -56,6 +86,87 @@ py::array_t<double> to_array(const Eigen::MatrixBase<Derived>& x) {
       for (int j = 0; j < N; ++j) out.mutable_at(i, j) = double(x(i, j));
     return out;
   }
+}
+
+// The shortest text that reads back as x, for reprs ("0.1", "3", "nan", "inf").
+inline std::string number_text(double x) {
+  if (std::isnan(x)) return "nan";
+  if (std::isinf(x)) return x > 0 ? "inf" : "-inf";
+  char buffer[32];
+  const auto end = std::to_chars(buffer, buffer + sizeof buffer, x).ptr;
+  return std::string(buffer, end);
+}
+
+// A vector as "[a, b]", a matrix as its rows "[[a, b], [c, d]]".
+template <class Derived>
+std::string text(const Eigen::MatrixBase<Derived>& x) {
+  const auto row = [&](Eigen::Index i, bool along_row) {
+    std::string s = "[";
+    const Eigen::Index n = along_row ? x.cols() : x.rows();
+    for (Eigen::Index k = 0; k < n; ++k) {
+      if (k) s += ", ";
+      s += number_text(double(along_row ? x(i, k) : x(k, i)));
+    }
+    return s += "]";
+  };
+  if (x.cols() == 1) return row(0, false);
+  std::string s = "[";
+  for (Eigen::Index i = 0; i < x.rows(); ++i) {
+    if (i) s += ", ";
+    s += row(i, true);
+  }
+  return s += "]";
+}
+
+// The values of Eigen vectors and matrices and of numbers, one after another.
+template <class... Xs>
+std::vector<double> numbers_of(const Xs&... xs) {
+  std::vector<double> out;
+  const auto add = [&out](const auto& x) {
+    if constexpr (std::is_arithmetic_v<std::decay_t<decltype(x)>>)
+      out.push_back(double(x));
+    else
+      for (Eigen::Index k = 0; k < x.size(); ++k) out.push_back(double(x.reshaped()(k)));
+  };
+  (add(xs), ...);
+  return out;
+}
+
+// __eq__ and __hash__ of a value type: equal when numbers(x) are (== on each, so 0.0 equals -0.0).
+template <class X, class Numbers>
+void def_equality(py::class_<X>& c, Numbers numbers) {
+  c.def(
+       "__eq__",
+       [numbers](const X& x, const py::object& other) -> py::object {
+         if (!py::isinstance<X>(other)) return py::reinterpret_borrow<py::object>(Py_NotImplemented);
+         return py::bool_(numbers(x) == numbers(other.cast<const X&>()));
+       },
+       py::arg("other"))
+      .def("__hash__", [numbers](const X& x) {
+        py::list values;
+        for (const double v : numbers(x)) values.append(v);
+        return py::hash(py::tuple(values));
+      });
+}
+
+// Pickling of a result type as its bytes: the library's results are plain structs (standard
+// layout) of numbers, enums, bodies and Eigen fixed-size vectors, which hold their values in
+// place, so the copy comes back bit for bit (between builds of the same version on machines of
+// the same byte order).
+template <class X>
+void def_pickle_bytes(py::class_<X>& c) {
+  static_assert(std::is_standard_layout_v<X> && std::is_trivially_destructible_v<X> &&
+                std::is_default_constructible_v<X>);
+  c.def(py::pickle([](const X& x) { return py::bytes(reinterpret_cast<const char*>(&x), sizeof(X)); },
+                   [](const py::bytes& state) {
+                     const std::string bytes = state;
+                     if (bytes.size() != sizeof(X))
+                       throw py::value_error("pickled state: expected " + std::to_string(sizeof(X)) + " bytes, got " +
+                                             std::to_string(bytes.size()));
+                     X x;
+                     std::memcpy(static_cast<void*>(&x), bytes.data(), sizeof(X));
+                     return x;
+                   }));
 }
 
 // Calls f(i) for every i in [0, n) on up to `threads` threads (0: every hardware thread),
@@ -85,17 +196,62 @@ inline std::string shape_text(const std::vector<py::ssize_t>& shape) {
   return s + (shape.size() == 1 ? ",)" : ")");
 }
 
-// The data of argument `name`: a C-contiguous float64 numpy array of shape
-// (rows, trailing...); rows < 0 accepts any count and sets it. `rows_from` names the
-// argument that set the count, for the message.
-inline const double* checked(py::handle obj, const std::string& name, std::vector<py::ssize_t> trailing, py::ssize_t& rows,
-                      const std::string& rows_from) {
-  if (!py::isinstance<py::array>(obj))
-    throw py::type_error(name + ": expected a numpy array of float64, got " +
-                         std::string(py::str(py::type::handle_of(obj).attr("__name__"))));
-  const auto a = py::reinterpret_borrow<py::array>(obj);
-  if (!py::isinstance<py::array_t<double>>(a))  // float64 in native byte order
-    throw py::type_error(name + ": expected dtype float64, got " + std::string(py::str(a.dtype())));
+// An argument taken by numpy's array_like convention (numbers() below): any object, named
+// numpy.typing.ArrayLike in signatures and type stubs.
+inline bool any_object(PyObject*) { return true; }
+class ArrayLike : public py::object {
+public:
+  PYBIND11_OBJECT_DEFAULT(ArrayLike, py::object, any_object)
+};
+// Results that are Python objects, named in signatures and type stubs by what they are:
+// the namedtuples ContactArrays and DistanceArrays, and the prepared pairs of either dtype.
+class ContactArraysObject : public py::object {
+public:
+  PYBIND11_OBJECT_DEFAULT(ContactArraysObject, py::object, any_object)
+};
+class DistanceArraysObject : public py::object {
+public:
+  PYBIND11_OBJECT_DEFAULT(DistanceArraysObject, py::object, any_object)
+};
+template <int N>
+class PairsObject : public py::object {
+public:
+  PYBIND11_OBJECT_DEFAULT(PairsObject, py::object, any_object)
+};
+
+// The `options` argument of every query, shown as Options() in signatures and stubs.
+inline py::arg_v options_arg() { return py::arg_v("options", Options{}, "Options()"); }
+
+// An optional ArrayLike (None: absent) as a handle that is None when absent.
+inline py::handle or_none(const std::optional<ArrayLike>& x) { return x ? py::handle(*x) : py::handle(Py_None); }
+
+// Argument `name` as a numpy array of numbers, by numpy's array_like convention (lists and
+// scalars through numpy.asarray): real kinds (float, integer, bool) pass, and so do object
+// arrays that convert to float64; anything else is a TypeError naming the argument.
+inline py::array numbers(py::handle obj, const std::string& name) {
+  const auto numpy = py::module_::import("numpy");
+  py::array a;
+  try {
+    a = py::isinstance<py::array>(obj) ? py::reinterpret_borrow<py::array>(obj) : py::array(numpy.attr("asarray")(obj));
+    if (a.dtype().kind() == 'O') a = a.attr("astype")("float64");
+  } catch (py::error_already_set& e) {
+    throw py::type_error(name + ": expected an array_like of real numbers, got " +
+                         std::string(py::str(py::type::handle_of(obj).attr("__name__"))) + " (" +
+                         std::string(py::str(e.value())) + ")");
+  }
+  const char kind = a.dtype().kind();
+  if (kind != 'f' && kind != 'i' && kind != 'u' && kind != 'b')
+    throw py::type_error(name + ": expected real numbers, got dtype " + std::string(py::str(a.dtype())));
+  return a;
+}
+
+// Argument `name` as a C-contiguous float64 array of shape (rows, trailing...): any array_like
+// of real numbers of that shape (numbers()), converted (a copy) unless it is a C-contiguous
+// float64 array already, which is used as it is. rows < 0 accepts any count and sets it.
+// `rows_from` names the argument that set the count, for the message.
+inline py::array_t<double> checked(py::handle obj, const std::string& name, std::vector<py::ssize_t> trailing,
+                                   py::ssize_t& rows, const std::string& rows_from) {
+  py::array a = numbers(obj, name);
   trailing.insert(trailing.begin(), rows);
   std::vector<py::ssize_t> shape(a.shape(), a.shape() + a.ndim());
   bool fits = shape.size() == trailing.size();
@@ -104,10 +260,44 @@ inline const double* checked(py::handle obj, const std::string& name, std::vecto
   if (rows >= 0 && shape[0] != rows)
     throw py::value_error(name + ": expected " + std::to_string(rows) + " rows, as " + rows_from + ", got " +
                           std::to_string(shape[0]));
-  if (!(a.flags() & py::array::c_style))
-    throw py::value_error(name + ": must be C-contiguous (numpy.ascontiguousarray)");
   rows = shape[0];
-  return static_cast<const double*>(a.data());
+  return py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(a);  // no copy when it fits
+}
+
+// Argument `name` as int64 indices: an array_like of integers (numpy's "safe" casting rule,
+// as numpy.take applies it: floats are a TypeError, never truncated; an empty list passes).
+inline py::array_t<std::int64_t> integers(py::handle obj, const std::string& name) {
+  const auto numpy = py::module_::import("numpy");
+  const py::array a = numbers(obj, name);
+  if (a.size() > 0 && !numpy.attr("can_cast")(a.dtype(), "int64", "safe").cast<bool>())
+    throw py::type_error(name + ": expected integers, got dtype " + std::string(py::str(a.dtype())));
+  return py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>::ensure(a);
+}
+
+// normalize=True (and float32 orientations): each row of quaternions (w, x, y, z) within
+// float32's tolerance of unit norm is divided by its norm, and each row-major N x N rotation
+// within it of orthonormal is replaced by the nearest orthonormal matrix (U V^T of its SVD),
+// in double; rows farther off stay as given, for the library's checks to name. Data rounded to
+// float32 is ~6e-8 off, beyond the 1e-9 the float64 factories accept (shapes.hpp).
+inline constexpr double normalize_tolerance = Ellipsoid<float, 3>::axes_tolerance;
+
+inline void normalize_quaternions(std::span<double> rows) {
+  for (std::size_t i = 0; i + 4 <= rows.size(); i += 4) {
+    Eigen::Map<Eigen::Vector4d> q(rows.data() + i);
+    const double norm = q.norm();
+    if (std::abs(norm - 1.0) <= normalize_tolerance) q /= norm;
+  }
+}
+
+template <int N>
+void normalize_rotations(std::span<double> rows) {
+  using M = Eigen::Matrix<double, N, N>;
+  for (std::size_t i = 0; i + N * N <= rows.size(); i += N * N) {
+    Eigen::Map<Eigen::Matrix<double, N, N, Eigen::RowMajor>> r(rows.data() + i);
+    if (!((r.transpose() * r - M::Identity()).cwiseAbs().maxCoeff() <= normalize_tolerance)) continue;
+    const Eigen::JacobiSVD<M> svd(M(r), Eigen::ComputeFullU | Eigen::ComputeFullV);
+    r = svd.matrixU() * svd.matrixV().transpose();
+  }
 }
 
 void def_scalar(py::module_& m);
@@ -117,10 +307,48 @@ void def_batch(py::module_& m);
 
 namespace pybind11::detail {
 
+template <>
+struct handle_type_name<ellipsect::python::ArrayLike> {
+  static constexpr auto name = const_name("numpy.typing.ArrayLike");
+};
+template <>
+struct handle_type_name<ellipsect::python::ContactArraysObject> {
+  static constexpr auto name = const_name("ContactArrays");
+};
+template <>
+struct handle_type_name<ellipsect::python::DistanceArraysObject> {
+  static constexpr auto name = const_name("DistanceArrays");
+};
+template <int N>
+struct handle_type_name<ellipsect::python::PairsObject<N>> {
+  static constexpr auto name =
+      const_name("Union[Pairs") + const_name<N>() + const_name(", Pairs") + const_name<N>() + const_name("f]");
+};
+
+// Fixed-size numbers (a point, a quaternion, a matrix as rows) take any sequence of numbers,
+// named numpy.typing.ArrayLike in signatures and type stubs (pybind11's own name, List[float[2]],
+// is not a type).
+template <class Array, class Value, std::size_t Size>
+struct array_like_caster : array_caster<Array, Value, false, Size> {
+  static constexpr auto name = const_name("numpy.typing.ArrayLike");
+};
+template <std::size_t N>
+using Row = std::array<double, N>;
+template <>
+struct type_caster<Row<2>> : array_like_caster<Row<2>, double, 2> {};
+template <>
+struct type_caster<Row<3>> : array_like_caster<Row<3>, double, 3> {};
+template <>
+struct type_caster<Row<4>> : array_like_caster<Row<4>, double, 4> {};
+template <>
+struct type_caster<std::array<Row<2>, 2>> : array_like_caster<std::array<Row<2>, 2>, Row<2>, 2> {};
+template <>
+struct type_caster<std::array<Row<3>, 3>> : array_like_caster<std::array<Row<3>, 3>, Row<3>, 3> {};
+
 // A C++ enum of the library <-> its Python IntEnum (ints are accepted too).
 template <class E>
 struct type_caster<E, std::enable_if_t<ellipsect::python::is_bound_enum<E>>> {
-  PYBIND11_TYPE_CASTER(E, const_name("IntEnum"));
+  PYBIND11_TYPE_CASTER(E, ellipsect::python::enum_name<E>::name);
   bool load(handle src, bool) {
     if (ellipsect::python::enum_class<E> == nullptr || !PyLong_Check(src.ptr())) return false;
     value = static_cast<E>(src.cast<int>());

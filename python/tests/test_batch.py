@@ -107,6 +107,42 @@ def test_batches_pickle_bit_for_bit(dim):
         assert same_bits(getattr(again, field), getattr(a, field))
 
 
+def test_float32_orientations_are_normalized():
+    # Unit quaternions and rotations rounded to float32 are ~6e-8 off unit norm and
+    # orthonormality, beyond the 1e-9 of the float64 checks: as float32 arrays, or with
+    # normalize=True after astype(float64), each row within float32's tolerance is made exact.
+    rng = np.random.default_rng(21)
+    n = 200
+    q = rng.normal(size=(n, 4))
+    q /= np.linalg.norm(q, axis=1)[:, None]
+    centers, radii = rng.uniform(-5, 5, (n, 3)), rng.uniform(0.5, 2, (n, 3))
+    exact = ellipsect.Ellipsoids(centers=centers, radii=radii, quaternions=q)
+    q32, r32 = q.astype(np.float32), exact.rotations.astype(np.float32)
+    for name, given in (("quaternions", q32), ("rotations", r32)):
+        with pytest.raises(ellipsect.InputError, match=name):
+            ellipsect.Ellipsoids(centers=centers, radii=radii, **{name: given.astype(np.float64)})
+        got = ellipsect.Ellipsoids(centers=centers, radii=radii, **{name: given})
+        again = ellipsect.Ellipsoids(centers=centers, radii=radii, normalize=True, **{name: given.astype(np.float64)})
+        assert same_bits(got.rotations, again.rotations)
+        assert np.abs(got.rotations - exact.rotations).max() < 1e-6
+        gram = np.einsum("nki,nkj->nij", got.rotations, got.rotations)
+        assert np.abs(gram - np.eye(3)).max() <= 12 * np.finfo(float).eps  # as from_axes keeps axes
+        scalar = ellipsect.Ellipsoid(centers[5], radii[5], normalize=True, **{name[:-1]: given[5].astype(np.float64)})
+        assert same_bits(scalar.axes, got.rotations[5])
+        bad = given.copy()
+        bad[7] *= 2
+        with pytest.raises(ellipsect.InputError, match=rf"{name}\[7"):
+            ellipsect.Ellipsoids(centers=centers, radii=radii, **{name: bad})
+    flat, _ = random_ellipses(n, seed=22)
+    r2 = flat.rotations.astype(np.float32)
+    with pytest.raises(ellipsect.InputError, match="rotations"):
+        ellipsect.Ellipses(centers=flat.centers, radii=flat.radii, rotations=r2.astype(np.float64))
+    got = ellipsect.Ellipses(centers=flat.centers, radii=flat.radii, rotations=r2)
+    assert np.abs(got.rotations - flat.rotations).max() < 1e-6
+    assert same_bits(ellipsect.Ellipse(flat.centers[3], flat.radii[3], rotation=r2[3], normalize=True).axes,
+                     got.rotations[3])
+
+
 @pytest.mark.parametrize("dim", [2, 3])
 def test_overlapping_pairs_equal_all_pairs_loop(dim):
     bodies, scalar = MAKERS[dim](150, seed=11)

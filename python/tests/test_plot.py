@@ -40,3 +40,15 @@ def test_ellipsoid_outline_of_an_axis_aligned_body():
     p = ax.patches[0]
     assert np.allclose(p.center, [2, 3]) and np.isclose(max(p.width, p.height), 4)
     plt.close(ax.figure)
+
+
+def test_pairs_of_a_list_of_bodies():
+    batch, scalar = random_ellipses(12, seed=5)
+    index_pairs = ellipsect.overlapping_pairs(batch)
+    from_list = ep.pairs(None, scalar, index_pairs)
+    from_batch = ep.pairs(None, batch, index_pairs)
+    assert len(from_list.lines) == len(from_batch.lines) == len(index_pairs) > 0
+    for u, v in zip(from_list.lines, from_batch.lines):
+        assert np.array_equal(u.get_xydata(), v.get_xydata())
+    plt.close(from_list.figure)
+    plt.close(from_batch.figure)
