@@ -19,11 +19,13 @@ namespace {
 
 constexpr std::array<std::array<int, 2>, 1> segment_edge{{{0, 1}}};
 
-// The support maxima of the body and the segment moved by `shift`.
+// The support maxima of the body and the segment moved by `shift` (reach and farthest over
+// every stationary direction with `containment`, detail::max_support_gap).
 template <class T, int N>
-detail::Support<T, N> support_of(const Ellipsoid<T, N>& a, const Capsule<T, N>& b, const Vec<T, N>& shift) noexcept {
+detail::Support<T, N> support_of(const Ellipsoid<T, N>& a, const Capsule<T, N>& b, const Vec<T, N>& shift,
+                                 bool containment = false) noexcept {
   const std::array<Vec<T, N>, 2> p{Vec<T, N>(b.point(0) + shift), Vec<T, N>(b.point(1) + shift)};
-  return detail::polytope_support<T, N>(a, p, segment_edge, {});
+  return detail::polytope_support<T, N>(a, p, segment_edge, {}, {}, containment);
 }
 
 // The body's center against the segment, with the body between the balls of its smallest
@@ -57,6 +59,9 @@ int by_spheres(const Ellipsoid<T, N>& a, const Capsule<T, N>& b) noexcept {
 
 // classify's relation from the support maxima `s` of a and b's segment: the spheres' test
 // first (where it is surely apart, T's rounding of `s` may still read a touch), then the gap.
+// Containment needs reach and farthest over every stationary direction: where the segment
+// lies off the body (s.gap > 0) but within R of it, `s` holds only the largest roots' (a
+// needle sticking out of a capsule read as inside), and they are computed again.
 template <class T, int N>
 Relation relation_of(const Ellipsoid<T, N>& a, const Capsule<T, N>& b, const detail::Support<T, N>& s,
                      const Options& options) noexcept {
@@ -66,8 +71,9 @@ Relation relation_of(const Ellipsoid<T, N>& a, const Capsule<T, N>& b, const det
   const T gap = s.gap - radius;
   if (gap > band) return Relation::separated;
   if (gap >= -band) return Relation::touching;
-  if (s.farthest + radius <= band) return Relation::a_contains_b;
-  if (s.reach - radius <= band) return Relation::b_contains_a;
+  const detail::Support<T, N> all = s.complete ? s : support_of<T, N>(a, b, Vec<T, N>::Zero(), true);
+  if (all.farthest + radius <= band) return Relation::a_contains_b;
+  if (all.reach - radius <= band) return Relation::b_contains_a;
   return Relation::overlapping;
 }
 

@@ -19,6 +19,9 @@
 //                               body's boundary) <= -R;
 //                 b_contains_a  the body inside the capsule: its support function below the
 //                               capsule's, max over n of (min_k n . (p_k - c) + rho(n)) <= R;
+//                               both maxima over every stationary direction of the strata
+//                               (also where the segment lies off the body: a needle through
+//                               the capsule's surface);
 //                 (both with the tolerance band counted as inside), overlapping otherwise.
 //                 Before any of that, the body's center against the segment: farther than
 //                 largest radius + R by 1e-9 of the lengths is separated, nearer than smallest
@@ -32,7 +35,8 @@
 //                 (the gap never closes: no contact), or the step passes t_max.
 // Accuracy (tests/property/capsule_property_test.cpp, against the 50-digit search of the
 // sphere of tests/reference/support_gap_reference.hpp; random, aspect ratios to 1e4, near
-// tangency, containment both ways, balls (p0 = p1), long capsules, scale 1e-6 and 1e6), with
+// tangency, containment both ways and needles across the surface, balls (p0 = p1), long
+// capsules, scale 1e-6 and 1e6), with
 // scale = largest radius + R + largest |p_k - c|: the distance within 1e-12 scale; the
 // relation exact outside the tangency band widened by 1e-12 scale / rho(n*); contact times
 // where the reference's gap at the returned time is within 1e-12 scale of 0 and is positive

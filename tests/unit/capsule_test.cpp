@@ -144,4 +144,23 @@ TEST(Capsule, OverlapAtTinyScaleAgreesWithClassify) {
   EXPECT_TRUE(overlap(ball, make_capsule<double, 3>({0, 2.5 * x, x}, {2 * x, 2.5 * x, x}, x)));
 }
 
+// A needle whose center lies inside the capsule while its tip sticks out (the tip (1, 0, 0)
+// is 0.989 from the segment, R = 0.6) read as b_contains_a: the segment lies off the needle
+// (the gap of body and segment is positive), so the support maxima held reach (the body's
+// support function against the segment's) only at the largest roots' directions, none of
+// which looks along the needle. Containment is now decided on every stationary direction.
+// A needle short enough to fit (tips 0.58 from the segment, R = 0.7) is inside.
+TEST(Capsule, NeedleStickingOutIsNotInside) {
+  const auto needle = Ellipsoid<double, 3>::from_axes(V3::Zero(), Mat3<double>::Identity(), V3(1, 0.01, 0.01));
+  const auto capsule = make_capsule<double, 3>(V3(0, 0.5, -0.3), V3(0.2, 0.5, 0.3), 0.6);
+  EXPECT_EQ(classify(needle, capsule), Relation::overlapping);
+  EXPECT_TRUE(overlap(needle, capsule));
+  EXPECT_EQ(signed_distance(needle, capsule).status, DistanceStatus::overlapping);
+  const auto fits = Ellipsoid<double, 3>::from_axes(V3::Zero(), Mat3<double>::Identity(), V3(0.2, 0.01, 0.01));
+  EXPECT_EQ(classify(fits, make_capsule<double, 3>(V3(0, 0.5, -0.3), V3(0.2, 0.5, 0.3), 0.7)), Relation::b_contains_a);
+  // 2D: the tip (1, 0) is 0.943 from the segment's end (0.2, 0.5).
+  const auto needle2 = make_ellipse<double>(V2::Zero(), 0.0, V2(1, 0.01));
+  EXPECT_EQ(classify(needle2, make_capsule<double, 2>(V2(0, 0.5), V2(0.2, 0.5), 0.6)), Relation::overlapping);
+}
+
 }  // namespace
