@@ -60,11 +60,6 @@ std::array<Triangle<T, N>, N == 2 ? 2 : 12> Box<T, N>::triangles() const noexcep
   }
 }
 
-template <class T, int N>
-Box<T, N> Box<T, N>::translated(const Vec<T, N>& offset) const {
-  return Box(frame_.translated(offset));
-}
-
 namespace {
 
 // The relation from the triangles' (box.hpp, "Math"), and the index of the triangle that

@@ -56,7 +56,8 @@ public:
   // The box's triangles: two covering the rectangle in 2D, twelve covering the boundary in 3D.
   std::array<Triangle<T, N>, N == 2 ? 2 : 12> triangles() const noexcept;
 
-  // The box moved by offset (InputError "offset").
+  // The box moved by offset; throws InputError "offset[i]" for a non-finite offset[i],
+  // "offset" where the moved center leaves the range of T.
   Box translated(const Vec<T, N>& offset) const;
 
 private:

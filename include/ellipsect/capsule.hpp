@@ -65,7 +65,8 @@ public:
   // End point k in 0..1.
   Eigen::Map<const Vec<T, N>> point(int k) const noexcept { return Eigen::Map<const Vec<T, N>>(points_[k].data()); }
   T radius() const noexcept { return radius_; }
-  // The capsule moved by offset (InputError "offset").
+  // The capsule moved by offset; throws InputError "offset[i]" for a non-finite offset[i],
+  // "offset" where a moved end point leaves the range of T.
   Capsule translated(const Vec<T, N>& offset) const;
 
 private:

@@ -47,7 +47,18 @@ TEST(Box, FactoryChecksAndCorners) {
     EXPECT_EQ(std::string(e.what()).find("ellipsect: half_extents[1]: "), 0u) << e.what();
   }
   EXPECT_EQ(b.translated(V3(1, 1, 1)).center(), V3(2, 3, 4));
+  EXPECT_EQ(b.translated(V3(1, 1, 1)).half_extents(), V3(1, 2, 3));
   EXPECT_EQ((Box<double, 2>().corner(3)), V2(1, 1));
+}
+
+// translated() moved the box's frame, a body, whose check named its center ("center[0]" for
+// a NaN offset): the argument is the offset, as box.hpp says.
+TEST(Box, TranslatedNamesTheOffset) {
+  const auto b = make_box<double, 3>(V3(1, 2, 3), Mat3<double>::Identity(), V3(1, 2, 3));
+  expect_field([&] { (void)b.translated(V3(std::nan(""), 0, 0)); }, "offset[0]");
+  expect_field([&] { (void)b.translated(V3(0, 0, -inf)); }, "offset[2]");
+  expect_field([] { (void)make_box<double, 2>(V2(1e308, 0), Mat2<double>::Identity(), V2(1, 1)).translated(V2(1e308, 0)); },
+               "offset");
 }
 
 TEST(Box, UnitBallAgainstFacesEdgesCornersAndInside) {

@@ -28,7 +28,8 @@ TEST(Capsule, FactoryChecksItsFields) {
   expect_field([] { make_capsule<double, 3>(V3(0, 0, 0), V3(1, 0, 0), 0.0); }, "radius");
   expect_field([] { make_capsule<double, 3>(V3(0, 0, 0), V3(1, 0, 0), -1.0); }, "radius");
   expect_field([] { make_capsule<double, 2>(V2(0, 0), V2(1, 0), std::nan("")); }, "radius");
-  expect_field([&] { (void)c.translated(V3(0, inf, 0)); }, "offset");
+  expect_field([&] { (void)c.translated(V3(0, inf, 0)); }, "offset[1]");
+  expect_field([] { (void)make_capsule<double, 2>(V2(1e308, 0), V2(0, 0), 1.0).translated(V2(1e308, 0)); }, "offset");
   EXPECT_EQ(c.translated(V3(0, 2, 0)).point(0), V3(0, 2, 0));
 }
 
