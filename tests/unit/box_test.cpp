@@ -222,10 +222,13 @@ void matches_reference() {
     const Vec<double, N> aim = Vec<double, N>(box.center() - a.center()).normalized() + 0.5 * unit_vector<N>(rng);
     const Vec<double, N> va = aim * log_uniform(rng, 0.1, 10);
     const auto hit = first_contact(a, va, box, Vec<double, N>::Zero(), inf);
+    // The box's triangles as the query computes them (box.hpp): on the pair moved by minus
+    // the body's center.
+    const Vec<double, N> to_origin = -a.center();
     Real earliest = ref::detail::infinity(), minimum = Real(1e300);
-    for (const auto& t : box.triangles()) {
+    for (const auto& t : box.translated(to_origin).triangles()) {
       const std::array<ref::DVec<N>, 3> v{t.vertex(0), t.vertex(1), t.vertex(2)};
-      const auto m = ref::moving_triangle<N>(ref::to_ref(a), v, va, Vec<double, N>::Zero());
+      const auto m = ref::moving_triangle<N>(ref::to_ref(a.translated(to_origin)), v, va, Vec<double, N>::Zero());
       const auto r = ref::triangle_contact_time<N>(m, Real(100 / va.norm()));
       earliest = std::min(earliest, r.time);
       minimum = std::min(minimum, r.minimum);
@@ -270,9 +273,11 @@ TEST(Box, ThinFloatPlateTestsEveryFace) {
   const float inf = std::numeric_limits<float>::infinity();
   const Contact<float, 3> c = first_contact(ball, v, plate, rest, inf);
   ASSERT_EQ(c.status, ContactStatus::hit);
+  // The triangles as the query computes them: on the pair moved by minus the ball's center.
+  const Vec3<float> center = ball.center();
   float earliest = inf;
-  for (const auto& t : plate.triangles()) {
-    const Contact<float, 3> ct = first_contact(ball, v, t, rest, inf);
+  for (const auto& t : plate.translated(-center).triangles()) {
+    const Contact<float, 3> ct = first_contact(ball.translated(-center), v, t, rest, inf);
     if (ct.status == ContactStatus::hit) earliest = std::min(earliest, ct.time);
   }
   EXPECT_EQ(c.time, earliest);
