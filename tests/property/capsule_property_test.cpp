@@ -15,7 +15,8 @@
 //   of 0 and positive at 0.999 of it (the first root); no contact only where the reference's
 //   gap stays positive at 8 times across the window.
 // Cases: random; aspect ratios to 1e4; near tangency (relative gaps 1e-10 to 1e-4, either
-// side, by moving the capsule along the reference's normal); balls (p0 = p1); long capsules
+// side, by moving the capsule along the reference's normal); balls (p0 = p1) and segments
+// 1e-15 to 1e-9 long; long capsules
 // (1e3); the capsule inside the body; the body inside the capsule; needles (aspect 100 to
 // 1000) with their center inside the capsule, inside it or through its surface (b_contains_a
 // against the body's farthest point from the segment, searched on the body's boundary);
@@ -44,9 +45,9 @@ using namespace ellipsect::testing;
 namespace ref = ellipsect::reference;
 using Real = ref::Real;
 
-enum class Kind { random, aspect, near, ball, long_capsule, capsule_inside, body_inside, small, huge, needle };
-constexpr Kind kinds[] = {Kind::random,         Kind::aspect,      Kind::near,  Kind::ball, Kind::long_capsule,
-                          Kind::capsule_inside, Kind::body_inside, Kind::small, Kind::huge, Kind::needle};
+enum class Kind { random, aspect, near, ball, long_capsule, capsule_inside, body_inside, small, huge, needle, speck };
+constexpr Kind kinds[] = {Kind::random,      Kind::aspect, Kind::near,   Kind::ball,  Kind::long_capsule, Kind::capsule_inside,
+                          Kind::body_inside, Kind::small,  Kind::huge,   Kind::needle, Kind::speck};
 
 template <int N>
 struct Case {
@@ -133,6 +134,7 @@ Case<N> make_case(Kind kind, int seed) {
   V p0 = c + unit_vector<N>(rng) * uniform(rng, 0, 4), p1 = p0 + unit_vector<N>(rng) * log_uniform(rng, 0.1, 4);
   double R = log_uniform(rng, 0.05, 2);
   if (kind == Kind::ball) p1 = p0;
+  if (kind == Kind::speck) p1 = p0 + unit_vector<N>(rng) * log_uniform(rng, 1e-15, 1e-9);  // nearly a ball
   if (kind == Kind::long_capsule) p1 = p0 + unit_vector<N>(rng) * 1e3;
   if (kind == Kind::capsule_inside) {
     // A short capsule about the center, within a tenth of the smallest radius.
