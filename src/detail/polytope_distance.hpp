@@ -34,6 +34,7 @@
 #include "axes.hpp"
 #include "contact_start.hpp"
 #include "scale.hpp"
+#include "secular.hpp"
 
 #include <Eigen/Eigenvalues>
 
@@ -49,9 +50,14 @@ namespace ellipsect::detail {
 
 // Calls emit(n) with the normal direction (not normalized) at each stationary point of
 // |y - x| over the boundary of {x : sum_i x_i^2 / a_i <= 1}, a_i = r_i^2 > 0; unless `all`,
-// only at the largest root (the nearest point of a point outside).
+// only at the largest root (the nearest point of a point outside). The point's components
+// within eps of the radii are taken as 0 (secular.hpp's settled(): the point moved by at
+// most that): smaller ones underflowed the terms a_i y_i^2, and a ball's hard case needs
+// y_i = 0, so that a vertex 1e-312 off a ball's center gave no direction at all and the
+// signed distance -infinity.
 template <class F, int M, class Emit>
-void stationary_normals(const Vec<F, M>& a, const Vec<F, M>& y, bool all, Emit&& emit) noexcept {
+void stationary_normals(const Vec<F, M>& a, const Vec<F, M>& given, bool all, Emit&& emit) noexcept {
+  const Vec<F, M> y = settled<F, M>(a.cwiseSqrt(), given);
   // The active poles -a_i (b_i = a_i y_i^2 > 0), equal ones merged, a ascending.
   std::array<F, M> pa{}, pb{};
   int m = 0;

@@ -164,4 +164,20 @@ TEST(Capsule, NeedleStickingOutIsNotInside) {
   EXPECT_EQ(classify(needle2, make_capsule<double, 2>(V2(0, 0.5), V2(0.2, 0.5), 0.6)), Relation::overlapping);
 }
 
+// A ball whose center is a subnormal offset from a zero-length capsule (a ball of radius 1):
+// in the ball's frame the capsule's point had coordinates whose squares underflowed the
+// secular terms, and a ball's hard-case directions need them 0: no direction came out,
+// and the signed distance was -infinity with a zero normal. Coordinates within eps of the
+// radii are now 0: the penetration depth r + R.
+TEST(Capsule, PointCapsuleSubnormalOffFromABallsCenter) {
+  const double s = 4.058311769621644e-312, r = 11.594921875000001;
+  const auto ball = make_ball<double, 3>({s, 1.1 * s, 1.2 * s}, r);
+  const auto point = make_capsule<double, 3>(V3::Zero(), V3::Zero(), 1.0);
+  const Distance<double, 3> d = signed_distance(ball, point);
+  EXPECT_EQ(d.status, DistanceStatus::overlapping);
+  EXPECT_NEAR(d.distance, -(r + 1), 1e-14 * r);
+  EXPECT_NEAR(d.normal.norm(), 1, 1e-15);
+  EXPECT_NEAR((d.point_a - ball.center()).norm(), r, 1e-14 * r);
+}
+
 }  // namespace
