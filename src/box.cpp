@@ -60,11 +60,6 @@ std::array<Triangle<T, N>, N == 2 ? 2 : 12> Box<T, N>::triangles() const noexcep
   }
 }
 
-template <class T, int N>
-Box<T, N> Box<T, N>::translated(const Vec<T, N>& offset) const {
-  return Box(frame_.translated(offset));
-}
-
 namespace {
 
 // The relation from the triangles' (box.hpp, "Math"), and the index of the triangle that
@@ -198,32 +193,67 @@ Settled settled_relation(const Ellipsoid<T, N>& a, const Box<T, N>& b, const Opt
   return settled_relation(InBoxFrame<T, N>(a, b, options));
 }
 
-}  // namespace
+// The pair moved by minus the body's center: the body at the origin (exactly) and the box's
+// center at the difference of the centers, rounded once. The box's corners, computed in T,
+// are then rounded to ulps of the pair's extent rather than of its coordinates (a box 1e6
+// sizes from the origin had corners 1e-10 of its size off, beyond the accuracy stated).
+// Left in place where that difference overflows; points of the moved pair plus `shift` are
+// the world's.
+template <class T, int N>
+struct AtBody {
+  Ellipsoid<T, N> a;
+  Box<T, N> b;
+  Vec<T, N> shift = Vec<T, N>::Zero();
+
+  AtBody(const Ellipsoid<T, N>& a_world, const Box<T, N>& b_world) noexcept : a(a_world), b(b_world) {
+    const Vec<T, N> c = a_world.center();
+    if (c.isZero(0) || !Vec<T, N>(b_world.center() - c).allFinite()) return;
+    a = a_world.translated(-c);  // no throw: the moved centers are finite
+    b = b_world.translated(-c);
+    shift = c;
+  }
+};
 
 template <class T, int N>
-Relation classify(const Ellipsoid<T, N>& a, const Box<T, N>& b, const Options& options) noexcept {
+Relation classify_at_body(const Ellipsoid<T, N>& a, const Box<T, N>& b, const Options& options) noexcept {
   if (settled_relation(a, b, options) == Settled::separated) return Relation::separated;
   return relation_of(a, b, b.triangles(), options).first;
 }
 
+}  // namespace
+
 template <class T, int N>
-bool overlap(const Ellipsoid<T, N>& a, const Box<T, N>& b, const Options& options) noexcept {
-  const Settled settled = settled_relation(a, b, options);
-  if (settled != Settled::unsettled) return settled == Settled::overlapping;
-  return relation_of(a, b, b.triangles(), options).first != Relation::separated;
+Relation classify(const Ellipsoid<T, N>& a_world, const Box<T, N>& b_world, const Options& options) noexcept {
+  const AtBody<T, N> p(a_world, b_world);
+  return classify_at_body(p.a, p.b, options);
 }
 
 template <class T, int N>
-Contact<T, N> first_contact(const Ellipsoid<T, N>& a, const VecArg<T, N>& velocity_a, const Box<T, N>& b,
+bool overlap(const Ellipsoid<T, N>& a_world, const Box<T, N>& b_world, const Options& options) noexcept {
+  const AtBody<T, N> p(a_world, b_world);
+  const Settled settled = settled_relation(p.a, p.b, options);
+  if (settled != Settled::unsettled) return settled == Settled::overlapping;
+  return relation_of(p.a, p.b, p.b.triangles(), options).first != Relation::separated;
+}
+
+template <class T, int N>
+Contact<T, N> first_contact(const Ellipsoid<T, N>& a_world, const VecArg<T, N>& velocity_a, const Box<T, N>& b_world,
                             const VecArg<T, N>& velocity_b, T t_max, const Options& options) noexcept {
   Contact<T, N> out = detail::unanswered_contact<T, N>();
   if (!detail::valid_motion<T, N>(velocity_a, velocity_b, t_max)) return out;
+  const AtBody<T, N> p(a_world, b_world);
+  const Ellipsoid<T, N>& a = p.a;
+  const Box<T, N>& b = p.b;
+  const auto in_world = [&](Contact<T, N> c) {
+    c.point += p.shift;  // NaN stays NaN
+    return c;
+  };
   const auto triangles = b.triangles();
   const InBoxFrame<T, N> frame(a, b, options);
   if (settled_relation(frame) != Settled::separated) {
     const auto [relation, triangle] = relation_of(a, b, triangles, options);
     if (relation == Relation::touching)
-      return first_contact(a, velocity_a, triangles[std::size_t(triangle)], velocity_b, t_max, options);
+      return in_world(first_contact(a, velocity_a, triangles[std::size_t(triangle)], velocity_b, t_max, options));
     if (relation != Relation::separated) {
       out.status = ContactStatus::overlapping_at_start;
       out.time = T(0);
@@ -268,11 +298,14 @@ Contact<T, N> first_contact(const Ellipsoid<T, N>& a, const VecArg<T, N>& veloci
     const Contact<T, N> c = first_contact(a, velocity_a, t, velocity_b, t_max, options);
     if (c.status == ContactStatus::hit && !(c.time >= out.time)) out = c;
   }
-  return out;
+  return in_world(out);
 }
 
 template <class T, int N>
-Distance<T, N> signed_distance(const Ellipsoid<T, N>& a, const Box<T, N>& b, const Options& options) noexcept {
+Distance<T, N> signed_distance(const Ellipsoid<T, N>& a_world, const Box<T, N>& b_world, const Options& options) noexcept {
+  const AtBody<T, N> p(a_world, b_world);
+  const Ellipsoid<T, N>& a = p.a;
+  const Box<T, N>& b = p.b;
   constexpr int count = 1 << N;
   std::array<Vec<T, N>, count> corners;
   for (int k = 0; k < count; ++k) corners[k] = b.corner(k);
@@ -289,10 +322,12 @@ Distance<T, N> signed_distance(const Ellipsoid<T, N>& a, const Box<T, N>& b, con
       faces[2 * i + side] = {base, base | (1 << j), base | (1 << l)};
     }
   }
-  return detail::polytope_signed_distance<T, N>(a, corners, edges,
-                                                std::span<const std::array<int, 3>>(faces.data(), N == 3 ? faces.size() : 0),
-                                                options, [&] { return classify(a, b, options); },
-                                                near_features(a, b, edges, faces));
+  Distance<T, N> out = detail::polytope_signed_distance<T, N>(
+      a, corners, edges, std::span<const std::array<int, 3>>(faces.data(), N == 3 ? faces.size() : 0), options,
+      [&] { return classify_at_body(a, b, options); }, near_features(a, b, edges, faces));
+  out.point_a += p.shift;
+  out.point_b += p.shift;
+  return out;
 }
 
 template <class T, int N>

@@ -19,11 +19,13 @@ namespace {
 
 constexpr std::array<std::array<int, 2>, 1> segment_edge{{{0, 1}}};
 
-// The support maxima of the body and the segment moved by `shift`.
+// The support maxima of the body and the segment moved by `shift` (reach and farthest over
+// every stationary direction with `containment`, detail::max_support_gap).
 template <class T, int N>
-detail::Support<T, N> support_of(const Ellipsoid<T, N>& a, const Capsule<T, N>& b, const Vec<T, N>& shift) noexcept {
+detail::Support<T, N> support_of(const Ellipsoid<T, N>& a, const Capsule<T, N>& b, const Vec<T, N>& shift,
+                                 bool containment = false) noexcept {
   const std::array<Vec<T, N>, 2> p{Vec<T, N>(b.point(0) + shift), Vec<T, N>(b.point(1) + shift)};
-  return detail::polytope_support<T, N>(a, p, segment_edge, {});
+  return detail::polytope_support<T, N>(a, p, segment_edge, {}, {}, containment);
 }
 
 // The body's center against the segment, with the body between the balls of its smallest
@@ -57,6 +59,9 @@ int by_spheres(const Ellipsoid<T, N>& a, const Capsule<T, N>& b) noexcept {
 
 // classify's relation from the support maxima `s` of a and b's segment: the spheres' test
 // first (where it is surely apart, T's rounding of `s` may still read a touch), then the gap.
+// Containment needs reach and farthest over every stationary direction: where the segment
+// lies off the body (s.gap > 0) but within R of it, `s` holds only the largest roots' (a
+// needle sticking out of a capsule read as inside), and they are computed again.
 template <class T, int N>
 Relation relation_of(const Ellipsoid<T, N>& a, const Capsule<T, N>& b, const detail::Support<T, N>& s,
                      const Options& options) noexcept {
@@ -66,8 +71,9 @@ Relation relation_of(const Ellipsoid<T, N>& a, const Capsule<T, N>& b, const det
   const T gap = s.gap - radius;
   if (gap > band) return Relation::separated;
   if (gap >= -band) return Relation::touching;
-  if (s.farthest + radius <= band) return Relation::a_contains_b;
-  if (s.reach - radius <= band) return Relation::b_contains_a;
+  const detail::Support<T, N> all = s.complete ? s : support_of<T, N>(a, b, Vec<T, N>::Zero(), true);
+  if (all.farthest + radius <= band) return Relation::a_contains_b;
+  if (all.reach - radius <= band) return Relation::b_contains_a;
   return Relation::overlapping;
 }
 
@@ -98,9 +104,36 @@ Distance<T, N> distance(const Ellipsoid<T, N>& a, const Capsule<T, N>& b, const 
   return detail::unsigned_distance(signed_distance(a, b, options));
 }
 
+namespace {
+
+// first_contact on the pair moved by minus the body's center (the body at the origin, the
+// segment's points less that center rounded once), so that the segment moved by t w is
+// rounded to ulps of the pair's extent rather than of its coordinates (1e6 sizes from the
+// origin, the gap at the returned time was off by 1e-10 of the size); the contact point is
+// moved back. Left in place where those differences overflow.
+template <class T, int N>
+Contact<T, N> contact_at_body(const Ellipsoid<T, N>& a, const VecArg<T, N>& velocity_a, const Capsule<T, N>& b,
+                              const VecArg<T, N>& velocity_b, T t_max, const Options& options) noexcept;
+
+}  // namespace
+
 template <class T, int N>
 Contact<T, N> first_contact(const Ellipsoid<T, N>& a, const VecArg<T, N>& velocity_a, const Capsule<T, N>& b,
                             const VecArg<T, N>& velocity_b, T t_max, const Options& options) noexcept {
+  const Vec<T, N> c = a.center();
+  if (c.isZero(0) || !Vec<T, N>(b.point(0) - c).allFinite() || !Vec<T, N>(b.point(1) - c).allFinite())
+    return contact_at_body<T, N>(a, velocity_a, b, velocity_b, t_max, options);
+  Contact<T, N> out =
+      contact_at_body<T, N>(a.translated(-c), velocity_a, b.translated(-c), velocity_b, t_max, options);  // no throw
+  out.point += c;  // NaN stays NaN
+  return out;
+}
+
+namespace {
+
+template <class T, int N>
+Contact<T, N> contact_at_body(const Ellipsoid<T, N>& a, const VecArg<T, N>& velocity_a, const Capsule<T, N>& b,
+                              const VecArg<T, N>& velocity_b, T t_max, const Options& options) noexcept {
   Contact<T, N> out = detail::unanswered_contact<T, N>();
   if (!detail::valid_motion<T, N>(velocity_a, velocity_b, t_max)) return out;
   detail::Support<T, N> s = support_of<T, N>(a, b, Vec<T, N>::Zero());
@@ -149,6 +182,8 @@ Contact<T, N> first_contact(const Ellipsoid<T, N>& a, const VecArg<T, N>& veloci
   out.time = t;
   return out;
 }
+
+}  // namespace
 
 #define ELLIPSECT_INSTANTIATE(T, N)                                                                                 \
   template Relation classify<T, N>(const Ellipsoid<T, N>&, const Capsule<T, N>&, const Options&) noexcept;        \

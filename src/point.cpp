@@ -5,6 +5,9 @@
 #include "detail/scale.hpp"
 #include "detail/secular.hpp"
 
+#include <cmath>
+#include <limits>
+
 namespace ellipsect {
 
 namespace {
@@ -12,10 +15,20 @@ namespace {
 // The query in working precision R.
 template <class R, class T, int N>
 ClosestPoint<T, N> solve(const Ellipsoid<T, N>& body, const Vec<T, N>& x) noexcept {
-  // Frame of the body's axes with the query point at the origin.
+  // Frame of the body's axes with the query point at the origin, the center at k. Components
+  // of k within eps of the radii underflow the secular terms e_i k_i and its root (a
+  // subnormal offset from a ball's center put the point 1.7 radii from it): where all of k
+  // is that small it is scaled up by a power of two to about eps e_max / 16 (exact, its
+  // direction kept: the nearest point is where k points), else those components are 0
+  // (detail::settled). Either moves the query point by less than eps e_max.
   const Mat<R, N> axes = detail::work_axes<R>(body);
   const Vec<R, N> e = body.radii().template cast<R>();
-  const Vec<R, N> k = axes.transpose() * (body.center().template cast<R>() - x.template cast<R>());
+  Vec<R, N> k = axes.transpose() * (body.center().template cast<R>() - x.template cast<R>());
+  const R small = k.cwiseAbs().maxCoeff(), floor = std::numeric_limits<R>::epsilon() * e.maxCoeff();
+  if (small > R(0) && small <= floor)
+    k = detail::times_pow2(k, std::ilogb(floor) - 4 - std::ilogb(small));
+  else
+    k = detail::settled<R, N>(e, k);
   const bool outside = detail::level_at_origin<R, N>(e, k) > R(0);
   const auto p = outside ? detail::closest_from_outside<R, N>(e, k) : detail::closest_from_inside<R, N>(e, k);
   return {(body.center().template cast<R>() + axes * p.offset).template cast<T>(), T(outside ? p.norm : -p.norm)};

@@ -1,3 +1,4 @@
+#include <ellipsect/box.hpp>
 #include <ellipsect/capsule.hpp>
 #include <ellipsect/half_space.hpp>
 #include <ellipsect/triangle.hpp>
@@ -52,6 +53,17 @@ void require_finite(const Eigen::MatrixBase<Derived>& m, const char* field) {
     for (Eigen::Index i = 0; i < m.rows(); ++i)
       if (!std::isfinite(m(i, j)))
         throw_not_finite(m.cols() == 1 ? element_name(field, i) : element_name(field, i, j), m(i, j));
+}
+
+// point + offset for a shape's translated(): InputError "offset[i]" for a non-finite offset,
+// "offset" where the sum leaves the range of T (`what` names the moved point).
+template <class T, int N>
+Vec<T, N> moved(const Vec<T, N>& point, const Vec<T, N>& offset, const char* what) {
+  require_finite(offset, "offset");
+  const Vec<T, N> out = point + offset;
+  if (!out.allFinite()) [[unlikely]]
+    throw InputError("offset", std::string("moves ") + what + " beyond the range of the type");
+  return out;
 }
 
 // value finite and > 0; the field is named field[index], or field when index < 0.
@@ -361,12 +373,8 @@ HalfSpace<T, N> HalfSpace<T, N>::from_point_normal(const Vec<T, N>& point, const
 
 template <class T, int N>
 HalfSpace<T, N> HalfSpace<T, N>::translated(const Vec<T, N>& offset) const {
-  require_finite(offset, "offset");
-  const Vec<T, N> moved = point() + offset;
-  for (int i = 0; i < N; ++i)
-    if (!std::isfinite(moved[i])) throw InputError("offset", "moves the point beyond the range of the type");
   HalfSpace h = *this;
-  Eigen::Map<Vec<T, N>>(h.point_.data()) = moved;
+  Eigen::Map<Vec<T, N>>(h.point_.data()) = moved<T, N>(point(), offset, "the point");
   return h;
 }
 
@@ -384,13 +392,8 @@ Triangle<T, N> Triangle<T, N>::from_vertices(const Vec<T, N>& v0, const Vec<T, N
 
 template <class T, int N>
 Triangle<T, N> Triangle<T, N>::translated(const Vec<T, N>& offset) const {
-  require_finite(offset, "offset");
   Triangle t = *this;
-  for (auto& v : t.vertices_)
-    for (int i = 0; i < N; ++i) {
-      v[i] += offset[i];
-      if (!std::isfinite(v[i])) throw InputError("offset", "moves a vertex beyond the range of the type");
-    }
+  for (int k = 0; k < 3; ++k) Eigen::Map<Vec<T, N>>(t.vertices_[k].data()) = moved<T, N>(vertex(k), offset, "a vertex");
   return t;
 }
 
@@ -408,20 +411,23 @@ Capsule<T, N> Capsule<T, N>::from_segment(const Vec<T, N>& p0, const Vec<T, N>& 
 
 template <class T, int N>
 Capsule<T, N> Capsule<T, N>::translated(const Vec<T, N>& offset) const {
-  if (!offset.allFinite()) throw InputError("offset", "must be finite");
   Capsule c = *this;
-  for (auto& p : c.points_)
-    for (int i = 0; i < N; ++i) {
-      p[i] += offset[i];
-      if (!std::isfinite(p[i])) throw InputError("offset", "moves a point beyond the range of the type");
-    }
+  for (int k = 0; k < 2; ++k) Eigen::Map<Vec<T, N>>(c.points_[k].data()) = moved<T, N>(point(k), offset, "an end point");
   return c;
+}
+
+// The box's frame is a body's, whose translated() names its center: here the argument is the
+// offset.
+template <class T, int N>
+Box<T, N> Box<T, N>::translated(const Vec<T, N>& offset) const {
+  return Box(detail::ShapeAccess::unchecked<T, N>(moved<T, N>(center(), offset, "the center"), axes(), half_extents()));
 }
 
 #define ELLIPSECT_INSTANTIATE(T, N) \
   template class HalfSpace<T, N>;   \
   template class Triangle<T, N>;    \
   template class Capsule<T, N>;     \
+  template Box<T, N> Box<T, N>::translated(const Vec<T, N>&) const; \
   template class Ellipsoid<T, N>;   \
   template Ellipsoid<T, N> make_ball<T, N>(const Vec<T, N>&, T); \
   template void make_bodies<T, N>(std::span<const T>, std::span<const T>, std::span<const T>, std::span<Ellipsoid<T, N>>);

@@ -20,9 +20,12 @@
 // with their accuracy; in 3D it skips the faces that cannot hold the first contact (those
 // facing away from the relative velocity, or whose plane the body lies inside of at the
 // start), except on a box thinner than 64 ulps of its corners' magnitude, whose computed
-// corners need not bound a box: there every triangle is tested. The box answered for is the convex hull of its corners as computed
-// (center +- half extents along the axes, rounded to T: within a few ulps of the center's
-// magnitude of the stored box).
+// corners need not bound a box: there every triangle is tested. Every query runs on the pair
+// moved by minus the body's center (the box's center then the difference of the centers,
+// rounded once), so the box answered for is the convex hull of its corners as computed there
+// (that center +- half extents along the axes, rounded to T): within a few ulps of the
+// distance between the centers plus the half extents of the stored box, whatever the
+// coordinates' magnitude (tests/property/shape_translation_property_test.cpp).
 #pragma once
 
 #include <ellipsect/classify.hpp>
@@ -56,7 +59,8 @@ public:
   // The box's triangles: two covering the rectangle in 2D, twelve covering the boundary in 3D.
   std::array<Triangle<T, N>, N == 2 ? 2 : 12> triangles() const noexcept;
 
-  // The box moved by offset (InputError "offset").
+  // The box moved by offset; throws InputError "offset[i]" for a non-finite offset[i],
+  // "offset" where the moved center leaves the range of T.
   Box translated(const Vec<T, N>& offset) const;
 
 private:

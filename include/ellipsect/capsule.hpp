@@ -19,6 +19,9 @@
 //                               body's boundary) <= -R;
 //                 b_contains_a  the body inside the capsule: its support function below the
 //                               capsule's, max over n of (min_k n . (p_k - c) + rho(n)) <= R;
+//                               both maxima over every stationary direction of the strata
+//                               (also where the segment lies off the body: a needle through
+//                               the capsule's surface);
 //                 (both with the tolerance band counted as inside), overlapping otherwise.
 //                 Before any of that, the body's center against the segment: farther than
 //                 largest radius + R by 1e-9 of the lengths is separated, nearer than smallest
@@ -29,10 +32,15 @@
 //                 functions), with slope n*(t) . w: Newton from t = 0 climbs monotonically to
 //                 its first root (Eberly's h(t)), at most Options::max_iterations steps.
 //                 Stops when L(t) falls to 1e-14 of the pair's size (a hit), the slope is >= 0
-//                 (the gap never closes: no contact), or the step passes t_max.
+//                 (the gap never closes: no contact), or the step passes t_max. Runs on the
+//                 pair moved by minus the body's center (the segment's points less it rounded
+//                 once), so that the moved segment is rounded to ulps of the pair's extent,
+//                 not of its coordinates.
 // Accuracy (tests/property/capsule_property_test.cpp, against the 50-digit search of the
 // sphere of tests/reference/support_gap_reference.hpp; random, aspect ratios to 1e4, near
-// tangency, containment both ways, balls (p0 = p1), long capsules, scale 1e-6 and 1e6), with
+// tangency, containment both ways and needles across the surface, balls (p0 = p1), long
+// capsules, scale 1e-6 and 1e6; moved 1e3 to 1e6 sizes from the origin,
+// tests/property/shape_translation_property_test.cpp), with
 // scale = largest radius + R + largest |p_k - c|: the distance within 1e-12 scale; the
 // relation exact outside the tangency band widened by 1e-12 scale / rho(n*); contact times
 // where the reference's gap at the returned time is within 1e-12 scale of 0 and is positive
@@ -61,7 +69,8 @@ public:
   // End point k in 0..1.
   Eigen::Map<const Vec<T, N>> point(int k) const noexcept { return Eigen::Map<const Vec<T, N>>(points_[k].data()); }
   T radius() const noexcept { return radius_; }
-  // The capsule moved by offset (InputError "offset").
+  // The capsule moved by offset; throws InputError "offset[i]" for a non-finite offset[i],
+  // "offset" where a moved end point leaves the range of T.
   Capsule translated(const Vec<T, N>& offset) const;
 
 private:

@@ -62,8 +62,8 @@ public:
   Eigen::Map<const Vec<T, N>> point() const noexcept { return Eigen::Map<const Vec<T, N>>(point_.data()); }
   Eigen::Map<const Vec<T, N>> normal() const noexcept { return Eigen::Map<const Vec<T, N>>(normal_.data()); }
 
-  // The half-space moved by offset (the same normal); throws InputError("offset") for a
-  // non-finite offset or a point beyond the range of T.
+  // The half-space moved by offset (the same normal); throws InputError "offset[i]" for a
+  // non-finite offset[i], "offset" where the moved point leaves the range of T.
   HalfSpace translated(const Vec<T, N>& offset) const;
 
 private:

@@ -106,8 +106,8 @@ public:
   // Vertex k in 0..2.
   Eigen::Map<const Vec<T, N>> vertex(int k) const noexcept { return Eigen::Map<const Vec<T, N>>(vertices_[k].data()); }
 
-  // The triangle moved by offset; throws InputError("offset") for a non-finite offset or a
-  // vertex moved beyond the range of T.
+  // The triangle moved by offset; throws InputError "offset[i]" for a non-finite offset[i],
+  // "offset" where a moved vertex leaves the range of T.
   Triangle translated(const Vec<T, N>& offset) const;
 
 private:

@@ -34,6 +34,7 @@
 #include "axes.hpp"
 #include "contact_start.hpp"
 #include "scale.hpp"
+#include "secular.hpp"
 
 #include <Eigen/Eigenvalues>
 
@@ -49,9 +50,14 @@ namespace ellipsect::detail {
 
 // Calls emit(n) with the normal direction (not normalized) at each stationary point of
 // |y - x| over the boundary of {x : sum_i x_i^2 / a_i <= 1}, a_i = r_i^2 > 0; unless `all`,
-// only at the largest root (the nearest point of a point outside).
+// only at the largest root (the nearest point of a point outside). The point's components
+// within eps of the radii are taken as 0 (secular.hpp's settled(): the point moved by at
+// most that): smaller ones underflowed the terms a_i y_i^2, and a ball's hard case needs
+// y_i = 0, so that a vertex 1e-312 off a ball's center gave no direction at all and the
+// signed distance -infinity.
 template <class F, int M, class Emit>
-void stationary_normals(const Vec<F, M>& a, const Vec<F, M>& y, bool all, Emit&& emit) noexcept {
+void stationary_normals(const Vec<F, M>& a, const Vec<F, M>& given, bool all, Emit&& emit) noexcept {
+  const Vec<F, M> y = settled<F, M>(a.cwiseSqrt(), given);
   // The active poles -a_i (b_i = a_i y_i^2 > 0), equal ones merged, a ascending.
   std::array<F, M> pa{}, pb{};
   int m = 0;
@@ -194,16 +200,20 @@ struct GapMaximum {
   // max over n of max_k n . y_k - rho(n) = max_k of vertex k's signed distance to the body's
   // boundary: the polytope grown by R lies in the body exactly when farthest <= -R.
   F farthest = -std::numeric_limits<F>::infinity();
-  // reach and farthest are over every stationary direction only where gap <= 0 (below);
-  // where the body and the polytope are apart, only the largest roots' were evaluated.
+  // reach and farthest are over every stationary direction (complete) where gap <= 0 or
+  // the caller asks for them (below); where the body and the polytope are apart, otherwise,
+  // only the largest roots' were evaluated: lower bounds.
+  bool complete = false;
   int evaluations = 0;
 };
 
 // The three maxima above for the body of squared radii a. reach and farthest have the same
 // stationary directions, negated (the body is symmetric about its center), so every
-// candidate is evaluated with its opposite.
+// candidate is evaluated with its opposite. `containment`: every stationary direction also
+// where the body and the polytope are apart (a capsule's containment: the body may lie in
+// the segment grown by R with the segment off the body).
 template <class F, int N>
-GapMaximum<F, N> max_support_gap(const Vec<F, N>& a, const Polytope<F, N>& p) noexcept {
+GapMaximum<F, N> max_support_gap(const Vec<F, N>& a, const Polytope<F, N>& p, bool containment = false) noexcept {
   GapMaximum<F, N> best;
   best.normal.setZero();
   const auto consider = [&](const Vec<F, N>& direction) {
@@ -266,7 +276,8 @@ GapMaximum<F, N> max_support_gap(const Vec<F, N>& a, const Polytope<F, N>& p) no
       }
   };
   pass(false);
-  if (!(best.gap > F(0))) pass(true);
+  best.complete = containment || !(best.gap > F(0));
+  if (best.complete) pass(true);
   return best;
 }
 
@@ -276,6 +287,7 @@ template <class T, int N>
 struct Support {
   Vec<T, N> normal, point;
   T gap, radius, reach, farthest;
+  bool complete;  // GapMaximum's
   int evaluations;
 };
 
@@ -285,7 +297,7 @@ struct Support {
 template <class T, int N>
 Support<T, N> polytope_support(const Ellipsoid<T, N>& body, std::span<const Vec<T, N>> vertices,
                                std::span<const std::array<int, 2>> edges, std::span<const std::array<int, 3>> faces,
-                               Near near = {}) noexcept {
+                               Near near = {}, bool containment = false) noexcept {
   T coordinate = max_abs(body.center());
   for (const auto& v : vertices) coordinate = std::max(coordinate, max_abs(v));
   const Scale scale = scale_of<T>(body.radii().maxCoeff(), body.radii().minCoeff(), coordinate);
@@ -299,12 +311,12 @@ Support<T, N> polytope_support(const Ellipsoid<T, N>& body, std::span<const Vec<
     for (std::size_t k = 0; k < vertices.size(); ++k)
       y[k] = times_pow2(axes.transpose() * (vertices[k].template cast<F>() - center), -e);
     const GapMaximum<F, N> m =
-        max_support_gap<F, N>(a, {std::span<const Vec<F, N>>(y.data(), vertices.size()), edges, faces, near});
+        max_support_gap<F, N>(a, {std::span<const Vec<F, N>>(y.data(), vertices.size()), edges, faces, near}, containment);
     const F rho = std::sqrt(m.normal.cwiseAbs2().dot(a));
     const Vec<F, N> support = a.cwiseProduct(m.normal) / rho;
     return Support<T, N>{(axes * m.normal).template cast<T>(), (center + axes * times_pow2(support, e)).template cast<T>(),
                          T(std::ldexp(m.gap, e)), T(std::ldexp(rho, e)), T(std::ldexp(m.reach, e)),
-                         T(std::ldexp(m.farthest, e)), m.evaluations};
+                         T(std::ldexp(m.farthest, e)), m.complete, m.evaluations};
   };
   return scale.range == Range::wide ? run(0.0L) : run(std::conditional_t<(sizeof(T) < sizeof(double)), double, T>(0));
 }

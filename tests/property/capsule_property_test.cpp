@@ -9,14 +9,18 @@
 //   normal within 1e-12 scale of its maximum; point_a on the body;
 //   classify: separated / touching / overlapping as the reference's relative gap L / rho
 //   outside the band widened by 1e-12 scale / rho; a_contains_b exactly when the reference's
-//   end points lie R inside the boundary (outside that margin); b_contains_a on bodies built
-//   well inside or well across the capsule's surface;
+//   end points lie R inside the boundary (outside that margin); b_contains_a exactly when the
+//   body's farthest point from the segment lies within R (outside that margin);
 //   first_contact: a hit where the reference's gap at the returned time is within 1e-12 scale
 //   of 0 and positive at 0.999 of it (the first root); no contact only where the reference's
 //   gap stays positive at 8 times across the window.
 // Cases: random; aspect ratios to 1e4; near tangency (relative gaps 1e-10 to 1e-4, either
-// side, by moving the capsule along the reference's normal); balls (p0 = p1); long capsules
-// (1e3); the capsule inside the body; the body inside the capsule; scale 1e-6 and 1e6.
+// side, by moving the capsule along the reference's normal); balls (p0 = p1) and segments
+// 1e-15 to 1e-9 long; long capsules
+// (1e3); the capsule inside the body; the body inside the capsule; needles (aspect 100 to
+// 1000) with their center inside the capsule, inside it or through its surface (b_contains_a
+// against the body's farthest point from the segment, searched on the body's boundary);
+// scale 1e-6 and 1e6.
 #include <ellipsect/capsule.hpp>
 
 #include "scenarios/scenarios.hpp"
@@ -26,6 +30,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -40,9 +45,9 @@ using namespace ellipsect::testing;
 namespace ref = ellipsect::reference;
 using Real = ref::Real;
 
-enum class Kind { random, aspect, near, ball, long_capsule, capsule_inside, body_inside, small, huge };
-constexpr Kind kinds[] = {Kind::random,         Kind::aspect,      Kind::near,  Kind::ball, Kind::long_capsule,
-                          Kind::capsule_inside, Kind::body_inside, Kind::small, Kind::huge};
+enum class Kind { random, aspect, near, ball, long_capsule, capsule_inside, body_inside, small, huge, needle, speck };
+constexpr Kind kinds[] = {Kind::random,      Kind::aspect, Kind::near,   Kind::ball,  Kind::long_capsule, Kind::capsule_inside,
+                          Kind::body_inside, Kind::small,  Kind::huge,   Kind::needle, Kind::speck};
 
 template <int N>
 struct Case {
@@ -61,18 +66,75 @@ ref::SupportGapMaximum<N> reference_gap(const Case<N>& c, const Vec<double, N>& 
   return m;
 }
 
+// The body's greatest distance from the capsule's segment less R (the body lies in the
+// capsule exactly when it is <= 0), by another route than the library's support functions:
+// the distance from the segment, a convex function of the point, is greatest on the body's
+// boundary c + A diag(r) u, |u| = 1, searched over u as support_gap_reference.hpp searches
+// directions (the local maxima among evenly spread directions, refined by golden sections).
+template <class S, int N>
+struct FromSegment {
+  Eigen::Matrix<S, N, 1> c, p0, e;
+  Eigen::Matrix<S, N, N> shape;  // A diag(r)
+
+  S operator()(Eigen::Matrix<S, N, 1> u) const {
+    using std::sqrt;
+    u /= S(sqrt(u.dot(u)));
+    const Eigen::Matrix<S, N, 1> w = c + shape * u - p0;
+    const S ee = e.dot(e);
+    S t = ee > S(0) ? w.dot(e) / ee : S(0);
+    t = t < S(0) ? S(0) : t > S(1) ? S(1) : t;
+    const Eigen::Matrix<S, N, 1> d = w - t * e;
+    return sqrt(d.dot(d));
+  }
+};
+
+template <class S, int N>
+FromSegment<S, N> from_segment(const Ellipsoid<double, N>& a, const Capsule<double, N>& b) {
+  FromSegment<S, N> f;
+  for (int i = 0; i < N; ++i) {
+    f.c[i] = S(a.center()[i]);
+    f.p0[i] = S(b.point(0)[i]);
+    f.e[i] = S(b.point(1)[i]) - S(b.point(0)[i]);
+    for (int j = 0; j < N; ++j) f.shape(i, j) = S(a.axes()(i, j)) * S(a.radii()[j]);
+  }
+  return f;
+}
+
+template <int N>
+Real farthest_outside(const Ellipsoid<double, N>& a, const Capsule<double, N>& b) {
+  std::vector<ref::detail::Candidate<N>> found;
+  const auto gl = from_segment<long double, N>(a, b);
+  const auto gr = from_segment<Real, N>(a, b);
+  ref::detail::sphere_maxima<N>(from_segment<double, N>(a, b), gl, gr, found);
+  // Polished in Real: the maxima within 1e-9 of the lengths of the best in long double.
+  long double best_l = 0;
+  for (const auto& c : found) best_l = std::max(best_l, gl(c.direction));
+  const long double size = a.radii().maxCoeff() + (b.point(0) - a.center()).norm() + (b.point(1) - a.center()).norm();
+  Real best = -std::numeric_limits<Real>::infinity();
+  for (const auto& c : found)
+    if (gl(c.direction) >= best_l - 1e-9L * size) best = std::max(best, gr(c.polish()));
+  return best - Real(b.radius());
+}
+
 template <int N>
 Case<N> make_case(Kind kind, int seed) {
   using namespace scenarios::detail;
   using V = Vec<double, N>;
   Rng rng(static_cast<std::uint64_t>(seed) * 6361 + static_cast<std::uint64_t>(kind) * 911 + 3);
   const double size = kind == Kind::small ? 1e-6 : kind == Kind::huge ? 1e6 : 1;
-  const V r = radii<N>(rng, 1.0, kind == Kind::aspect ? 1e4 : 10);
+  V r = radii<N>(rng, 1.0, kind == Kind::aspect ? 1e4 : 10);
+  if (kind == Kind::needle) {
+    // Aspect 100 to 1000, length 0.5 to 3.
+    const double length = uniform(rng, 0.5, 3);
+    r = V::Constant(length * log_uniform(rng, 1e-3, 1e-2));
+    r[0] = length;
+  }
   const V c = V::NullaryExpr([&](Eigen::Index) { return uniform(rng, -2, 2); });
   const auto a = Ellipsoid<double, N>::from_axes(size * c, rotation<N>(rng), size * r);
   V p0 = c + unit_vector<N>(rng) * uniform(rng, 0, 4), p1 = p0 + unit_vector<N>(rng) * log_uniform(rng, 0.1, 4);
   double R = log_uniform(rng, 0.05, 2);
   if (kind == Kind::ball) p1 = p0;
+  if (kind == Kind::speck) p1 = p0 + unit_vector<N>(rng) * log_uniform(rng, 1e-15, 1e-9);  // nearly a ball
   if (kind == Kind::long_capsule) p1 = p0 + unit_vector<N>(rng) * 1e3;
   if (kind == Kind::capsule_inside) {
     // A short capsule about the center, within a tenth of the smallest radius.
@@ -86,6 +148,22 @@ Case<N> make_case(Kind kind, int seed) {
     p0 = c - along * (2 * r.maxCoeff() + 1);
     p1 = c + along * (2 * r.maxCoeff() + 1);
     R = seed % 2 == 0 ? 1.5 * r.maxCoeff() : 0.8 * r.minCoeff();
+  }
+  if (kind == Kind::needle) {
+    // The needle's center inside the capsule: on even seeds the needle inside it (R beyond
+    // both tips' distances from the segment by its width), on odd seeds through its surface
+    // (R between the center's distance and the farther tip's; classify said b_contains_a for
+    // 10% of these in 2D, 45% in 3D).
+    p0 = c + unit_vector<N>(rng) * uniform(rng, 0, 0.5) * r[0];
+    p1 = p0 + unit_vector<N>(rng) * log_uniform(rng, 0.1, 2) * r[0];
+    const V e = p1 - p0;
+    const auto to_segment = [&](const V& x) {
+      return (x - p0 - std::clamp((x - p0).dot(e) / e.squaredNorm(), 0.0, 1.0) * e).norm();
+    };
+    const V tip = a.axes().col(0) * r[0];
+    const double center = to_segment(c), tips = std::max(to_segment(c + tip), to_segment(c - tip));
+    R = seed % 2 == 0 ? tips + 2 * r[1] + uniform(rng, 0.01, 0.3) * r[0]
+                      : center + uniform(rng, 0.1, 0.9) * (tips - center);
   }
   Case<N> out{a, make_capsule<double, N>(size * p0, size * p1, size * R), V::Zero(), V::Zero(), 0};
   if (kind == Kind::near) {
@@ -166,6 +244,14 @@ void check(Kind kind, int seed, std::map<std::string, int>& tally) {
     // radius, crossing the capsule's surface when R is below the smallest.
     ASSERT_EQ(relation, seed % 2 == 0 ? Relation::b_contains_a : Relation::overlapping) << what;
   }
+  if (kind == Kind::needle || kind == Kind::body_inside || relation == Relation::b_contains_a) {
+    // b_contains_a exactly when the body's farthest point from the segment is within R.
+    const double outside = ref::to_double(farthest_outside<N>(c.a, c.b));
+    if (std::abs(outside) > tol) {
+      ASSERT_EQ(relation == Relation::b_contains_a, outside < 0) << what << " " << outside;
+    }
+    tally[std::string("needle ") + (outside < 0 ? "inside" : "across")] += kind == Kind::needle;
+  }
   tally[std::string(to_string(relation))]++;
 
   // First contact.
@@ -210,7 +296,7 @@ void run() {
   std::printf("\n");
   if (!full_case_counts()) return;
   for (const char* outcome : {"separated", "overlapping", "a_contains_b", "b_contains_a", "contact hit",
-                              "contact no_contact_in_window"})
+                              "contact no_contact_in_window", "needle inside", "needle across"})
     EXPECT_GT(tally[outcome], 0) << outcome;
 }
 

@@ -101,9 +101,9 @@ S golden_max(const F& f, S lo, S hi, int steps) {
 }
 
 // The best direction within +-delta of n0 (tangent coordinates), by golden section (nested
-// in 3D).
-template <class S, int N>
-Eigen::Matrix<S, N, 1> refine(const SupportGap<S, N>& g, const Eigen::Matrix<S, N, 1>& n0, S delta, int steps) {
+// in 3D), for g a function of the direction (a SupportGap, or another).
+template <class S, int N, class G>
+Eigen::Matrix<S, N, 1> refine(const G& g, const Eigen::Matrix<S, N, 1>& n0, S delta, int steps) {
   using V = Eigen::Matrix<S, N, 1>;
   if constexpr (N == 2) {
     const V t(-n0[1], n0[0]);

@@ -28,7 +28,8 @@ TEST(Capsule, FactoryChecksItsFields) {
   expect_field([] { make_capsule<double, 3>(V3(0, 0, 0), V3(1, 0, 0), 0.0); }, "radius");
   expect_field([] { make_capsule<double, 3>(V3(0, 0, 0), V3(1, 0, 0), -1.0); }, "radius");
   expect_field([] { make_capsule<double, 2>(V2(0, 0), V2(1, 0), std::nan("")); }, "radius");
-  expect_field([&] { (void)c.translated(V3(0, inf, 0)); }, "offset");
+  expect_field([&] { (void)c.translated(V3(0, inf, 0)); }, "offset[1]");
+  expect_field([] { (void)make_capsule<double, 2>(V2(1e308, 0), V2(0, 0), 1.0).translated(V2(1e308, 0)); }, "offset");
   EXPECT_EQ(c.translated(V3(0, 2, 0)).point(0), V3(0, 2, 0));
 }
 
@@ -142,6 +143,41 @@ TEST(Capsule, OverlapAtTinyScaleAgreesWithClassify) {
     EXPECT_FALSE(overlap(ball_s, capsule)) << scale;
   }
   EXPECT_TRUE(overlap(ball, make_capsule<double, 3>({0, 2.5 * x, x}, {2 * x, 2.5 * x, x}, x)));
+}
+
+// A needle whose center lies inside the capsule while its tip sticks out (the tip (1, 0, 0)
+// is 0.989 from the segment, R = 0.6) read as b_contains_a: the segment lies off the needle
+// (the gap of body and segment is positive), so the support maxima held reach (the body's
+// support function against the segment's) only at the largest roots' directions, none of
+// which looks along the needle. Containment is now decided on every stationary direction.
+// A needle short enough to fit (tips 0.58 from the segment, R = 0.7) is inside.
+TEST(Capsule, NeedleStickingOutIsNotInside) {
+  const auto needle = Ellipsoid<double, 3>::from_axes(V3::Zero(), Mat3<double>::Identity(), V3(1, 0.01, 0.01));
+  const auto capsule = make_capsule<double, 3>(V3(0, 0.5, -0.3), V3(0.2, 0.5, 0.3), 0.6);
+  EXPECT_EQ(classify(needle, capsule), Relation::overlapping);
+  EXPECT_TRUE(overlap(needle, capsule));
+  EXPECT_EQ(signed_distance(needle, capsule).status, DistanceStatus::overlapping);
+  const auto fits = Ellipsoid<double, 3>::from_axes(V3::Zero(), Mat3<double>::Identity(), V3(0.2, 0.01, 0.01));
+  EXPECT_EQ(classify(fits, make_capsule<double, 3>(V3(0, 0.5, -0.3), V3(0.2, 0.5, 0.3), 0.7)), Relation::b_contains_a);
+  // 2D: the tip (1, 0) is 0.943 from the segment's end (0.2, 0.5).
+  const auto needle2 = make_ellipse<double>(V2::Zero(), 0.0, V2(1, 0.01));
+  EXPECT_EQ(classify(needle2, make_capsule<double, 2>(V2(0, 0.5), V2(0.2, 0.5), 0.6)), Relation::overlapping);
+}
+
+// A ball whose center is a subnormal offset from a zero-length capsule (a ball of radius 1):
+// in the ball's frame the capsule's point had coordinates whose squares underflowed the
+// secular terms, and a ball's hard-case directions need them 0: no direction came out,
+// and the signed distance was -infinity with a zero normal. Coordinates within eps of the
+// radii are now 0: the penetration depth r + R.
+TEST(Capsule, PointCapsuleSubnormalOffFromABallsCenter) {
+  const double s = 4.058311769621644e-312, r = 11.594921875000001;
+  const auto ball = make_ball<double, 3>({s, 1.1 * s, 1.2 * s}, r);
+  const auto point = make_capsule<double, 3>(V3::Zero(), V3::Zero(), 1.0);
+  const Distance<double, 3> d = signed_distance(ball, point);
+  EXPECT_EQ(d.status, DistanceStatus::overlapping);
+  EXPECT_NEAR(d.distance, -(r + 1), 1e-14 * r);
+  EXPECT_NEAR(d.normal.norm(), 1, 1e-15);
+  EXPECT_NEAR((d.point_a - ball.center()).norm(), r, 1e-14 * r);
 }
 
 }  // namespace

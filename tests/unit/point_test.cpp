@@ -91,4 +91,27 @@ TEST(ClosestPoint, FloatInstantiation) {
   EXPECT_FLOAT_EQ(c.signed_distance, 3.0f);
 }
 
+// The query point at the center of a ball whose center is a subnormal offset from it: the
+// secular equation's terms e_i k_i were subnormal, its root kept a few digits, and the
+// point came back at (-11.59, -11.59, -11.59), 20.08 from the center. An offset that small
+// is now scaled up by a power of two to about eps of the radii (its direction kept): the
+// point on the sphere, away from the center.
+TEST(ClosestPoint, SubnormalOffsetFromTheCenter) {
+  const double r = 11.594921875000001;
+  const auto ball = make_ball<double, 3>({4.058311769621644e-312, 4.0583117696265846e-312, 4.0583117696315253e-312}, r);
+  const auto c = closest_point(ball, Vec3<double>(0, 0, 0));
+  EXPECT_NEAR(c.signed_distance, -r, 1e-14 * r);
+  EXPECT_NEAR((c.point - ball.center()).norm(), r, 4e-16 * r);
+  // The offsets are equal to 1e-12: the point along -(1, 1, 1).
+  EXPECT_LE((c.point.normalized() + Vec3<double>(1, 1, 1).normalized()).norm(), 1e-10);
+  // An ellipsoid (3, 2, 1) whose center is 1e-310 off the query point: the nearest points
+  // are the poles (0, 0, +-1), at distance 1.
+  const auto e = make_ellipsoid<double>({1e-310, 0, -2e-311}, Mat3<double>::Identity(), {3, 2, 1});
+  const auto p = closest_point(e, Vec3<double>(0, 0, 0));
+  EXPECT_NEAR(p.signed_distance, -1.0, 1e-15);
+  EXPECT_NEAR(std::abs(p.point.z()), 1.0, 1e-15);
+  const auto disc = make_ellipse<double>({-3e-320, 5e-321}, 0.3, {2, 1});
+  EXPECT_NEAR(closest_point(disc, Vec2<double>(0, 0)).signed_distance, -1.0, 1e-15);
+}
+
 }  // namespace
