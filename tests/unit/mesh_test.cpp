@@ -216,6 +216,35 @@ TEST(TriangleMesh, FallsOntoAndSlidesAcrossATiledFloor) {
   EXPECT_EQ(s.contacts, 1);  // the landing; the seams are slid across
 }
 
+// A floor y = 0 over x in [-10, 10] as `pieces` collinear segments (triangles (a, b, b)).
+TriangleMesh<double, 2> split_floor(int pieces) {
+  std::vector<double> v;
+  std::vector<std::int64_t> t;
+  for (int i = 0; i <= pieces; ++i) v.insert(v.end(), {-10 + 20.0 * i / pieces, 0.0});
+  for (int i = 0; i < pieces; ++i) t.insert(t.end(), {i, i + 1, i + 1});
+  return make_triangle_mesh<double, 2>(v, t);
+}
+
+// A needle ellipse (radii 0.5 and 5e-4, turned by 0.8) 0.7 above a floor, moved by (7, -1):
+// it lands at t = 0.7 and slides the rest of the way, ending at x = -3.3 + 7 = 3.7. Split into
+// 8 collinear segments, the floor stopped it at x = 2.848, its tip on the seam x = 2.5: the
+// body rests within the tangency band, a little below the next segment's end vertex, which it
+// then touches off its tip, where the band tilts the tangent plane by 1e-3 (the square root
+// of the band over the tip's curvature); the slide took the tilted plane and the floor for a
+// corner. A touch that would not take the body deeper than half the band into the obstacle is
+// a graze (slide.hpp): the split floor slides as the whole one.
+TEST(TriangleMesh, FloorOfCollinearPiecesIsNoCorner2D) {
+  const double rho = std::hypot(0.5 * std::sin(0.8), 5e-4 * std::cos(0.8));
+  const auto needle = make_ellipse<double>(V2(-3.3, 0.7 + rho), 0.8, V2(0.5, 5e-4));
+  for (const int pieces : {1, 2, 8, 40}) {
+    const auto s = collide_and_slide(needle, V2(7, -1), split_floor(pieces));
+    EXPECT_EQ(s.status, SlideStatus::slid) << pieces;
+    EXPECT_EQ(s.contacts, 1) << pieces;
+    EXPECT_NEAR(s.body.center()[0], 3.7, 1e-12) << pieces;
+    EXPECT_NEAR(s.body.center()[1], rho, 1e-12) << pieces;
+  }
+}
+
 // A step at x = 4 of height h: a riser (two triangles) and the upper floor.
 TriangleMesh<double, 3> step(double h) {
   const std::vector<double> v{0, -5, 0, 4, -5, 0, 4, 5, 0, 0, 5, 0,    // lower floor
