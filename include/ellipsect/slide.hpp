@@ -18,8 +18,9 @@
 // the band meets it on the way): otherwise it is a graze, as where a floor or wall split into
 // coplanar (in 2D collinear) pieces is slid across, the next piece's edge or vertex level
 // with the body's resting place within the band, whose tangent plane the band alone tilts by
-// up to the square root of the band over the body's curvature there. So a split floor slides
-// as the whole one; the body never moves into a touched obstacle beyond half the band, so it
+// up to the square root of the band over the body's curvature there (float bodies, whose
+// radii cannot be shrunk by so little, count every touch). So a split floor slides as the
+// whole one; the body never moves into a touched obstacle beyond half the band, so it
 // slides along floors and walls, around a mesh's edges and vertices (whose tangent plane
 // turns as the body moves), and stops in corners.
 // Steps are walls: a riser stops the body or turns it along itself; climbing a step is the
