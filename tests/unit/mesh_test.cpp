@@ -245,6 +245,25 @@ TEST(TriangleMesh, FloorOfCollinearPiecesIsNoCorner2D) {
   }
 }
 
+// The same in 3D: a needle ellipsoid (radii 0.5, 0.2 and 5e-4, turned by 0.8 about y) lands
+// on a floor of unit squares and slides across their seams as on the floor's half-space.
+// Before, the 20 x 20 floor took a seam's edge, within the band, for a wall: 2 contacts and
+// the end 3.5e-9 higher.
+TEST(TriangleMesh, FloorOfCoplanarPiecesIsNoCorner3D) {
+  const double rho = std::hypot(0.5 * std::sin(0.8), 5e-4 * std::cos(0.8));
+  const Mat3<double> axes = Eigen::AngleAxisd(0.8, Eigen::Vector3d::UnitY()).toRotationMatrix();
+  const auto needle = Ellipsoid<double, 3>::from_axes(V3(3.3, 5.25, 0.7 + rho), axes, V3(0.5, 0.2, 5e-4));
+  const std::vector<HalfSpace<double, 3>> plane{make_half_space<double, 3>(V3(0, 0, 0), V3(0, 0, 1))};
+  const auto want = collide_and_slide(needle, V3(7, 1, -1), std::span<const HalfSpace<double, 3>>(plane));
+  EXPECT_NEAR((want.body.center() - V3(10.3, 6.25, rho)).norm(), 0.0, 1e-14);
+  for (const int n : {12, 20}) {
+    const auto s = collide_and_slide(needle, V3(7, 1, -1), terrain(n, [](double, double) { return 0.0; }));
+    EXPECT_EQ(s.status, SlideStatus::slid) << n;
+    EXPECT_EQ(s.contacts, 1) << n;
+    EXPECT_NEAR((s.body.center() - want.body.center()).norm(), 0.0, 1e-12) << n;
+  }
+}
+
 // A step at x = 4 of height h: a riser (two triangles) and the upper floor.
 TriangleMesh<double, 3> step(double h) {
   const std::vector<double> v{0, -5, 0, 4, -5, 0, 4, 5, 0, 0, 5, 0,    // lower floor
