@@ -1,7 +1,8 @@
 // mesh.hpp and collide_and_slide through meshes: the factory's checks; the hierarchy's
 // answers equal to those of every triangle tested in turn (random soups, 2D and 3D: same
 // relation, same triangle, the same contact time bit for bit); a tiled floor (no snag on the
-// seams between its triangles); steps lower and higher than the body; random soups slid
+// seams between its triangles; floors split into collinear or coplanar pieces slide as the
+// whole one); steps lower and higher than the body; random soups slid
 // through (never inside, never farther than asked).
 #include <ellipsect/mesh.hpp>
 #include <ellipsect/slide.hpp>
