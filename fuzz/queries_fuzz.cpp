@@ -44,6 +44,14 @@
 //               by vb through the mesh: overlapping_at_start exactly where classify says
 //               overlapping or a_contains_b, otherwise an end separated or touching, moved by
 //               at most |vb|.
+//   degenerate  a against the collinear triangle (p, q, m), p b's center, q = p + va, m their
+//               midpoint: the relation of the segment (p, q, q) unless within the tangency
+//               band of 1e-6; a hit under velocity vb (double) is where the segment, moved
+//               there, touches within that band; the triangle (p, q, p + vb) split into its
+//               four midpoint triangles, as a mesh: the relation of the whole triangle (same
+//               exception), and collide_and_slide by vb through it never ends inside and moves
+//               at most |vb|; where every coordinate lies within 1e6 smallest radii of the
+//               origin (float: 0.008), so that rounding moves a point by far less than the band.
 //   box         a against the box with b's center, axes and radii as half extents: overlap is
 //               classify != separated; a_contains_b exactly when every triangle of the box is
 //               inside a; b_contains_a only where every face's half-space contains a;
@@ -372,6 +380,47 @@ void check_triangle(const Ellipsoid<T, N>& a, const Vec<T, N>& p, const Vec<T, N
              << "moved " << hex(slide.moved) << " for " << hex(vb));
 }
 
+template <class T, int N>
+void check_degenerate(const Ellipsoid<T, N>& a, const Vec<T, N>& p, const Vec<T, N>& va, const Vec<T, N>& vb, T t_max) {
+  const Vec<T, N> q = p + va, r = p + vb;
+  const Vec<T, N> pq = p + (q - p) / T(2), qr = q + (r - q) / T(2), rp = r + (p - r) / T(2);
+  // Every coordinate within min(1e6, 1e-9 / eps) smallest radii of the origin: rounding a
+  // point then moves it by at most 1e-9 of that radius.
+  const T bound = std::min(T(1e6), T(1e-9) / std::numeric_limits<T>::epsilon()) * a.radii().minCoeff();
+  const auto near = [&](const Vec<T, N>& x) { return all_finite(x) && x.cwiseAbs().maxCoeff() <= bound; };
+  if (!near(a.center()) || !near(p) || !near(q) || !near(r) || !near(pq) || !near(qr) || !near(rp) || !(t_max >= 0))
+    return;
+  Options wide;
+  wide.tolerance = 1e-6;
+  const auto segment = make_triangle<T, N>(p, q, q), collinear = make_triangle<T, N>(p, q, pq);
+  const Relation rel = classify(a, segment);
+  FUZZ_CHECK(classify(a, collinear) == rel || classify(a, segment, wide) == Relation::touching,
+             << "collinear " << to_string(classify(a, collinear)) << ", its segment " << to_string(rel));
+  const Contact<T, N> c = first_contact(a, Vec<T, N>::Zero(), collinear, vb, t_max);
+  if constexpr (std::is_same_v<T, double>) {
+    if (c.status == ContactStatus::hit && near(Vec<T, N>(p + c.time * vb)) && near(Vec<T, N>(q + c.time * vb)))
+      FUZZ_CHECK(classify(a, segment.translated(c.time * vb), wide) == Relation::touching,
+                 << "collinear hit at " << hex(c.time) << ", the segment there "
+                 << to_string(classify(a, segment.translated(c.time * vb), wide)));
+  }
+  std::array<T, 6 * N> vertices;
+  const std::array<Vec<T, N>, 6> points{p, q, r, pq, qr, rp};
+  for (int k = 0; k < 6; ++k)
+    for (int i = 0; i < N; ++i) vertices[k * N + i] = points[k][i];
+  const std::array<std::int64_t, 12> indices{0, 3, 5, 3, 1, 4, 5, 4, 2, 3, 4, 5};
+  const auto split = make_triangle_mesh<T, N>(vertices, indices);
+  const Relation whole = classify(a, make_triangle<T, N>(p, q, r));
+  const Relation pieces = classify(a, split).relation;
+  FUZZ_CHECK(pieces == whole || classify(a, make_triangle<T, N>(p, q, r), wide) == Relation::touching,
+             << "split triangle " << to_string(pieces) << ", whole " << to_string(whole));
+  const Slide<T, N> slide = collide_and_slide(a, vb, split);
+  if (slide.status == SlideStatus::invalid_input || slide.status == SlideStatus::overlapping_at_start) return;
+  const Relation end = classify(slide.body, split).relation;
+  FUZZ_CHECK(end == Relation::separated || end == Relation::touching,
+             << "slide over the split triangle ends " << to_string(end) << " at " << hex(Vec<T, N>(slide.body.center())));
+  FUZZ_CHECK(slide.moved.norm() <= vb.norm() * (1 + T(1e-6)), << "moved " << hex(slide.moved) << " for " << hex(vb));
+}
+
 // signed_distance's status and sign against the relation.
 template <class T, int N>
 void check_signed_distance(const Distance<T, N>& d, Relation rel, const char* what) {
@@ -489,6 +538,7 @@ void run(Bytes& in) {
     check_contact_function<T, N>(*a, *b, va, rel);
     check_half_space<T, N>(*a, Vec<T, N>(b->center()), va, vb, t_max);
     check_triangle<T, N>(*a, Vec<T, N>(b->center()), va, vb, t_max);
+    check_degenerate<T, N>(*a, Vec<T, N>(b->center()), va, vb, t_max);
     check_box<T, N>(*a, *b, va, t_max);
     check_capsule<T, N>(*a, *b, va, t_max);
     as.push_back(*a);

@@ -31,10 +31,11 @@ Ellipsoid<T, N> at(const Ellipsoid<T, N>& body, const Vec<T, N>& center) noexcep
 
 // The obstacles of a world: near(body, visit) calls visit(k, obstacle) for every obstacle
 // that may touch the body, swept(body, r, visit) for every one it may meet moving by t r,
-// t in [0, 1].
+// t in [0, 1]; at(k) is obstacle k.
 template <class T, int N>
 struct HalfSpaces {
   std::span<const HalfSpace<T, N>> world;
+  const HalfSpace<T, N>& at(std::size_t k) const { return world[k]; }
   template <class Visit>
   void near(const Ellipsoid<T, N>&, Visit&& visit) const {
     for (std::size_t k = 0; k < world.size(); ++k) visit(k, world[k]);
@@ -49,6 +50,7 @@ template <class T, int N>
 struct Mesh {
   const TriangleMesh<T, N>& mesh;
   double tolerance;
+  Triangle<T, N> at(std::size_t k) const { return mesh.triangle(k); }
   template <class Visit>
   void near(const Ellipsoid<T, N>& body, Visit&& visit) const {
     detail::for_each_near<T, N>(mesh, body.center().template cast<detail::Wide<T>>(),
@@ -85,19 +87,41 @@ Vec<T, N> facing(const Contact<T, N>& c) noexcept {
   return -c.normal;
 }
 
-// r without what pushes into the touched obstacles (unit normals facing the body): projected
-// onto one plane, onto two planes' common line (3D), or to nothing (slide.hpp). Normals
-// within 1e-12 of each other are one plane (several triangles touched at one point).
+// Whether moving by t r, t in [0, 1], takes the body into the obstacle deeper than half the
+// tangency band: whether the body shrunk about its center by that much meets it (or
+// already does). A touch that does not (a vertex or an edge flush with the floor the body
+// slides on, whose tangent plane the band tilts by up to the square root of the band over
+// the curvature) is a graze: it neither stops nor turns the move, which stays touching.
+template <class T, int N, class Obstacle>
+bool enters(const Ellipsoid<T, N>& body, const Vec<T, N>& r, const Obstacle& obstacle, const Options& options) {
+  const Ellipsoid<T, N> core = detail::ShapeAccess::unchecked<T, N>(
+      body.center(), body.axes(), Vec<T, N>(body.radii() * T(1 - options.tolerance / 2)));
+  return first_contact(core, r, obstacle, Vec<T, N>::Zero(), T(1), options).status !=
+         ContactStatus::no_contact_in_window;
+}
+
+// An obstacle touched, with its normal facing the body.
 template <class T, int N>
-Vec<T, N> project(Vec<T, N> r, const std::vector<Vec<T, N>>& touched) noexcept {
+struct Touch {
+  std::size_t obstacle;
+  Vec<T, N> normal;
+};
+
+// r without what pushes into the touched obstacles (unit normals facing the body; a push
+// that does not enter the obstacle, above, is none): projected onto one plane, onto two
+// planes' common line (3D), or to nothing (slide.hpp). Normals within 1e-12 of each other
+// are one plane (several triangles touched at one point).
+template <class T, int N, class Enters>
+Vec<T, N> project(Vec<T, N> r, const std::vector<Touch<T, N>>& touched, Enters&& enters) {
   std::vector<Vec<T, N>> active;
   const auto same = [](const Vec<T, N>& x, const Vec<T, N>& y) { return (x - y).norm() <= T(1e-12); };
   for (int round = 0; round <= N; ++round) {
     const Vec<T, N>* push = nullptr;
-    for (const auto& n : touched)
-      if (r.dot(n) < T(0) &&
-          std::none_of(active.begin(), active.end(), [&](const Vec<T, N>& m) { return same(m, n); })) {
-        push = &n;
+    for (const auto& touch : touched)
+      if (r.dot(touch.normal) < T(0) &&
+          std::none_of(active.begin(), active.end(), [&](const Vec<T, N>& m) { return same(m, touch.normal); }) &&
+          enters(touch.obstacle, r)) {
+        push = &touch.normal;
         break;
       }
     if (push == nullptr) return r;
@@ -136,26 +160,29 @@ Slide<T, N> slide_through(const Ellipsoid<T, N>& body, const VecArg<T, N>& displ
     const Ellipsoid<T, N> now = at(body, center);
     // Touched: within the tangency band, or just hit (a move shortened by its rounding can
     // stop short of the band).
-    std::vector<Vec<T, N>> touched;
-    for (const auto& hit : hit_last) touched.push_back(hit.second);
-    world.near(now, [&](std::size_t, const auto& obstacle) {
+    std::vector<Touch<T, N>> touched;
+    for (const auto& hit : hit_last) touched.push_back({hit.first, hit.second});
+    world.near(now, [&](std::size_t k, const auto& obstacle) {
       const Contact<T, N> c = first_contact(now, still, obstacle, still, T(0), options);
-      if (c.status == ContactStatus::touching_at_start) touched.push_back(facing(c));
+      if (c.status == ContactStatus::touching_at_start) touched.push_back({k, facing(c)});
     });
-    const Vec<T, N> free = project<T, N>(r, touched);
+    const Vec<T, N> free = project<T, N>(
+        r, touched, [&](std::size_t k, const Vec<T, N>& along) { return enters(now, along, world.at(k), options); });
     constrained |= free != r;
     r = free;
     if (r == Vec<T, N>::Zero()) break;
     // The earliest contact along r in [0, 1] (ties: every obstacle hit then).
     T first = T(1);
     hit_last.clear();
-    // A graze (r within 1e-9 of the contact's tangent plane: a seam between coplanar
-    // triangles slid across) does not stop the move; were it to end inside, the check below
-    // shortens it.
+    // A graze (r within 1e-9 of the contact's tangent plane, or a touch that does not enter
+    // the obstacle: a seam between coplanar triangles slid across) does not stop the move;
+    // were it to end inside, the check below shortens it.
     const T grazing = T(1e-9) * r.norm();
     world.swept(now, r, [&](std::size_t k, const auto& obstacle) {
       const Contact<T, N> c = first_contact(now, r, obstacle, still, T(1), options);
-      if (c.status != ContactStatus::hit || c.time > first || !(r.dot(facing(c)) < -grazing)) return;
+      if (c.status != ContactStatus::hit || c.time > first || !(r.dot(facing(c)) < -grazing) ||
+          !enters(now, r, obstacle, options))
+        return;
       if (c.time < first) hit_last.clear();
       first = c.time;
       hit_last.emplace_back(k, facing(c));

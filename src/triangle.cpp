@@ -98,12 +98,73 @@ Point<S, N> to_ball(const Mat<F, N>& axes, const Vec<F, N>& r, const Vec<F, N>& 
   return u;
 }
 
+// The unit roundoff of S: eps for F, eps^2 for Double<F>.
+template <class S>
+BaseOf<S> rounding() noexcept {
+  constexpr BaseOf<S> eps = std::numeric_limits<BaseOf<S>>::epsilon();
+  return std::is_same_v<S, BaseOf<S>> ? eps : eps * eps;
+}
+
+// The face of the triangle u: the edges f1 = u1 - u0 and f2 = u2 - u0, the normal n = f1 x f2
+// (in 2D the scalar f1 x f2) and nn = |n|^2 = |f1|^2 |f2|^2 sin^2 of the angle at u0.
+// `resolved` where sin^2 exceeds the unit roundoff of S: below, n's rounding (of order
+// rounding |f1| |f2|) leaves its direction unknown, the triangle is numerically a segment or
+// a point, and its edges and vertices, within |f| sin of every point of it, stand for it
+// (collinear and coincident vertices give nn = 0). Barycentric coordinates are taken from
+// cross products (conditioned as 1 / sin), not from the Gram matrix of the edges (1 / sin^2).
+template <class S, int N>
+struct Face {
+  Point<S, N> f1, f2;
+  std::conditional_t<N == 3, Point<S, N>, S> n;
+  S nn;
+  bool resolved;
+};
+
+template <class S, int N>
+Face<S, N> face_of(const Vertices<S, N>& u) noexcept {
+  Face<S, N> face;
+  face.f1 = minus<S, N>(u[1], u[0]);
+  face.f2 = minus<S, N>(u[2], u[0]);
+  const Point<S, N>&f1 = face.f1, &f2 = face.f2;
+  if constexpr (N == 3) {
+    face.n = {f1[1] * f2[2] - f1[2] * f2[1], f1[2] * f2[0] - f1[0] * f2[2], f1[0] * f2[1] - f1[1] * f2[0]};
+    face.nn = dot<S, N>(face.n, face.n);
+  } else {
+    face.n = f1[0] * f2[1] - f1[1] * f2[0];
+    face.nn = face.n * face.n;
+  }
+  face.resolved = face.nn > dot<S, N>(f1, f1) * dot<S, N>(f2, f2) * S{rounding<S>()};
+  return face;
+}
+
+// The barycentric weights of the point x of the face's plane (2D: of any point), for a
+// resolved face: the areas of the sub-triangles over the whole, as cross products.
+template <class S, int N>
+std::array<S, 3> face_weights(const Face<S, N>& face, const Point<S, N>& u0, const Point<S, N>& x) noexcept {
+  const Point<S, N> y = minus<S, N>(x, u0);
+  const auto area = [&](const Point<S, N>& a, const Point<S, N>& b) {
+    if constexpr (N == 3) {
+      return dot<S, N>({a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]}, face.n);
+    } else {
+      return (a[0] * b[1] - a[1] * b[0]) * face.n;
+    }
+  };
+  const S s = area(y, face.f2) / face.nn, t = area(face.f1, y) / face.nn;
+  return {lit<S>(1) - s - t, s, t};
+}
+
+template <class S>
+bool inside(const std::array<S, 3>& weights) noexcept {
+  const S zero{};
+  return weights[1] >= zero && weights[2] >= zero && weights[0] >= zero;
+}
+
 // Barycentric weights (>= 0, summing to 1) of the point of the triangle u nearest the origin,
 // as the nearest of seven candidates: the vertices, the feet on the three edges, the foot on
-// the face (where the Gram matrix of the edges is not singular). However they are rounded,
-// they are weights of a point of the triangle; the bracket below makes any error harmless.
+// the face (where it is resolved, above). However they are rounded, they are weights of a
+// point of the triangle; the bracket below makes any error harmless.
 template <class S, int N>
-std::array<S, 3> nearest_weights(const Vertices<S, N>& u) noexcept {
+std::array<S, 3> nearest_weights(const Vertices<S, N>& u, const Face<S, N>& face) noexcept {
   const S zero{}, one = lit<S>(1);
   std::array<S, 3> best{one, zero, zero};
   S best_q = dot<S, N>(u[0], u[0]);
@@ -131,14 +192,13 @@ std::array<S, 3> nearest_weights(const Vertices<S, N>& u) noexcept {
     weights[j] = s;
     consider(weights, plus_times<S, N>(u[i], s, f));
   }
-  const Point<S, N> f1 = minus<S, N>(u[1], u[0]), f2 = minus<S, N>(u[2], u[0]);
-  const S g00 = dot<S, N>(f1, f1), g01 = dot<S, N>(f1, f2), g11 = dot<S, N>(f2, f2);
-  const S det = g00 * g11 - g01 * g01;
-  if (det > zero) {
-    const S b0 = dot<S, N>(u[0], f1), b1 = dot<S, N>(u[0], f2);
-    const S s = (g01 * b1 - g11 * b0) / det, t = (g01 * b0 - g00 * b1) / det;
-    if (s >= zero && t >= zero && s + t <= one)
-      consider({one - s - t, s, t}, plus_times<S, N>(plus_times<S, N>(u[0], s, f1), t, f2));
+  if (face.resolved) {
+    // The plane's point nearest the origin: (u0 . n / |n|^2) n in 3D, the origin in 2D.
+    Point<S, N> x{};
+    if constexpr (N == 3) x = plus_times<S, N>(x, dot<S, N>(u[0], face.n) / face.nn, face.n);
+    const std::array<S, 3> weights = face_weights<S, N>(face, u[0], x);
+    if (inside(weights))
+      consider(weights, plus_times<S, N>(plus_times<S, N>(u[0], weights[1], face.f1), weights[2], face.f2));
   }
   const S sum = best[0] + best[1] + best[2];
   for (S& w : best) w = w / sum;
@@ -159,7 +219,8 @@ struct Bracket {
 // these evaluations.
 template <class F, class S, int N>
 Bracket<F, N> bracket(const Vertices<S, N>& u, F slack) noexcept {
-  const std::array<S, 3> weights = nearest_weights<S, N>(u);
+  const Face<S, N> face = face_of<S, N>(u);
+  const std::array<S, 3> weights = nearest_weights<S, N>(u, face);
   Point<S, N> x;
   for (int i = 0; i < N; ++i) x[i] = weights[0] * u[0][i] + weights[1] * u[1][i] + weights[2] * u[2][i];
   using std::sqrt;
@@ -178,9 +239,8 @@ Bracket<F, N> bracket(const Vertices<S, N>& u, F slack) noexcept {
     const S ff = dot<S, N>(f, f);
     if (ff > zero) w = plus_times<S, N>(x, -dot<S, N>(x, f) / ff, f);
   } else if constexpr (N == 3) {
-    if (count == 3) {
-      const Point<S, N> f1 = minus<S, N>(u[1], u[0]), f2 = minus<S, N>(u[2], u[0]);
-      Point<S, N> normal{f1[1] * f2[2] - f1[2] * f2[1], f1[2] * f2[0] - f1[0] * f2[2], f1[0] * f2[1] - f1[1] * f2[0]};
+    if (count == 3) {  // a resolved face
+      Point<S, N> normal = face.n;
       if (dot<S, N>(normal, u[0]) < zero)
         for (S& c : normal) c = -c;
       w = normal;
@@ -382,24 +442,20 @@ Hit<S, N> earliest_hit(const Vertices<S, N>& u, const Point<S, N>& w) noexcept {
     if (s >= zero && s <= one) consider(t, plus_times<S, N>(y, s, f));
   }
   if constexpr (N == 3) {
-    const Point<S, N> f1 = minus<S, N>(u[1], u[0]), f2 = minus<S, N>(u[2], u[0]);
-    const Point<S, N> n{f1[1] * f2[2] - f1[2] * f2[1], f1[2] * f2[0] - f1[0] * f2[2], f1[0] * f2[1] - f1[1] * f2[0]};
-    const S nn = dot<S, N>(n, n);
+    // The face's plane (where resolved: a numerically collinear triangle's plane is any
+    // plane through its line, and its edges stand for it) enters the ball from the side of
+    // sign(d0), at |d0 + t dw| = rn.
+    const Face<S, N> face = face_of<S, N>(u);
     using std::sqrt;
-    const S rn = sqrt(nn), d0 = dot<S, N>(u[0], n), dw = dot<S, N>(w, n);
-    // The plane enters the ball from the side of sign(d0): at |d0 + t dw| = rn.
+    const S rn = sqrt(face.nn), d0 = dot<S, N>(u[0], face.n), dw = dot<S, N>(w, face.n);
     const bool above = d0 > rn && dw < zero, below = -d0 > rn && dw > zero;
-    if (nn > zero && (above || below)) {
+    if (face.resolved && (above || below)) {
       const S t = above ? (d0 - rn) / -dw : (-d0 - rn) / dw;
       const S side = above ? one : -one;
       Point<S, N> x;
-      for (int i = 0; i < N; ++i) x[i] = side * n[i] / rn;
-      // x - t w in the triangle at rest: barycentric coordinates from the Gram matrix.
-      const Point<S, N> y = minus<S, N>(plus_times<S, N>(x, -t, w), u[0]);
-      const S g00 = dot<S, N>(f1, f1), g01 = dot<S, N>(f1, f2), g11 = dot<S, N>(f2, f2);
-      const S det = g00 * g11 - g01 * g01, b0 = dot<S, N>(y, f1), b1 = dot<S, N>(y, f2);
-      const S s = (g11 * b0 - g01 * b1) / det, r = (g00 * b1 - g01 * b0) / det;
-      if (det > zero && s >= zero && r >= zero && s + r <= one) consider(t, x);
+      for (int i = 0; i < N; ++i) x[i] = side * face.n[i] / rn;
+      // x - t w in the triangle at rest.
+      if (inside(face_weights<S, N>(face, u[0], plus_times<S, N>(x, -t, w)))) consider(t, x);
     }
   }
   return best;
@@ -473,10 +529,17 @@ Contact<T, N> first_contact(const Ellipsoid<T, N>& a, const VecArg<T, N>& veloci
       time = t;
       for (int i = 0; i < N; ++i) x[i] = value(hit.point[i]);
     };
-    if (p.double_length || p.bracket.gap_lo < F(0.25) || p.size > F(1024)) {
+    // A thin triangle's plane (3D) is known to the rounding over the sine of its angle.
+    bool thin = false;
+    if constexpr (N == 3) {
+      const Face<F, N> face = face_of<F, N>(p.u);
+      thin = face.nn * 256 < dot<F, N>(face.f1, face.f1) * dot<F, N>(face.f2, face.f2);
+    }
+    if (p.double_length || p.bracket.gap_lo < F(0.25) || p.size > F(1024) || thin) {
       // The entering roots cancel in |u|^2 - 1 as the gap closes, and across a triangle far
-      // larger than the body in its frame: within a gap of 1/4 or beyond 1024 radii, double
-      // length.
+      // larger than the body in its frame; a thin triangle's face (the sine of its angle
+      // below 1/16) puts the rounding over that sine into its contact: within a gap of 1/4,
+      // beyond 1024 radii or for a thin triangle, double length.
       Vertices<Double<F>, N> u2 = p.u2;
       if (!p.double_length)
         for (int k = 0; k < 3; ++k) u2[k] = to_ball<Double<F>, F, N>(p.axes, p.radii, p.vertices[k], p.center);

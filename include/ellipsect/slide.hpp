@@ -12,9 +12,17 @@
 // point of its face, edge or vertex touched), and pushes when r . n < 0. One such plane, r
 // is projected onto it; two (a crease), onto their common line in 3D, to nothing in 2D;
 // three in 3D (a corner), to nothing; normals within 1e-12 of each other count as one plane
-// (the triangles around a vertex or along an edge touched at one point). The body never
-// moves into a touched obstacle, so it slides along floors and walls, around a mesh's edges
-// and vertices (whose tangent plane turns as the body moves), and stops in corners.
+// (the triangles around a vertex or along an edge touched at one point). A touch counts,
+// at the start of a round or hit on the way, only where the move would take the body into
+// the obstacle deeper than half the tangency band (the body shrunk about its center by half
+// the band meets it on the way): otherwise it is a graze, as where a floor or wall split into
+// coplanar (in 2D collinear) pieces is slid across, the next piece's edge or vertex level
+// with the body's resting place within the band, whose tangent plane the band alone tilts by
+// up to the square root of the band over the body's curvature there (float bodies, whose
+// radii cannot be shrunk by so little, count every touch). So a split floor slides as the
+// whole one; the body never moves into a touched obstacle beyond half the band, so it
+// slides along floors and walls, around a mesh's edges and vertices (whose tangent plane
+// turns as the body moves), and stops in corners.
 // Steps are walls: a riser stops the body or turns it along itself; climbing a step is the
 // caller's (a move up, one forward, one down), as in the controllers cited.
 //

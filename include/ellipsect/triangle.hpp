@@ -21,7 +21,10 @@
 // against a triangle of Fauerby's and Nettle's character controllers, solved in closed form.
 //
 // Method and guarantee: the nearest point x of T' to the origin is the nearest of seven
-// candidates (vertices, edges, face) as barycentric weights; then a certified bracket
+// candidates (vertices, edges, face) as barycentric weights (the face's from cross products,
+// and only where the face is resolved: the sine of its angle above the square root of the
+// working precision's unit roundoff, below which the triangle is numerically its segment or
+// point and its edges, within sine times U of every point of it, stand for it); then a certified bracket
 // lo <= d <= hi: hi = |x| (a convex combination of the vertices: a point of T'), lo =
 // min_k (x / |x|) . u_k (the plane through x normal to x supports T'), each widened by the
 // rounding-error bound of its evaluation. A bracket that decides the relation is the answer;
@@ -32,9 +35,12 @@
 // the relation is exact outside the tangency band widened by about 1e-30 U: by 1e-14 (the
 // tests' margin) for triangles to 1e15 radii across and more (tested to 1e12 on random
 // cases, at 1e20 on a floor), whatever the aspect ratio, and for needles, segments and
-// points; a triangle apart from the body's box always exactly. Contact times are computed in
-// double length where the gap is below 1/4 or U above 1024 (the entering roots cancel
-// there), with errors of order 1e-32 U^2 relative; a body whose box, swept relative to the
+// points (collinear or coincident vertices, or within rounding of that: widened there by
+// about 2e-16 U, the sine of a face too thin for double length); a triangle apart from the
+// body's box always exactly. Contact times are computed in double length where the gap is
+// below 1/4, U above 1024 (the entering roots cancel there) or the sine of the triangle's
+// angle below 1/16 (its face's plane is known to the rounding over that sine), with errors
+// of order 1e-32 U^2 relative; a body whose box, swept relative to the
 // triangle's over the window, never meets it has no contact, exactly. (Not met: a triangle
 // more than about 1e8 radii across, in the body's frame, that the body's box does sweep
 // through can get a contact time with less than the stated accuracy.) Pairs beyond the native range (shapes.hpp, "Range") run in long double. float
@@ -46,7 +52,8 @@
 // on that static test; random, aspect ratios to 1e4, near tangency at faces, edges and
 // vertices (relative gaps 1e-13 to 1e-3, outside and inside), containment, triangles 1e3 to
 // 1e12 radii across, needles, segments and points, scale 1e-6 and 1e6, grazing, zero relative
-// velocity):
+// velocity; and each of these made collinear, nearly collinear (a vertex 1 to 4 ulps off the
+// segment), a point or nearly a point in world coordinates):
 //   relation      exact outside the tangency band widened by 1e-14;
 //   contact time  where the reference finds a contact (its least gap in the window more than
 //                 1e-9 below 0: not a graze), a hit at a time where the reference's relative

@@ -14,10 +14,12 @@
 // Cases (scenarios/triangle.hpp): random; aspect ratios to 1e4; near tangency at faces,
 // edges and vertices (relative gaps 1e-13 to 1e-3, either side); containment; triangles 1e3
 // to 1e6 radii across; needles, segments and points; scale 1e-6 and 1e6; grazing; zero
-// relative velocity.
+// relative velocity; and each of these made collinear, nearly collinear (a vertex 1 to 4 ulps
+// off the segment), a point or nearly a point (tests/property/degenerate.hpp).
 #include <ellipsect/triangle.hpp>
 
 #include "scenarios/triangle.hpp"
+#include "tests/property/degenerate.hpp"
 #include "tests/reference/bridge.hpp"
 #include "tests/reference/triangle_reference.hpp"
 #include "tests/support.hpp"
@@ -109,14 +111,7 @@ void check(const Case<N>& c, std::map<std::string, int>& tally) {
   ASSERT_LE(distance_to<N>(hit.normal, normal), 1e-12) << describe(c);
 }
 
-template <int N>
-void run(const char* title) {
-  std::map<std::string, int> tally;
-  for (const TriangleKind kind : scenarios::triangle_kinds)
-    for (int seed = 0; seed < cases(150); ++seed) {
-      check<N>(scenarios::make_triangle_case<N>(kind, seed), tally);
-      if (::testing::Test::HasFatalFailure()) return;
-    }
+void report(const char* title, std::map<std::string, int>& tally) {
   std::printf("%s:", title);
   for (const auto& [outcome, count] : tally) std::printf(" %s=%d", outcome.c_str(), count);
   std::printf("\n");
@@ -128,7 +123,56 @@ void run(const char* title) {
     EXPECT_GT(tally[outcome], 0) << outcome;
 }
 
+template <int N>
+void run(const char* title) {
+  std::map<std::string, int> tally;
+  for (const TriangleKind kind : scenarios::triangle_kinds)
+    for (int seed = 0; seed < cases(150); ++seed) {
+      check<N>(scenarios::make_triangle_case<N>(kind, seed), tally);
+      if (::testing::Test::HasFatalFailure()) return;
+    }
+  report(title, tally);
+}
+
+// A triangle with vertices in [-3, 3]^N about a body centered in [-1, 1]^N, both moving at
+// random (speeds to 5 per unit time), t_max = 1: relative motions at any angle to the
+// triangle's edges.
+template <int N>
+Case<N> random_motion_case(int seed) {
+  using namespace scenarios::detail;
+  using V = Vec<double, N>;
+  Rng rng(static_cast<std::uint64_t>(seed) * 4099 + 7);
+  const auto point = [&](double s) { return V(V::NullaryExpr([&](Eigen::Index) { return uniform(rng, -s, s); })); };
+  const auto a = Ellipsoid<double, N>::from_axes(point(1), rotation<N>(rng), radii<N>(rng, 0.5, 10));
+  const auto b = make_triangle<double, N>(point(3), point(3), point(3));
+  const V va = unit_vector<N>(rng) * uniform(rng, 0, 5), vb = unit_vector<N>(rng) * uniform(rng, 0, 5);
+  return {TriangleKind::random, seed, a, b, va, vb, 1.0, 1.0, 0.0};
+}
+
+// Every scenario's triangle, and the random moving ones above, made collinear, nearly
+// collinear, a point or nearly a point in world coordinates (tests/property/degenerate.hpp):
+// the same claims.
+template <int N>
+void run_degenerate(const char* title) {
+  std::map<std::string, int> tally;
+  for (const Degenerate d : degenerate_kinds) {
+    SCOPED_TRACE(name(d));
+    for (const TriangleKind kind : scenarios::triangle_kinds)
+      for (int seed = 0; seed < (full_case_counts() ? 4 : 2); ++seed) {
+        check<N>(degenerate<N>(scenarios::make_triangle_case<N>(kind, seed), d), tally);
+        if (::testing::Test::HasFatalFailure()) return;
+      }
+    for (int seed = 0; seed < (full_case_counts() ? 100 : 20); ++seed) {
+      check<N>(degenerate<N>(random_motion_case<N>(seed), d), tally);
+      if (::testing::Test::HasFatalFailure()) return;
+    }
+  }
+  report(title, tally);
+}
+
 TEST(TriangleProperty, MatchesReference2D) { run<2>("2D"); }
 TEST(TriangleProperty, MatchesReference3D) { run<3>("3D"); }
+TEST(TriangleProperty, DegenerateMatchReference2D) { run_degenerate<2>("degenerate 2D"); }
+TEST(TriangleProperty, DegenerateMatchReference3D) { run_degenerate<3>("degenerate 3D"); }
 
 }  // namespace

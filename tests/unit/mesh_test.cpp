@@ -1,7 +1,8 @@
 // mesh.hpp and collide_and_slide through meshes: the factory's checks; the hierarchy's
 // answers equal to those of every triangle tested in turn (random soups, 2D and 3D: same
 // relation, same triangle, the same contact time bit for bit); a tiled floor (no snag on the
-// seams between its triangles); steps lower and higher than the body; random soups slid
+// seams between its triangles; floors split into collinear or coplanar pieces slide as the
+// whole one); steps lower and higher than the body; random soups slid
 // through (never inside, never farther than asked).
 #include <ellipsect/mesh.hpp>
 #include <ellipsect/slide.hpp>
@@ -214,6 +215,54 @@ TEST(TriangleMesh, FallsOntoAndSlidesAcrossATiledFloor) {
   EXPECT_NEAR(s.body.center()[0], 5.5 + 12, 1e-9);
   EXPECT_NEAR(s.body.center()[1], 5.25 + 9, 1e-9);
   EXPECT_EQ(s.contacts, 1);  // the landing; the seams are slid across
+}
+
+// A floor y = 0 over x in [-10, 10] as `pieces` collinear segments (triangles (a, b, b)).
+TriangleMesh<double, 2> split_floor(int pieces) {
+  std::vector<double> v;
+  std::vector<std::int64_t> t;
+  for (int i = 0; i <= pieces; ++i) v.insert(v.end(), {-10 + 20.0 * i / pieces, 0.0});
+  for (int i = 0; i < pieces; ++i) t.insert(t.end(), {i, i + 1, i + 1});
+  return make_triangle_mesh<double, 2>(v, t);
+}
+
+// A needle ellipse (radii 0.5 and 5e-4, turned by 0.8) 0.7 above a floor, moved by (7, -1):
+// it lands at t = 0.7 and slides the rest of the way, ending at x = -3.3 + 7 = 3.7. Split into
+// 8 collinear segments, the floor stopped it at x = 2.848, its tip on the seam x = 2.5: the
+// body rests within the tangency band, a little below the next segment's end vertex, which it
+// then touches off its tip, where the band tilts the tangent plane by 1e-3 (the square root
+// of the band over the tip's curvature); the slide took the tilted plane and the floor for a
+// corner. A touch that would not take the body deeper than half the band into the obstacle is
+// a graze (slide.hpp): the split floor slides as the whole one.
+TEST(TriangleMesh, FloorOfCollinearPiecesIsNoCorner2D) {
+  const double rho = std::hypot(0.5 * std::sin(0.8), 5e-4 * std::cos(0.8));
+  const auto needle = make_ellipse<double>(V2(-3.3, 0.7 + rho), 0.8, V2(0.5, 5e-4));
+  for (const int pieces : {1, 2, 8, 40}) {
+    const auto s = collide_and_slide(needle, V2(7, -1), split_floor(pieces));
+    EXPECT_EQ(s.status, SlideStatus::slid) << pieces;
+    EXPECT_EQ(s.contacts, 1) << pieces;
+    EXPECT_NEAR(s.body.center()[0], 3.7, 1e-12) << pieces;
+    EXPECT_NEAR(s.body.center()[1], rho, 1e-12) << pieces;
+  }
+}
+
+// The same in 3D: a needle ellipsoid (radii 0.5, 0.2 and 5e-4, turned by 0.8 about y) lands
+// on a floor of unit squares and slides across their seams as on the floor's half-space.
+// Before, the 20 x 20 floor took a seam's edge, within the band, for a wall: 2 contacts and
+// the end 3.5e-9 higher.
+TEST(TriangleMesh, FloorOfCoplanarPiecesIsNoCorner3D) {
+  const double rho = std::hypot(0.5 * std::sin(0.8), 5e-4 * std::cos(0.8));
+  const Mat3<double> axes = Eigen::AngleAxisd(0.8, Eigen::Vector3d::UnitY()).toRotationMatrix();
+  const auto needle = Ellipsoid<double, 3>::from_axes(V3(3.3, 5.25, 0.7 + rho), axes, V3(0.5, 0.2, 5e-4));
+  const std::vector<HalfSpace<double, 3>> plane{make_half_space<double, 3>(V3(0, 0, 0), V3(0, 0, 1))};
+  const auto want = collide_and_slide(needle, V3(7, 1, -1), std::span<const HalfSpace<double, 3>>(plane));
+  EXPECT_NEAR((want.body.center() - V3(10.3, 6.25, rho)).norm(), 0.0, 1e-14);
+  for (const int n : {12, 20}) {
+    const auto s = collide_and_slide(needle, V3(7, 1, -1), terrain(n, [](double, double) { return 0.0; }));
+    EXPECT_EQ(s.status, SlideStatus::slid) << n;
+    EXPECT_EQ(s.contacts, 1) << n;
+    EXPECT_NEAR((s.body.center() - want.body.center()).norm(), 0.0, 1e-12) << n;
+  }
 }
 
 // A step at x = 4 of height h: a riser (two triangles) and the upper floor.
