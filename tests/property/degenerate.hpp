@@ -1,5 +1,5 @@
-// Degenerate triangles for the property tests: each scenario triangle
-// (scenarios/triangle.hpp) made, in world coordinates, collinear (v2 on the segment v0 v1,
+// Degenerate triangles for the property tests (and the relation a triangle reference implies):
+// each scenario triangle (scenarios/triangle.hpp) made, in world coordinates, collinear (v2 on the segment v0 v1,
 // to the rounding of double), nearly collinear (that v2 moved 1 to 4 ulps per coordinate off
 // the segment), a point, or nearly a point (v1 and v2 1 to 4 ulps per coordinate from v0).
 // The scenario's edge u0 u1 (near_tangent_edge) and vertex u0 (near_tangent_vertex) carry
@@ -7,10 +7,14 @@
 #pragma once
 
 #include "scenarios/triangle.hpp"
+#include "tests/reference/reference.hpp"
+
+#include <ellipsect/classify.hpp>
 
 #include <array>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 namespace ellipsect::testing {
 
@@ -48,6 +52,22 @@ scenarios::TriangleCase<N> degenerate(scenarios::TriangleCase<N> c, Degenerate d
     case Degenerate::nearly_point: c.b = make_triangle<double, N>(v0, ulps_from<N>(v0, rng), ulps_from<N>(v0, rng)); break;
   }
   return c;
+}
+
+// The relation that a triangle reference's gaps imply (tests/reference/triangle_reference.hpp:
+// d the least, D the greatest scaled distance of the triangle from the body's center, 1 on its
+// boundary) with the tangency band `tolerance`; nullopt within 1e-14 of a band edge, where
+// the query may answer either side.
+inline std::optional<Relation> expected_relation(const reference::Real& d, const reference::Real& D,
+                                                 double tolerance) {
+  using reference::Real;
+  const Real band = Real(tolerance), margin = Real(1e-14);
+  for (const Real& edge : {Real(d - 1 - band), Real(d - 1 + band), Real(D - 1 - band)})
+    if (abs(edge) <= margin) return std::nullopt;
+  if (d - 1 > band) return Relation::separated;
+  if (d - 1 >= -band) return Relation::touching;
+  if (D - 1 <= band) return Relation::a_contains_b;
+  return Relation::overlapping;
 }
 
 }  // namespace ellipsect::testing

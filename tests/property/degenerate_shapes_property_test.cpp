@@ -245,16 +245,6 @@ PlaneCase<N> make_plane_case(int kind, int seed) {
   return c;
 }
 
-std::optional<Relation> expected_relation(const Real& d, const Real& D, double tolerance) {
-  const Real band = Real(tolerance), margin = Real(1e-14);
-  for (const Real& edge : {Real(d - 1 - band), Real(d - 1 + band), Real(D - 1 - band)})
-    if (abs(edge) <= margin) return std::nullopt;
-  if (d - 1 > band) return Relation::separated;
-  if (d - 1 >= -band) return Relation::touching;
-  if (D - 1 <= band) return Relation::a_contains_b;
-  return Relation::overlapping;
-}
-
 template <int N>
 void check_plane(const PlaneCase<N>& c, std::map<std::string, int>& tally) {
   SCOPED_TRACE(c.what);

@@ -43,17 +43,6 @@ using scenarios::TriangleKind;
 template <int N> using Case = scenarios::TriangleCase<N>;
 using scenarios::describe;
 
-// The reference's relation, or nullopt within 1e-14 of a band edge.
-std::optional<Relation> expected_relation(const Real& d, const Real& D, double tolerance) {
-  const Real band = Real(tolerance), margin = Real(1e-14);
-  for (const Real& edge : {Real(d - 1 - band), Real(d - 1 + band), Real(D - 1 - band)})
-    if (abs(edge) <= margin) return std::nullopt;
-  if (d - 1 > band) return Relation::separated;
-  if (d - 1 >= -band) return Relation::touching;
-  if (D - 1 <= band) return Relation::a_contains_b;
-  return Relation::overlapping;
-}
-
 template <int N>
 std::array<ref::DVec<N>, 3> vertices_of(const Triangle<double, N>& t) {
   return {t.vertex(0), t.vertex(1), t.vertex(2)};
