@@ -93,8 +93,6 @@ Contact<T, N> solve_contact(const Ellipsoid<T, N>& s, const Ellipsoid<T, N>& o, 
   auto finish = [&](ContactStatus status, R t, const detail::BranchPoint<R, N>* p) {
     out.status = status;
     out.time = T(t);
-    if (status == ContactStatus::hit && R(out.time) > t)  // T narrower than R: round down, never late
-      out.time = std::nextafter(out.time, T(0));
     if (p != nullptr && p->norm > R(0) && rounding(t) <= R(1)) {
       const Vec<R, N> z = p->point / p->norm;  // on the unit ball, i.e. on S's boundary
       const Vec<R, N> offset = red.to_world * z;
@@ -145,22 +143,12 @@ Contact<T, N> solve_contact(const Ellipsoid<T, N>& s, const Ellipsoid<T, N>& o, 
   // of delta over the slope, relative to max(t, the time to cross the unit ball); the
   // normal turns by the point's rounding times the sphere body's aspect ratio (the map
   // back to the world stretches directions by up to a_max / a_min).
-  // Never late: where the computed delta at t does not exceed its rounding r, the root may
-  // lie before t. delta is convex, so delta(t - h) >= delta(t) + |delta'(t)| h > 0 for
-  // h > (r - delta) / |slope|; the time steps back by 1.25 times that (the slope's own
-  // rounding, r |w| / |slope|, is kept below a fifth by the doubt), never before `safe`, the
-  // last iterate certified apart. With the root at most (r + delta) / |slope| after t, the
-  // time error is then below 2.5 r / |slope|, within the claim where doubt <= 1. The point is
-  // S's at the reported time, from q.
   const R aspect_s = R(s.radii().maxCoeff()) / R(s.radii().minCoeff());
-  R safe = 0;
   auto hit = [&](R t, const detail::BranchPoint<R, N>& q) {
-    const R r = rounding(t), slope = w.dot(q.point) / q.norm, gap = q.norm - R(1);
+    const R r = rounding(t), slope = w.dot(q.point) / q.norm;
     const R scale = std::max(t, R(1) / w.norm());
-    doubt = std::max({doubt, r / (std::abs(slope) * scale) / R(2.5e-13), r * aspect_s / R(2.5e-10),
-                      5 * r * w.norm() / std::abs(slope)});
-    const R when = gap > r ? t : slope < R(0) ? std::max(safe, t - R(1.25) * (r - gap) / -slope) : safe;
-    return finish(ContactStatus::hit, when, &q);
+    doubt = std::max({doubt, r / (std::abs(slope) * scale) / R(2.5e-13), r * aspect_s / R(2.5e-10)});
+    return finish(ContactStatus::hit, t, &q);
   };
 
   R t = 0;
@@ -203,7 +191,6 @@ Contact<T, N> solve_contact(const Ellipsoid<T, N>& s, const Ellipsoid<T, N>& o, 
     p = pn;
     delta = p.norm - R(1);
     if (converged) return hit(t, p);
-    if (delta > R(1e-3) || delta > rounding(t)) safe = t;  // rounding only near the root
   }
   return delta <= tol ? finish(ContactStatus::hit, t, &p) : finish(ContactStatus::did_not_converge, t, nullptr);
 }

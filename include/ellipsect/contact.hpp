@@ -8,10 +8,9 @@
 // Accuracy (tested against a 50-digit reference, tests/property/contact_property_test.cpp), for
 // pairs whose paths are not grazing (the relative velocity makes an angle theta with the
 // contact plane's tangent, sin(theta) >= 1e-3):
-//   time   never later than the exact first contact (any path; of the bodies as read here:
-//          axes orthonormal only to rounding make readings of a body differ by up to
-//          |A^T A - I| times its largest radius); relative error <= 1e-12, or absolute
-//          1e-12 * scale / speed when near 0;
+//   time   relative error <= 1e-12, or absolute 1e-12 * scale / speed when near 0 (the
+//          converged Newton iterate: it may lie after the exact contact by its rounding, a
+//          few ulps);
 //   point  within 1e-10 * scale of the exact contact point, plus the rounding of its
 //          coordinates (eps |point|: half an ulp is 6e-11 at 1e6 from the origin);
 //   normal within 1e-9 rad.
@@ -115,8 +114,8 @@ Ellipsoid<T, N> body_at(const Ellipsoid<T, N>& body, const RigidMotion<T, N>& mo
 //
 // Guarantees (tested against a 50-digit reference by another route, tests/property/
 // rigid_contact_property_test.cpp):
-//   * the reported time is never later than the first contact of the exact motion: each
-//     step keeps a margin for the rounding of the bodies it forms at time t (a few ulps of
+//   * a body turning: the reported time is never later than the first contact of the exact
+//     motion: each step keeps a margin for the rounding of the bodies it forms at time t (a few ulps of
 //     T of the centers, of t times the speeds and of the radii times (8 + |omega| t)) and of
 //     the gap: a contact in the window is never missed, and no_contact_in_window is
 //     certified;
@@ -131,7 +130,8 @@ Ellipsoid<T, N> body_at(const Ellipsoid<T, N>& body, const RigidMotion<T, N>& mo
 //     or speeds near the range of the type): `time` is a certified lower bound on the first
 //     contact time, point and normal NaN;
 //   * both angular velocities exactly zero: exactly the answer of the translational
-//     first_contact above, bit for bit (never late too).
+//     first_contact above, bit for bit (which is not certified early: it may lie after the
+//     exact contact by a few ulps).
 // invalid_input where a velocity or angular velocity is not finite or t_max is NaN or
 // negative. Range: radii and speeds at any scale (rescaled by powers of two); pairs that
 // need more than double (radius ratios beyond 2^160 or coordinates beyond 2^340 radii,
