@@ -8,9 +8,15 @@
 //   0; overlapping_at_start exactly where the bodies overlap at 0 (distance's status);
 //   a small step cap chosen by the input: the same answer, or did_not_converge with a time
 //   in [0, t_max] not later than the uncapped hit's, or (the cap reached inside the tangency
-//   band) a hit not later than it; iterations within the cap;
+//   band) a hit not later than it (to 1e-12 relative: both are refined); iterations within
+//   the cap;
 //   body_at: InputError naming "velocity", "angular_velocity" or "time" for non-finite
-//   input, else a body with the same radii, finite axes and the center moved by t * velocity.
+//   input, else a body with the same radii, finite axes and the center moved by t * velocity;
+//   translation (an input flag at the end): the pair with its centers on a grid of 2^-(p - 23)
+//   of its largest radius (p the type's digits: 2^-30 for double) and moved by an offset of up
+//   to 2^(p - 3) grid steps (2^20 radii), both exact: the same status, time and normal
+//   bit for bit, the point moved by the offset to its rounding (the queries compute relative to
+//   one body).
 #include "fuzz_support.hpp"
 
 #include <ellipsect/box.hpp>
@@ -82,10 +88,59 @@ void check_contact(Query&& query, Linear&& linear, bool bad, bool still, Distanc
     FUZZ_CHECK(k.time >= T(0) && k.time <= t_max, "capped lower bound " << k.time);
     if (c.status == ContactStatus::hit) FUZZ_CHECK(k.time <= c.time, "lower bound " << k.time << " after " << c.time);
   } else if (!(k.status == c.status && same_bits(k.time, c.time))) {
-    // The cap reached inside the tangency band: a hit at an earlier time in the band.
-    FUZZ_CHECK(k.status == ContactStatus::hit && c.status == ContactStatus::hit && k.time <= c.time,
+    // The cap reached inside the tangency band: a hit at an earlier time in the band (each
+    // hit's time then refined along its own normal: both lower bounds of the same contact,
+    // equal to rounding where the refinement reaches it).
+    FUZZ_CHECK(k.status == ContactStatus::hit && c.status == ContactStatus::hit &&
+                   k.time <= c.time + std::max(T(1e-12), 4 * std::numeric_limits<T>::epsilon()) * c.time,
                "capped answer " << int(k.status) << " at " << k.time << " vs " << int(c.status) << " at " << c.time);
   }
+}
+
+// Whether x + y is exact (Knuth's two-sum has no error).
+template <class T>
+bool exact_sum(T x, T y) {
+  const T s = x + y, z = s - x;
+  return (x - (s - z)) + (y - z) == T(0) && std::isfinite(s);
+}
+
+template <class T, int N>
+void check_translated(Bytes& in, const Ellipsoid<T, N>& a, const RigidMotion<T, N>& ma, const Ellipsoid<T, N>& b,
+                      const RigidMotion<T, N>& mb, T t_max) {
+  constexpr int p = std::numeric_limits<T>::digits;
+  const int e = std::ilogb(std::max(a.radii().maxCoeff(), b.radii().maxCoeff()));
+  const T grid = std::ldexp(T(1), e - (p - 23)), limit = std::ldexp(T(1), p - 3);
+  Vec<T, N> offset;
+  for (int i = 0; i < N; ++i)
+    offset[i] = T(static_cast<std::int64_t>(in.u64() >> (64 - (p - 2))) - (std::int64_t(1) << (p - 3))) * grid;
+  auto on_grid = [&](const Ellipsoid<T, N>& x, const Vec<T, N>& by, std::optional<Ellipsoid<T, N>>& out) {
+    Vec<T, N> c;
+    for (int i = 0; i < N; ++i) {
+      c[i] = std::round(x.center()[i] / grid) * grid;
+      if (!(std::abs(c[i] / grid) < limit) || !exact_sum(c[i], by[i])) return;
+      c[i] += by[i];
+    }
+    try {
+      out = Ellipsoid<T, N>::from_axes(c, x.axes(), x.radii());
+    } catch (const InputError&) {
+    }
+  };
+  std::optional<Ellipsoid<T, N>> a0, b0, a1, b1;
+  const Vec<T, N> zero = Vec<T, N>::Zero();
+  on_grid(a, zero, a0);
+  on_grid(b, zero, b0);
+  on_grid(a, offset, a1);
+  on_grid(b, offset, b1);
+  if (!a0 || !b0 || !a1 || !b1) return;
+  const Contact<T, N> c0 = first_contact(*a0, ma, *b0, mb, t_max), c1 = first_contact(*a1, ma, *b1, mb, t_max);
+  FUZZ_CHECK(c0.status == c1.status && same_bits(c0.time, c1.time) && same_bits_or_nan(c0.normal, c1.normal),
+             "moved by " << hex(offset) << ": " << int(c1.status) << " at " << c1.time << " vs " << int(c0.status)
+                         << " at " << c0.time);
+  if (!all_finite(c0.point)) return;
+  constexpr T eps = std::numeric_limits<T>::epsilon();
+  const T rounding = 8 * eps * (c0.point.cwiseAbs().maxCoeff() + c1.point.cwiseAbs().maxCoeff());
+  FUZZ_CHECK((c1.point - offset - c0.point).cwiseAbs().maxCoeff() <= rounding + std::numeric_limits<T>::denorm_min(),
+             "moved point " << hex(c1.point) << " vs " << hex(c0.point) << " + " << hex(offset));
 }
 
 template <class T, int N>
@@ -132,6 +187,7 @@ void run(Bytes& in) {
                              b->radii().minCoeff()));
   } catch (const InputError&) {
   }
+  if (in.flag() && !bad && mb.velocity.allFinite() && finite_spin(mb)) check_translated<T, N>(in, *a, ma, *b, mb, t_max);
 }
 
 }  // namespace

@@ -16,6 +16,7 @@
 
 #include "detail/certificates-inl.hpp"
 #include "detail/classify_impl.hpp"
+#include "detail/compensated.hpp"
 #include "detail/contact_start.hpp"
 #include "detail/instantiate.hpp"
 #include "detail/scale.hpp"
@@ -55,29 +56,47 @@ Contact<T, N> solve_contact(const Ellipsoid<T, N>& s, const Ellipsoid<T, N>& o, 
   doubt = 0;
 
   const auto red = detail::reduce<R>(s, o);
-  const Vec<R, N> vs = vs_in.template cast<R>(), vo = vo_in.template cast<R>();
-  const Vec<R, N> ks = s.center().template cast<R>(), ko = o.center().template cast<R>();
-  const Vec<R, N> w = red.to_z * (vo - vs);
-  // O's center relative to S's at time t, in the reduced frame. Each body's position is
-  // formed with about one rounding (mul_add) before the difference: a pair that starts far apart
-  // and meets near the origin keeps the digits that k(0) + t w would cancel away.
-  auto center_at = [&](R t) {
+  const Vec<R, N> vs = vs_in.template cast<R>(), ks = s.center().template cast<R>();
+  const Vec<R, N> w = red.to_z * (vo_in.template cast<R>() - vs);
+  // O's center relative to S's at time t, from the exact differences of the centers and of
+  // the velocities (two-sums; no product, so contraction cannot spoil them): r(t) = (d + t u)
+  // + (d_lo + t u_lo), the first part formed with one rounding (mul_add). Its error is
+  // about eps |r(t)| + eps^2 (|d| + t |u|): relative to the pair's separation, not to the
+  // distance from the origin nor to how far the pair travels before it meets.
+  detail::Double<R> d[N], u[N];
+  for (int i = 0; i < N; ++i) {
+    d[i] = detail::two_sum(R(o.center()[i]), -ks[i]);
+    u[i] = detail::two_sum(R(vo_in[i]), -vs[i]);
+  }
+  auto relative_at = [&](R t) {
     Vec<R, N> rel;
-    for (int i = 0; i < N; ++i) rel[i] = detail::mul_add(t, vo[i], ko[i]) - detail::mul_add(t, vs[i], ks[i]);
-    return Vec<R, N>(red.to_z * rel);
+    for (int i = 0; i < N; ++i) rel[i] = detail::mul_add(t, u[i].hi, d[i].hi) + (t * u[i].lo + d[i].lo);
+    return rel;
   };
+  auto center_at = [&](R t) { return Vec<R, N>(red.to_z * relative_at(t)); };
+  R d_norm = 0, u_norm = 0;
+  for (int i = 0; i < N; ++i) {
+    d_norm += d[i].hi * d[i].hi;
+    u_norm += u[i].hi * u[i].hi;
+  }
+  d_norm = std::sqrt(d_norm);
+  u_norm = std::sqrt(u_norm);
   const R e_max = red.e.maxCoeff();
   const R inv_a_min = R(1) / R(s.radii().minCoeff());
+  // The reduced frame's rounding: 32 ulps of |k|, of O's largest semi-axis and of the
+  // relative position in S's units (with its own rounding), none of the world coordinates.
   auto rounding = [&](R t) {
-    const R world = (ko + t * vo).norm() + (ks + t * vs).norm();
-    return R(detail::reduced_frame_ulps) * eps * (center_at(t).norm() + e_max + world * inv_a_min);
+    const Vec<R, N> rel = relative_at(t);
+    const R apart = rel.norm() + eps * (d_norm + t * u_norm);
+    return R(detail::reduced_frame_ulps) * eps * ((red.to_z * rel).norm() + e_max + apart * inv_a_min);
   };
   auto finish = [&](ContactStatus status, R t, const detail::BranchPoint<R, N>* p) {
     out.status = status;
     out.time = T(t);
     if (p != nullptr && p->norm > R(0) && rounding(t) <= R(1)) {
       const Vec<R, N> z = p->point / p->norm;  // on the unit ball, i.e. on S's boundary
-      out.point = (s.center().template cast<R>() + t * vs + red.to_world * z).template cast<T>();
+      const Vec<R, N> offset = red.to_world * z;
+      for (int i = 0; i < N; ++i) out.point[i] = T(detail::mul_add(t, vs[i], ks[i]) + offset[i]);
       const Vec<R, N> n = detail::unit_vector<R, N>(red.normal_map * z);
       out.normal = (a_is_s ? n : Vec<R, N>(-n)).template cast<T>();
     } else if (p != nullptr) {
@@ -85,11 +104,9 @@ Contact<T, N> solve_contact(const Ellipsoid<T, N>& s, const Ellipsoid<T, N>& o, 
       // ratios beyond 1/eps), where P's direction is noise: the normal is O's at S's
       // center, -grad q_O (off by about S's size over O's radius of curvature), and the
       // point S's support point along it.
-      Vec<R, N> cs, offset;
-      for (int i = 0; i < N; ++i) {
-        cs[i] = detail::mul_add(t, vs[i], ks[i]);
-        offset[i] = cs[i] - detail::mul_add(t, vo[i], ko[i]);
-      }
+      Vec<R, N> cs;
+      for (int i = 0; i < N; ++i) cs[i] = detail::mul_add(t, vs[i], ks[i]);
+      const Vec<R, N> offset = -relative_at(t);
       const Mat<R, N> axes_o = detail::work_axes<R>(o), axes_s = detail::work_axes<R>(s);
       const Vec<R, N> radii_o = o.radii().template cast<R>(), radii_s = s.radii().template cast<R>();
       const Vec<R, N> local = (axes_o.transpose() * offset).cwiseQuotient(radii_o).cwiseQuotient(radii_o);
@@ -127,9 +144,10 @@ Contact<T, N> solve_contact(const Ellipsoid<T, N>& s, const Ellipsoid<T, N>& o, 
   // normal turns by the point's rounding times the sphere body's aspect ratio (the map
   // back to the world stretches directions by up to a_max / a_min).
   const R aspect_s = R(s.radii().maxCoeff()) / R(s.radii().minCoeff());
-  auto hit = [&](R t, const detail::BranchPoint<R, N>& q, R slope) {
+  auto hit = [&](R t, const detail::BranchPoint<R, N>& q) {
+    const R r = rounding(t), slope = w.dot(q.point) / q.norm;
     const R scale = std::max(t, R(1) / w.norm());
-    doubt = std::max({doubt, rounding(t) / (std::abs(slope) * scale) / R(2.5e-13), rounding(t) * aspect_s / R(2.5e-10)});
+    doubt = std::max({doubt, r / (std::abs(slope) * scale) / R(2.5e-13), r * aspect_s / R(2.5e-10)});
     return finish(ContactStatus::hit, t, &q);
   };
 
@@ -152,7 +170,7 @@ Contact<T, N> solve_contact(const Ellipsoid<T, N>& s, const Ellipsoid<T, N>& o, 
       // exceeds the rounding model, bisect [t, tn] to adjacent floats instead and report
       // its left end, the last time the bodies are apart.
       const R depth = R(1) - pn.norm;
-      if (outside && depth <= rounding(tn)) return depth < delta ? hit(tn, pn, slope) : hit(t, p, slope);
+      if (outside && depth <= rounding(tn)) return depth < delta ? hit(tn, pn) : hit(t, p);
       R lo = t, hi = tn;
       while (true) {
         const R mid = lo + (hi - lo) / 2;
@@ -165,14 +183,14 @@ Contact<T, N> solve_contact(const Ellipsoid<T, N>& s, const Ellipsoid<T, N>& o, 
           hi = mid;
         }
       }
-      return hit(lo, p, slope);
+      return hit(lo, p);
     }
     // A step of a few ulps of t: Newton from the left has reached the root.
     const bool converged = tn - t <= 4 * eps * tn;
     t = tn;
     p = pn;
     delta = p.norm - R(1);
-    if (converged) return hit(t, p, slope);
+    if (converged) return hit(t, p);
   }
   return delta <= tol ? finish(ContactStatus::hit, t, &p) : finish(ContactStatus::did_not_converge, t, nullptr);
 }

@@ -18,6 +18,7 @@
 
 #include "detail/contact_start.hpp"
 #include "detail/instantiate.hpp"
+#include "detail/reduce.hpp"
 #include "detail/rigid_motion.hpp"
 #include "detail/scale.hpp"
 #include "detail/shape_access.hpp"
@@ -123,6 +124,81 @@ Contact<T, N> rescaled_first_contact(const Ellipsoid<T, N>& a, const RigidMotion
   return c;
 }
 
+// The hit's last steps in long double, along the hit's normal n held fixed. The slab gap
+// along any unit n is a lower bound on the distance, so advancing to the first zero of its
+// lower bounds (as advance does) stays early; the bodies are formed from the given data in a's
+// frame (c = c_b - c_a + t (v_b - v_a), axes exp(t [omega]x) axes_0), and the margins for
+// their rounding, in long double's epsilon, are 2^11 times narrower than advance's, which
+// stop about 70 ulps of the size short of contact: 1.5e-11 of the time scale where the
+// approach's sine is 1e-3. A few steps, each a lower bound: the result is never late.
+template <class T, int N>
+T refined(T time, const Vec<T, N>& normal, const Ellipsoid<T, N>& a, const RigidMotion<T, N>& motion_a,
+          const Ellipsoid<T, N>& b, const RigidMotion<T, N>& motion_b, T t_max) noexcept {
+  using L = long double;
+  constexpr L eps = std::numeric_limits<L>::epsilon();
+  const Vec<L, N> r0 = b.center().template cast<L>() - a.center().template cast<L>();
+  const Vec<L, N> u = motion_b.velocity.template cast<L>() - motion_a.velocity.template cast<L>();
+  const Vec<L, N> n = normal.template cast<L>().normalized();
+  const Turning<T, N> ta(a, motion_a), tb(b, motion_b);
+  RigidMotion<L, N> wa, wb;  // the angular velocities in L
+  if constexpr (N == 2) {
+    wa.angular_velocity = L(motion_a.angular_velocity);
+    wb.angular_velocity = L(motion_b.angular_velocity);
+  } else {
+    wa.angular_velocity = motion_a.angular_velocity.template cast<L>();
+    wb.angular_velocity = motion_b.angular_velocity.template cast<L>();
+  }
+  // Support radius along n at time t and its rate (omega x s) . n, s the support offset.
+  auto support_at = [&](const Ellipsoid<T, N>& x, const RigidMotion<L, N>& m, L t, L& rate) {
+    const Mat<L, N> axes = rotation<L, N>(m.angular_velocity, t) * x.axes().template cast<L>();
+    const Vec<L, N> radii = x.radii().template cast<L>();
+    const Vec<L, N> w = radii.cwiseProduct(axes.transpose() * n);
+    const L rho = w.norm();
+    rate = n.dot(cross<N>(m.angular_velocity, Vec<L, N>(axes * radii.cwiseProduct(w) / rho)));
+    return rho;
+  };
+  // The readings of a body whose axes are orthonormal only to T's rounding lie within
+  // |A^T A - I| R of each other (contact.cpp): that much of each body's largest radius.
+  auto data = [](const Ellipsoid<T, N>& x) {
+    const Mat<L, N> axes = x.axes().template cast<L>();
+    return 2 * (axes.transpose() * axes - Mat<L, N>::Identity()).norm() * L(x.radii().maxCoeff());
+  };
+  const L ambiguity = data(a) + data(b);
+  const L speed = u.norm(), apart = r0.norm();
+  const L rate_margin = 32 * eps * (speed + L(ta.spin * ta.big + tb.spin * tb.big));
+  // The bounds of advance, with |omega x n| in L and the factors computed in double (sweep,
+  // spin) widened by far more than their rounding.
+  const L across_a = cross<N>(wa.angular_velocity, n).norm(), across_b = cross<N>(wb.angular_velocity, n).norm();
+  auto bend = [](const Turning<T, N>& x, L across) {
+    return L(x.big) * L(x.big) * across * across / L(x.small) + L(x.big) * L(x.spin) * across;
+  };
+  const L fastest = -n.dot(u) + (L(ta.sweep) * across_a + L(tb.sweep) * across_b) * (1 + 1e-12L) + rate_margin;
+  const L curvature = (bend(ta, across_a) + bend(tb, across_b)) * (1 + 1e-12L);
+  L t = time;
+  for (int step = 0; step < 8; ++step) {
+    L rate_a, rate_b;
+    const L rho_a = support_at(a, wa, t, rate_a), rho_b = support_at(b, wb, t, rate_b);
+    const Vec<L, N> c = r0 + t * u;
+    const L along = n.dot(c);
+    const L configuration =
+        4 * (apart + t * speed + L(ta.big) * (8 + L(ta.spin) * t) + L(tb.big) * (8 + L(tb.spin) * t));
+    const L gap = along - rho_a - rho_b - eps * (configuration + 8 * (std::abs(along) + rho_a + rho_b)) - ambiguity;
+    if (!(gap > 0)) break;
+    const L slope = n.dot(u) - rate_a - rate_b - rate_margin;
+    const L first_order = fastest > 0 ? gap / fastest : std::numeric_limits<L>::infinity();
+    const L root = std::sqrt(slope * slope + 2 * curvature * gap);
+    const L second_order = curvature > 0 ? (slope <= 0 ? 2 * gap / (root - slope) : (slope + root) / curvature)
+                           : slope < 0   ? gap / -slope
+                                         : std::numeric_limits<L>::infinity();
+    const L next = std::min(t + std::max(first_order, second_order) * (1 - 64 * eps), L(t_max));
+    if (!(next > t)) break;
+    t = next;
+  }
+  T out = T(t);
+  if (L(out) > t) out = std::nextafter(out, T(0));
+  return std::max(out, time);
+}
+
 }  // namespace
 
 template <class T, int N>
@@ -174,7 +250,24 @@ Contact<T, N> first_contact(const Ellipsoid<T, N>& a, const RigidMotion<T, N>& m
     }
   }
 
-  return advance<T, N>(a, motion_a, t_max, options, out_of_range, BodyParty<T, N>(a, motion_a, b, motion_b, options));
+  // In a's frame (translated, not turning): a at rest at the origin, b at c_b - c_a moving
+  // at v_b - v_a. The bodies formed at t and the margins for their rounding are then
+  // relative to the pair's separation and its relative path, not to the distance from the
+  // origin (at 8e5 sizes from it, the world frame's margins stopped the advancement 1e-9 of
+  // the size early). The point is moved back with a's center at the contact time.
+  const Vec<T, N> offset = b.center() - a.center(), velocity = motion_b.velocity - motion_a.velocity;
+  if (!offset.allFinite() || !velocity.allFinite())  // differences beyond the type's range
+    return advance<T, N>(a, motion_a, t_max, options, out_of_range, BodyParty<T, N>(a, motion_a, b, motion_b, options));
+  const Ellipsoid<T, N> a_rel = detail::ShapeAccess::unchecked<T, N>(Vec<T, N>::Zero(), a.axes(), a.radii());
+  const Ellipsoid<T, N> b_rel = detail::ShapeAccess::unchecked<T, N>(offset, b.axes(), b.radii());
+  RigidMotion<T, N> ma = motion_a, mb = motion_b;
+  ma.velocity.setZero();
+  mb.velocity = velocity;
+  Contact<T, N> c = advance<T, N>(a_rel, ma, t_max, options, out_of_range, BodyParty<T, N>(a_rel, ma, b_rel, mb, options));
+  if (c.status == ContactStatus::hit) c.time = refined<T, N>(c.time, c.normal, a, motion_a, b, motion_b, t_max);
+  for (int i = 0; i < N; ++i)
+    c.point[i] = T(detail::mul_add(R(c.time), R(motion_a.velocity[i]), R(a.center()[i])) + R(c.point[i]));
+  return c;
 }
 
 #define ELLIPSECT_INSTANTIATE(T, N)                                                                                 \

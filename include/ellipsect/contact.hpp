@@ -2,11 +2,17 @@
 // unit ball plus axis-aligned ellipsoid, closest point by Newton on the convex secular
 // function, contact time by Newton on the convex distance function; see docs/method.md).
 //
+// The pair is solved in coordinates relative to one body (its center, and its velocity), so
+// the accuracy does not depend on the distance from the origin: a pair moved by an offset of
+// 1e6 sizes keeps it (tests/property/translation_property_test.cpp).
 // Accuracy (tested against a 50-digit reference, tests/property/contact_property_test.cpp), for
 // pairs whose paths are not grazing (the relative velocity makes an angle theta with the
 // contact plane's tangent, sin(theta) >= 1e-3):
-//   time   relative error <= 1e-12, or absolute 1e-12 * scale / speed when near 0;
-//   point  within 1e-10 * scale of the exact contact point;
+//   time   relative error <= 1e-12, or absolute 1e-12 * scale / speed when near 0 (the
+//          converged Newton iterate: it may lie after the exact contact by its rounding, a
+//          few ulps);
+//   point  within 1e-10 * scale of the exact contact point, plus the rounding of its
+//          coordinates (eps |point|: half an ulp is 6e-11 at 1e6 from the origin);
 //   normal within 1e-9 rad.
 // For grazing paths the contact time is ill-conditioned (a double root): the status is
 // right outside the tolerance band and the time is accurate to about sqrt(tolerance).
@@ -108,19 +114,24 @@ Ellipsoid<T, N> body_at(const Ellipsoid<T, N>& body, const RigidMotion<T, N>& mo
 //
 // Guarantees (tested against a 50-digit reference by another route, tests/property/
 // rigid_contact_property_test.cpp):
-//   * the reported time is never later than the first contact of the exact motion: each
-//     step keeps a margin for the rounding of the bodies it forms at time t (a few ulps of
+//   * a body turning: the reported time is never later than the first contact of the exact
+//     motion: each step keeps a margin for the rounding of the bodies it forms at time t (a few ulps of
 //     T of the centers, of t times the speeds and of the radii times (8 + |omega| t)) and of
 //     the gap: a contact in the window is never missed, and no_contact_in_window is
 //     certified;
 //   * hit: time within 1e-12 relative (or 1e-12 * scale / speed near 0), point within
-//     1e-10 * scale, normal within 1e-9 rad, for contacts that are not grazing (as above);
+//     1e-10 * scale (plus the rounding of its coordinates, as above), normal within 1e-9 rad,
+//     for contacts that are not grazing (as above); the last steps run in long double along
+//     the hit's normal (the double steps stop about 70 ulps of the size short of contact);
+//   * translation invariant: the bodies are formed in a's frame (c_b - c_a, v_b - v_a), and
+//     the accuracy holds at any distance from the origin (tested to 1e6 sizes);
 //   * did_not_converge (Options::max_motion_steps reached, or the scene's coordinates at the
 //     current time no longer resolve the bodies: far in the future of an unbounded window,
 //     or speeds near the range of the type): `time` is a certified lower bound on the first
 //     contact time, point and normal NaN;
 //   * both angular velocities exactly zero: exactly the answer of the translational
-//     first_contact above, bit for bit.
+//     first_contact above, bit for bit (which is not certified early: it may lie after the
+//     exact contact by a few ulps).
 // invalid_input where a velocity or angular velocity is not finite or t_max is NaN or
 // negative. Range: radii and speeds at any scale (rescaled by powers of two); pairs that
 // need more than double (radius ratios beyond 2^160 or coordinates beyond 2^340 radii,

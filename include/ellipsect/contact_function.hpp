@@ -27,7 +27,13 @@
 // not use F; tests/property/contact_function_property_test.cpp), on random pairs, aspect
 // ratios to 1e4, near tangency (F within 1e-12 of 1), containment, equal and concentric
 // bodies, scales 1e-6 and 1e6, bodies 1e4 sizes apart:
-//   F        relative error <= 1e-12 (largest seen 2e-13);
+//   F        relative error <= 1e-12 (largest seen 2e-13) for aspect ratios up to 1e4. Beyond, it
+//            grows with the aspect ratios (the reduced frame's semi-axes spread over their
+//            product, and the thinnest loses digits): on 1500 random pairs
+//            per dimension with aspect ratios 1e4..1e8 (binned by the smaller of the two), the
+//            largest relative errors measured are 4e-14 in 2D, and in 3D 1e-13 below 1e6,
+//            6e-13 in [1e6, 1e7) and 2e-2 in [1e7, 1e8) (needles of aspect near 1e8);
+//            the property test runs aspect ratios to 1e4;
 //   lambda   error <= 1e-10 * min(lambda, 1 - lambda) + 1e-12 (largest seen 1e-11 relative);
 //   sigma    relative error <= 1e-12 (largest seen 8e-15); it equals L - t, t the first
 //            contact time (first_contact) of b moving with velocity -u from center(a) + L u,

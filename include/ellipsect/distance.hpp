@@ -33,7 +33,9 @@
 //                aspect ratios to 1e8);
 //   point_a/_b   within 1e-12 * scale of the boundary of a / b, and of the support points
 //                of `normal`; within 1e-10 * scale of the exact witness points where the
-//                optimum is unique;
+//                optimum is unique; plus the rounding of their coordinates (eps |point|),
+//                at any distance from the origin (tested to 1e6 sizes,
+//                tests/property/translation_property_test.cpp);
 //   normal       parallel to the outward normal of a at point_a and to the inward normal
 //                of b at point_b, to 1e-12 * scale / (smallest radius of curvature) rad.
 // The status equals classify's (separated, touching, overlapping for all other relations).

@@ -23,7 +23,9 @@
 // 1e6, nearly concentric pairs with center offsets 0, subnormal and 1e-300 .. 1e-8), with
 // scale = largest radius of a + largest radius of b:
 //   points  within 1e-12 * scale of both boundaries; a transverse crossing within
-//           1e-12 * scale / sin(crossing angle) of the exact one;
+//           1e-12 * scale / sin(crossing angle) of the exact one; plus the rounding of their
+//           coordinates (eps |point|), at any distance from the origin (tested to 1e6
+//           sizes, tests/property/translation_property_test.cpp);
 //   kinds   the number of transverse crossings is exact outside the tangency band;
 //   area    absolute error <= 1e-12 * the smaller ellipse's area; always within [0, the
 //           smaller ellipse's area]. Where the smaller ellipse lies within the tangency

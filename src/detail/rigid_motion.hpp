@@ -19,12 +19,12 @@ template <class T, int N>
 using Omega = decltype(RigidMotion<T, N>::angular_velocity);
 
 // omega x v; in 2D omega is the rate about the normal of the plane.
-template <int N, class W>
-Vec<R, N> cross(const W& omega, const Vec<R, N>& v) noexcept {
+template <int N, class W, class S>
+Vec<S, N> cross(const W& omega, const Vec<S, N>& v) noexcept {
   if constexpr (N == 2) {
-    return Vec<R, 2>(-R(omega) * v[1], R(omega) * v[0]);
+    return Vec<S, 2>(-S(omega) * v[1], S(omega) * v[0]);
   } else {
-    return Vec<R, 3>(omega.template cast<R>().cross(v));
+    return Vec<S, 3>(omega.template cast<S>().cross(v));
   }
 }
 
