@@ -131,6 +131,10 @@ Contact<T, N> rescaled_first_contact(const Ellipsoid<T, N>& a, const RigidMotion
 // their rounding, in long double's epsilon, are 2^11 times narrower than advance's, which
 // stop about 70 ulps of the size short of contact: 1.5e-11 of the time scale where the
 // approach's sine is 1e-3. A few steps, each a lower bound: the result is never late.
+// Where neither body turns, g_n is linear in time and a lower bound on the distance before t
+// as after it: one step to its root, less its rounding, certifies a time before the contact
+// even where `time` lies after it (the translational answer, which is not certified); the
+// result is the smaller of the two, or NaN where the slab along n does not close.
 template <class T, int N>
 T refined(T time, const Vec<T, N>& normal, const Ellipsoid<T, N>& a, const RigidMotion<T, N>& motion_a,
           const Ellipsoid<T, N>& b, const RigidMotion<T, N>& motion_b, T t_max) noexcept {
@@ -174,6 +178,7 @@ T refined(T time, const Vec<T, N>& normal, const Ellipsoid<T, N>& a, const Rigid
   };
   const L fastest = -n.dot(u) + (L(ta.sweep) * across_a + L(tb.sweep) * across_b) * (1 + 1e-12L) + rate_margin;
   const L curvature = (bend(ta, across_a) + bend(tb, across_b)) * (1 + 1e-12L);
+  const bool still = ta.spin == 0 && tb.spin == 0;
   L t = time;
   for (int step = 0; step < 8; ++step) {
     L rate_a, rate_b;
@@ -183,6 +188,16 @@ T refined(T time, const Vec<T, N>& normal, const Ellipsoid<T, N>& a, const Rigid
     const L configuration =
         4 * (apart + t * speed + L(ta.big) * (8 + L(ta.spin) * t) + L(tb.big) * (8 + L(tb.spin) * t));
     const L gap = along - rho_a - rho_b - eps * (configuration + 8 * (std::abs(along) + rho_a + rho_b)) - ambiguity;
+    if (still) {
+      // The closing speed's rounding taken so that the step, forward or back, falls short.
+      const L closing = -n.dot(u) + (gap > 0 ? rate_margin : -rate_margin);
+      if (!(closing > 0)) return std::numeric_limits<T>::quiet_NaN();
+      const L step_to_root = gap / closing, root = t + step_to_root;
+      const L early = root - 64 * eps * (std::abs(root) + std::abs(step_to_root));
+      T out = T(early);
+      if (L(out) > early) out = std::nextafter(out, T(0));
+      return std::min(out, time);
+    }
     if (!(gap > 0)) break;
     const L slope = n.dot(u) - rate_a - rate_b - rate_margin;
     const L first_order = fastest > 0 ? gap / fastest : std::numeric_limits<L>::infinity();
@@ -224,8 +239,17 @@ Contact<T, N> first_contact(const Ellipsoid<T, N>& a, const RigidMotion<T, N>& m
       !all_finite<N>(motion_b.angular_velocity) || std::isnan(t_max) || t_max < T(0))
     return out;
   const R spin_a = magnitude<N>(motion_a.angular_velocity), spin_b = magnitude<N>(motion_b.angular_velocity);
-  if (spin_a == R(0) && spin_b == R(0))
-    return first_contact(a, motion_a.velocity, b, motion_b.velocity, t_max, options);
+  // Neither turns: the translational answer, its hit time certified early by refined (where
+  // that fails, the advancement below).
+  if (spin_a == R(0) && spin_b == R(0)) {
+    Contact<T, N> c = first_contact(a, motion_a.velocity, b, motion_b.velocity, t_max, options);
+    if (c.status != ContactStatus::hit) return c;
+    const T t = refined<T, N>(c.time, c.normal, a, motion_a, b, motion_b, t_max);
+    if (t > T(0)) {
+      c.time = t;
+      return c;
+    }
+  }
   // Beyond the bounds' range: |omega| overflows (here or in the time unit chosen below), or
   // the pair needs more than double (radius ratios beyond 2^160, coordinates beyond 2^340
   // radii; detail/scale.hpp). Only the start state is decided there; otherwise

@@ -114,11 +114,11 @@ Ellipsoid<T, N> body_at(const Ellipsoid<T, N>& body, const RigidMotion<T, N>& mo
 //
 // Guarantees (tested against a 50-digit reference by another route, tests/property/
 // rigid_contact_property_test.cpp):
-//   * a body turning: the reported time is never later than the first contact of the exact
-//     motion: each step keeps a margin for the rounding of the bodies it forms at time t (a few ulps of
+//   * the reported time is never later than the first contact of the exact motion: each
+//     step keeps a margin for the rounding of the bodies it forms at time t (a few ulps of
 //     T of the centers, of t times the speeds and of the radii times (8 + |omega| t)) and of
 //     the gap: a contact in the window is never missed, and no_contact_in_window is
-//     certified;
+//     certified (both spins zero: see the last item);
 //   * hit: time within 1e-12 relative (or 1e-12 * scale / speed near 0), point within
 //     1e-10 * scale (plus the rounding of its coordinates, as above), normal within 1e-9 rad,
 //     for contacts that are not grazing (as above); the last steps run in long double along
@@ -129,9 +129,11 @@ Ellipsoid<T, N> body_at(const Ellipsoid<T, N>& body, const RigidMotion<T, N>& mo
 //     current time no longer resolve the bodies: far in the future of an unbounded window,
 //     or speeds near the range of the type): `time` is a certified lower bound on the first
 //     contact time, point and normal NaN;
-//   * both angular velocities exactly zero: exactly the answer of the translational
-//     first_contact above, bit for bit (which is not certified early: it may lie after the
-//     exact contact by a few ulps).
+//   * both angular velocities exactly zero: the answer of the translational first_contact
+//     above (whose time is not certified early: it may lie a few ulps after the contact), its
+//     point and normal bit for bit, a hit's time certified early: the smaller of its time and
+//     the root, less its rounding, of the slab gap along its normal, which is linear in time
+//     when nothing turns (where that slab does not close, the advancement above).
 // invalid_input where a velocity or angular velocity is not finite or t_max is NaN or
 // negative. Range: radii and speeds at any scale (rescaled by powers of two); pairs that
 // need more than double (radius ratios beyond 2^160 or coordinates beyond 2^340 radii,

@@ -58,7 +58,9 @@ TEST(ContactAccuracy, RigidContactShallowApproach) {
 // world coordinates (4e5 from the origin), whose rounding (eps |c|) entered the distance: the
 // time came 39 ulps after the true contact, where a point lies inside both bodies. Now the
 // relative position is formed from the exact differences of the centers and velocities, and
-// the time is the double just above the true contact.
+// the time is the double just above the true contact; the rigid query, which promises never
+// to be late, takes the root of the slab gap along the hit's normal (less its rounding)
+// where it is earlier: at most the double below the true contact.
 TEST(ContactAccuracy, ZeroSpinContactFarFromOrigin) {
   const E a = ellipse(-368909.31649992842, -389948.70389616612, 0.47382090800978149, -0.88062122795943676,
                       0.88062122795943676, 0.47382090800978149, 0.7533762601394306, 0.18281258881950987);
@@ -71,7 +73,9 @@ TEST(ContactAccuracy, ZeroSpinContactFarFromOrigin) {
   ASSERT_EQ(linear.status, ContactStatus::hit);
   EXPECT_LE(linear.time, hi);
   EXPECT_LE(std::abs(linear.time - hi), 1e-12 * hi);
-  EXPECT_EQ(rigid.time, linear.time);
+  ASSERT_EQ(rigid.status, ContactStatus::hit);
+  EXPECT_LE(rigid.time, 0.48062380029684948);  // the double below the true contact
+  EXPECT_LE(std::abs(rigid.time - hi), 1e-12 * hi);
 }
 
 }  // namespace

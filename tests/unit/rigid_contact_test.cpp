@@ -28,21 +28,32 @@ Omega<N> some_spin(double rate) {
   }
 }
 
-// Both angular velocities zero: the translational answer, bit for bit.
+// Both angular velocities zero: the translational answer, its time certified early: no later
+// than the translational time, and within the stated accuracy of it (1e-12 of max(t, size /
+// speed)) with point and normal bit for bit; on grazing paths, where the time is accurate to
+// about sqrt(tolerance) and the slab along the hit's normal may not close (the advancement
+// answers then), within 1e-6.
 template <int N>
 void zero_spin_is_translational() {
   for (scenarios::Category category : scenarios::all_categories) {
+    const bool grazing = category == scenarios::Category::grazing;
     for (std::uint64_t seed = 1; seed <= 40; ++seed) {
       const auto c = scenarios::make_case<N>(category, seed);
       const Contact<double, N> want = first_contact(c.a, c.va, c.b, c.vb, c.t_max);
       const Contact<double, N> got = first_contact(c.a, RigidMotion<double, N>{c.va}, c.b,
                                                    RigidMotion<double, N>{c.vb}, c.t_max);
+      SCOPED_TRACE(std::string(scenarios::name(category)) + " seed " + std::to_string(seed));
       ASSERT_EQ(got.status, want.status);
       if (std::isnan(want.time)) {
         EXPECT_TRUE(std::isnan(got.time));
+      } else if (want.status == ContactStatus::hit) {
+        const double scale = std::max(c.a.radii().maxCoeff(), c.b.radii().maxCoeff()) / (c.vb - c.va).norm();
+        EXPECT_LE(got.time, want.time);
+        EXPECT_LE(want.time - got.time, (grazing ? 1e-6 : 1e-12) * std::max(want.time, scale));
       } else {
         EXPECT_EQ(got.time, want.time);
       }
+      if (grazing) continue;
       for (int i = 0; i < N; ++i) {
         if (std::isnan(want.point[i])) continue;
         EXPECT_EQ(got.point[i], want.point[i]);
