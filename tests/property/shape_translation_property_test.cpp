@@ -118,8 +118,10 @@ void check_contacts(const std::string& what, double scale, const Vec<double, N>&
   const Contact<double, N> r0 = query(false, true), r1 = query(true, true);
   if (r0.status == ContactStatus::did_not_converge || r1.status == ContactStatus::did_not_converge) return;
   ASSERT_EQ(r1.status, r0.status) << what << " (rigid)";
+  // The rigid query against a shape forms the body and the shape's vertices in world
+  // coordinates (contact.hpp): 1e6 sizes out, its times move by up to 4.7e-9 of size / speed.
   if (r0.status == ContactStatus::hit) {
-    ASSERT_NEAR(r1.time, r0.time, 1e-9 * scale / w.norm()) << what << " (rigid)";
+    ASSERT_NEAR(r1.time, r0.time, 1e-8 * scale / w.norm()) << what << " (rigid)";
   }
 }
 
