@@ -444,7 +444,8 @@ void check_box(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b, const Vec<T, 
   // difference is finite (box.hpp): the triangles are the moved box's, met by the moved body.
   const bool moves = !a.center().isZero(0) && Vec<T, N>(box.center() - a.center()).allFinite();
   const auto a_at = moves ? a.translated(Vec<T, N>(-a.center())) : a;
-  const auto triangles = (moves ? box.translated(Vec<T, N>(-a.center())) : box).triangles();
+  const auto box_at = moves ? box.translated(Vec<T, N>(-a.center())) : box;
+  const auto triangles = box_at.triangles();
   bool all_inside = true;
   for (const auto& t : triangles) all_inside = all_inside && classify(a_at, t) == Relation::a_contains_b;
   FUZZ_CHECK((rel == Relation::a_contains_b) == all_inside, << "box " << to_string(rel) << ", every triangle inside "
@@ -453,7 +454,8 @@ void check_box(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b, const Vec<T, 
     for (int i = 0; i < N; ++i)
       for (const T side : {T(-1), T(1)}) {
         const Vec<T, N> normal = side * box.axes().col(i);
-        const Relation face = classify(a, make_half_space<T, N>(box.center() + box.half_extents()[i] * normal, normal));
+        const Relation face =
+            classify(a_at, make_half_space<T, N>(box_at.center() + box_at.half_extents()[i] * normal, normal));
         FUZZ_CHECK(face == Relation::b_contains_a, << "box contains a, its face " << i << " says " << to_string(face));
       }
   check_signed_distance<T, N>(signed_distance(a, box), rel, "box");
