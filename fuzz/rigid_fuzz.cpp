@@ -66,7 +66,7 @@ void check_contact(Query&& query, Linear&& linear, bool bad, bool still, Distanc
     // where the translational hit's slab along its normal does not close, the advancement's
     // answer, checked below as any rigid answer.
     if (c.status == d.status && same_bits_or_nan(c.point, d.point) && same_bits_or_nan(c.normal, d.normal)) {
-      FUZZ_CHECK(c.status == ContactStatus::hit ? c.time > T(0) && c.time <= d.time : same_bits(c.time, d.time),
+      FUZZ_CHECK(c.status == ContactStatus::hit ? c.time >= T(0) && c.time <= d.time : same_bits(c.time, d.time),
                  "zero spin: time " << c.time << " after the translational " << d.time);
       return;
     }
