@@ -4,7 +4,8 @@
 // contact.hpp promises for every input:
 //   invalid_input exactly for a non-finite velocity or angular velocity, or a NaN or
 //   negative t_max; both angular velocities zero: the translational first_contact bit for
-//   bit, but a hit's time, which may be stepped back (certified early), never later; hit: time finite in (0, t_max], finite point, unit normal; touching_at_start: time
+//   bit, but a hit's time, which may be stepped back (certified early), never later (or
+//   the advancement's answer, where that hit's slab along its normal does not close); hit: time finite in (0, t_max], finite point, unit normal; touching_at_start: time
 //   0; overlapping_at_start exactly where the bodies overlap at 0 (distance's status);
 //   a small step cap chosen by the input: the same answer, or did_not_converge with a time
 //   in [0, t_max] not later than the uncapped hit's, or (the cap reached inside the tangency
