@@ -97,6 +97,13 @@ std::string show(const Vec<double, N>& v) {
   return s.str();
 }
 
+// The outcomes counted, on one line: "title ND: outcome=count ...".
+void print_tally(const char* title, int n, const std::map<std::string, int>& tally) {
+  std::printf("%s %dD:", title, n);
+  for (const auto& [outcome, count] : tally) std::printf(" %s=%d", outcome.c_str(), count);
+  std::printf("\n");
+}
+
 // The relative gap beyond which the reference decides the relation (see the header).
 constexpr double decided = 1e-9;
 
@@ -206,9 +213,7 @@ void run_shapes(int cases) {
       if (::testing::Test::HasFatalFailure()) return;
     }
   }
-  std::printf("translated shapes %dD:", N);
-  for (const auto& [outcome, count] : tally) std::printf(" %s=%d", outcome.c_str(), count);
-  std::printf("\n");
+  print_tally("translated shapes", N, tally);
 }
 
 // Half-spaces: the relation, the signed distance (1e-14 (R + |L|)), first contact; and the
@@ -257,9 +262,7 @@ void run_half_spaces_and_points(int cases) {
       ASSERT_LE((p1.point - offset - p0.point).cwiseAbs().maxCoeff(), 2e-14 * scale + ulp) << what;
     }
   }
-  std::printf("translated half-spaces %dD:", N);
-  for (const auto& [outcome, count] : tally) std::printf(" %s=%d", outcome.c_str(), count);
-  std::printf("\n");
+  print_tally("translated half-spaces", N, tally);
 }
 
 // A mesh of a few triangles about the body (a strip), and collide_and_slide through it and
@@ -359,9 +362,7 @@ void run_meshes_and_slides(int cases) {
     }
   }
   for (const auto& [where, w] : worst) std::printf("slide %s: moves apart by up to %.3g of the displacement\n", where.c_str(), w);
-  std::printf("translated meshes and slides %dD:", N);
-  for (const auto& [outcome, count] : tally) std::printf(" %s=%d", outcome.c_str(), count);
-  std::printf("\n");
+  print_tally("translated meshes and slides", N, tally);
 }
 
 TEST(ShapeTranslation, HalfSpacesAndPoints2D) { run_half_spaces_and_points<2>(cases(200)); }
