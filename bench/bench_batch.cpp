@@ -31,7 +31,11 @@
 //                             transforms, with the requests above
 //   ccd_gjk, ccd_mpr          the bodies' rotation matrices from the quaternions, then as above
 // BM_classify3/*, BM_classify2/*
-//   ellipsect scalar, batch 1 thread, batch all cores (no peer classifies)
+//   ellipsect scalar, batch 1 thread, batch all cores (no peer classifies);
+//   ellipsect_scalar_exact: classify at Options::tolerance = 0 (exact relations)
+// BM_classify3/ellipsect_exact_fallback/exactly_tangent, BM_classify2/...
+//   exact classify over 9 exactly tangent pairs and their one-ulp moves (each takes the
+//   rational fallback): the fallback's cost per call
 // BM_first_contact3/*
 //   ellipsect scalar, batch 1 thread, batch all cores
 //   fcl_naive_trans,          fcl::continuousCollide from the poses at t = 0 to those at
@@ -332,6 +336,49 @@ void classify_scalar(benchmark::State& state, int k) {
 }
 
 template <int N>
+void classify_scalar_exact(benchmark::State& state, int k) {
+  run_queries(state, static_truth<N>(k).relation, cases<N>(k).list, [](const scenarios::Case<N>& c) {
+    return classify(c.a, c.b, Options{.tolerance = Tolerance::exact});
+  });
+}
+
+// Exactly tangent pairs and the same one ulp apart or into each other, where exact classify
+// always takes its rational fallback: external tangency (balls of radii 3 and 2, centers
+// 5 apart), internal tangency (the ball of radius 2 about an ellipse of radii 2, 1, ...),
+// equal sets stored differently (axes turned by a quarter turn, radii swapped).
+template <int N>
+std::vector<std::pair<Ellipsoid<double, N>, Ellipsoid<double, N>>> exactly_tangent_pairs() {
+  using E = Ellipsoid<double, N>;
+  Vec<double, N> zero = Vec<double, N>::Zero(), x = zero, radii = Vec<double, N>::Ones(), swapped = radii;
+  radii[0] = swapped[1] = 2;
+  Mat<double, N> turn = Mat<double, N>::Identity();
+  turn(0, 0) = turn(1, 1) = 0;
+  turn(1, 0) = 1;
+  turn(0, 1) = -1;
+  std::vector<std::pair<E, E>> pairs;
+  for (const double ulps : {0, 1, -1}) {
+    x[0] = ulps == 0 ? 5.0 : std::nextafter(5.0, 5 + ulps);
+    pairs.emplace_back(make_ball<double, N>(zero, 3), make_ball<double, N>(x, 2));
+    Vec<double, N> r = radii;
+    r[0] = ulps == 0 ? 2.0 : std::nextafter(2.0, 2 + ulps);
+    pairs.emplace_back(make_ball<double, N>(zero, 2), E::from_axes(zero, Mat<double, N>::Identity(), r));
+    pairs.emplace_back(E::from_axes(zero, Mat<double, N>::Identity(), r), E::from_axes(zero, turn, swapped));
+  }
+  return pairs;
+}
+
+template <int N>
+void classify_exact_fallback(benchmark::State& state) {
+  const auto pairs = exactly_tangent_pairs<N>();
+  std::size_t i = 0;
+  for (auto _ : state) {
+    const auto& [a, b] = pairs[i++ % pairs.size()];
+    benchmark::DoNotOptimize(classify(a, b, Options{.tolerance = Tolerance::exact}));
+  }
+  state.counters["pairs"] = double(pairs.size());
+}
+
+template <int N>
 void classify_batch(benchmark::State& state, int k, int threads) {
   run_batch<Relation>(state, static_truth<N>(k).relation, cases<N>(k).pairs, threads, batch_classify);
 }
@@ -591,9 +638,11 @@ void add_classify(int n) {
   for (int k = 0; k < n; ++k) {
     const std::string cat = "/" + category_name(k);
     add(family + "/ellipsect_scalar" + cat, classify_scalar<N>, k);
+    add(family + "/ellipsect_scalar_exact" + cat, classify_scalar_exact<N>, k);
     add(family + "/ellipsect_batch_1thread" + cat, classify_batch<N>, k, 1);
     add(family + "/ellipsect_batch_allcores" + cat, classify_batch<N>, k, 0)->UseRealTime();
   }
+  add(family + "/ellipsect_exact_fallback/exactly_tangent", classify_exact_fallback<N>);
 }
 
 void register_all() {

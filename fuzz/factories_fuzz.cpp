@@ -200,10 +200,10 @@ void options(Bytes& in) {
   const double tolerance = in.number();
   const std::int64_t iterations = cap_value(in), steps = cap_value(in);
   trace() += "options " + hex(tolerance) + " " + std::to_string(iterations) + " " + std::to_string(steps) + "; ";
-  const bool tolerance_ok = tolerance >= 1e-14 && tolerance <= 1e-9;  // NaN: false
+  const bool tolerance_ok = tolerance == 0 || (tolerance >= 1e-14 && tolerance <= 1e-9);  // NaN: false
   const bool iterations_ok = iterations >= 1 && iterations <= 100000, steps_ok = steps >= 1 && steps <= 1000000;
   double kept_tolerance = 0;
-  const std::string t = field_of([&] { kept_tolerance = Options{.tolerance = tolerance}.tolerance; });
+  const std::string t = field_of([&] { kept_tolerance = Options{.tolerance = tolerance}.tolerance.value(); });
   FUZZ_CHECK(t == (tolerance_ok ? "" : "tolerance"), << "tolerance " << hex(tolerance) << ": \"" << t << "\"");
   FUZZ_CHECK(!tolerance_ok || same_bits(kept_tolerance, tolerance), << "tolerance kept as " << hex(kept_tolerance));
   int kept_iterations = 0;

@@ -17,7 +17,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-packages=(g++ cmake ninja-build pkg-config libeigen3-dev libhwy-dev libboost-dev libgtest-dev libgmock-dev libbenchmark-dev
+packages=(g++ cmake ninja-build pkg-config libeigen3-dev libhwy-dev libboost-dev libgmp-dev libgtest-dev libgmock-dev libbenchmark-dev
           libfcl-dev libccd-dev libcli11-dev nlohmann-json3-dev librsvg2-bin
           clang libclang-rt-14-dev)
 # ---- web (the demo page, web/): Emscripten, Chromium for its browser test, Node and npm

@@ -2,6 +2,7 @@
 
 #include "detail/certificates-inl.hpp"
 #include "detail/classify_impl.hpp"
+#include "detail/exact_relation.hpp"
 #include "detail/instantiate.hpp"
 #include "detail/scale.hpp"
 
@@ -22,17 +23,27 @@ std::string_view to_string(Relation r) noexcept {
 namespace {
 
 // The reduced-frame decision in working precision R, repeated in the wider type when
-// rounding could have flipped one of its comparisons.
+// rounding (plus `slack`) could have flipped one of its comparisons; `sure` is false when
+// it could there too.
 template <class R, class T, int N>
-detail::ReducedRelation decide(const Ellipsoid<T, N>& s, const Ellipsoid<T, N>& o, R tol) noexcept {
+detail::ReducedRelation decide(const Ellipsoid<T, N>& s, const Ellipsoid<T, N>& o, R tol, R slack, bool& sure) noexcept {
   const auto red = detail::reduce_settled<R>(s, o);
   R margin;
   const auto rel = detail::classify_reduced<R, N>(red.e, red.k, tol, margin);
-  if (margin > detail::reduced_rounding<R>(s, o, red.e, red.k)) return rel;
+  sure = true;
+  if (margin > detail::reduced_rounding<R>(s, o, red.e, red.k) + slack) return rel;
   using W = detail::Wide<R>;
   const auto wide = detail::reduce_settled<W>(s, o);
   W wide_margin;
-  return detail::classify_reduced<W, N>(wide.e, wide.k, W(tol), wide_margin);
+  const auto wide_rel = detail::classify_reduced<W, N>(wide.e, wide.k, W(tol), wide_margin);
+  sure = wide_margin > detail::reduced_rounding<W>(s, o, wide.e, wide.k) + W(slack);
+  return wide_rel;
+}
+
+template <class R, class T, int N>
+detail::ReducedRelation decide(const Ellipsoid<T, N>& s, const Ellipsoid<T, N>& o, R tol) noexcept {
+  bool sure;
+  return decide<R>(s, o, tol, R(0), sure);
 }
 
 }  // namespace
@@ -50,8 +61,14 @@ Relation classify(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b, const Opti
   const double code = wide ? 0 : hw::certificate_code<true>(a, b, options.tolerance);
   if (code != 0) return detail::certified_relation(code);
   const auto [s, o, a_is_s] = detail::order_pair(a, b);
-  const R tol = R(options.tolerance);
-  switch (wide ? decide<W>(s, o, W(tol)) : decide<R>(s, o, tol)) {
+  // Exact: every comparison against 1 itself, and one within its rounding plus the
+  // narrowest band of a threshold is settled in rational arithmetic.
+  const bool exact = options.tolerance.is_exact();
+  const R tol = exact ? R(0) : R(options.tolerance), slack = exact ? R(Tolerance::min) : R(0);
+  bool sure;
+  const auto rel = wide ? decide<W>(s, o, W(tol), W(slack), sure) : decide<R>(s, o, tol, slack, sure);
+  if (exact && !sure) return detail::exact_relation(a, b);
+  switch (rel) {
     case detail::ReducedRelation::s_contains_o: return a_is_s ? Relation::a_contains_b : Relation::b_contains_a;
     case detail::ReducedRelation::o_contains_s: return a_is_s ? Relation::b_contains_a : Relation::a_contains_b;
     case detail::ReducedRelation::separated: return Relation::separated;
@@ -69,7 +86,9 @@ bool overlap(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b, const Options& 
   const detail::Scale scale = detail::scale_of(a, b);
   if (scale.range == detail::Range::scaled)
     return overlap(detail::scaled(a, -scale.exponent), detail::scaled(b, -scale.exponent), options);
+  const bool exact = options.tolerance.is_exact();
   if (scale.range == detail::Range::wide) {
+    if (exact) return classify(a, b, options) != Relation::separated;
     const auto pair = detail::order_pair(a, b);
     return decide<W>(pair.s, pair.o, W(options.tolerance)) != detail::ReducedRelation::separated;
   }
@@ -79,8 +98,11 @@ bool overlap(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b, const Options& 
   const auto [s, o, a_is_s] = detail::order_pair(a, b);
   const R tol = R(options.tolerance);
   const auto red = detail::reduce_settled<R>(s, o);
-  if (const int sure = detail::overlap_reduced<R, N>(red.e, red.k, tol, detail::reduced_rounding<R>(s, o, red.e, red.k)))
+  // Exact: the gap decides against 0 where rounding allows, classify otherwise.
+  if (const int sure = detail::overlap_reduced<R, N>(red.e, red.k, exact ? R(0) : tol,
+                                                     detail::reduced_rounding<R>(s, o, red.e, red.k)))
     return sure > 0;
+  if (exact) return classify(a, b, options) != Relation::separated;
   return decide<R>(s, o, tol) != detail::ReducedRelation::separated;
 }
 

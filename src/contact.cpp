@@ -18,6 +18,7 @@
 #include "detail/classify_impl.hpp"
 #include "detail/compensated.hpp"
 #include "detail/contact_start.hpp"
+#include "detail/exact_relation.hpp"
 #include "detail/instantiate.hpp"
 #include "detail/scale.hpp"
 
@@ -137,7 +138,20 @@ Contact<T, N> solve_contact(const Ellipsoid<T, N>& s, const Ellipsoid<T, N>& o, 
   R delta = p.norm - R(1);
   if (near_band_edge(delta, 0)) doubt = 2;
   if (delta < -tol) return finish(ContactStatus::overlapping_at_start, 0, nullptr);
-  if (delta <= tol) return finish(ContactStatus::touching_at_start, 0, &p);
+  if (delta <= tol && !options.tolerance.is_exact()) return finish(ContactStatus::touching_at_start, 0, &p);
+  if (delta <= tol) {  // exact: the relation at t = 0 decides
+    const Relation start = detail::exact_relation(s, o);
+    if (start == Relation::touching) return finish(ContactStatus::touching_at_start, 0, &p);
+    if (start != Relation::separated) return finish(ContactStatus::overlapping_at_start, 0, nullptr);
+    // Apart by less than the band: closing, they touch within rounding of -delta / slope
+    // (the first positive time at least); else never, as in the loop below.
+    const R slope = w.dot(p.point) / p.norm;
+    if (!(slope < R(0))) return finish(ContactStatus::no_contact_in_window, nan, nullptr);
+    const R t1 = std::max(-delta / slope, R(std::numeric_limits<T>::denorm_min()));
+    if (t1 > tmax) return finish(ContactStatus::no_contact_in_window, nan, nullptr);
+    out.iterations = 1;
+    return finish(ContactStatus::hit, t1, &p);
+  }
 
   // Errors of a converged hit against a quarter of the claims: the time error is the rounding
   // of delta over the slope, relative to max(t, the time to cross the unit ball); the

@@ -23,6 +23,7 @@
 #include "detail/certificates-inl.hpp"
 #include "detail/classify_impl.hpp"
 #include "detail/distance_gap.hpp"
+#include "detail/exact_relation.hpp"
 #include "detail/instantiate.hpp"
 #include "detail/scale.hpp"
 
@@ -150,6 +151,12 @@ Distance<T, N> solve(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b, const O
     bool doubt;
     Start<R, N> st = start<R, R>(s, o, R(options.tolerance), doubt);
     if (doubt) st = start<detail::Wide<R>, R>(s, o, detail::Wide<R>(options.tolerance), doubt);
+    if (st.status == DistanceStatus::touching && options.tolerance.is_exact()) {  // the exact relation decides
+      const Relation rel = detail::exact_relation(s, o);
+      st.status = rel == Relation::touching    ? DistanceStatus::touching
+                  : rel == Relation::separated ? DistanceStatus::separated
+                                               : DistanceStatus::overlapping;
+    }
     out.status = st.status;
     // Absent only when S's center lies exactly on O's boundary (the bodies overlap).
     if (st.normal.squaredNorm() > R(0) && st.normal.allFinite()) starts[count++] = st.normal;

@@ -21,8 +21,8 @@ std::string shortest(double x) {
 
 }  // namespace
 
-void reject_option(const char* field, double value, double low, double high) {
-  throw InputError(field, "must be in [" + shortest(low) + ", " + shortest(high) + "] (got " + shortest(value) + ")");
+void reject_tolerance(double value, double low, double high) {
+  throw InputError("tolerance", "must be 0 or in [" + shortest(low) + ", " + shortest(high) + "] (got " + shortest(value) + ")");
 }
 
 void reject_option(const char* field, const char* digits, int low, int high) {

@@ -230,6 +230,11 @@ Ellipsoid<T, N> body_at(const Ellipsoid<T, N>& body, const RigidMotion<T, N>& mo
 template <class T, int N>
 Contact<T, N> first_contact(const Ellipsoid<T, N>& a, const RigidMotion<T, N>& motion_a, const Ellipsoid<T, N>& b,
                             const RigidMotion<T, N>& motion_b, T t_max, const Options& options) noexcept {
+  if (options.tolerance.is_exact()) {  // the narrowest band (options.hpp): the advancement's statuses need one
+    Options band = options;
+    band.tolerance = Tolerance::min;
+    return first_contact(a, motion_a, b, motion_b, t_max, band);
+  }
   constexpr T nan = std::numeric_limits<T>::quiet_NaN();
   Contact<T, N> out;
   out.time = nan;

@@ -47,7 +47,7 @@ struct OptionValues {
 
 void add_query_options(CLI::App& cmd, OptionValues& v) {
   cmd.add_option("--tolerance", v.tolerance,
-                 "Relative tangency band of the queries, in [1e-14, 1e-9] (default 1e-12; docs/method.md)")
+                 "Relative tangency band of the queries, in [1e-14, 1e-9], or 0 for exact relations (default 1e-12; docs/method.md)")
       ->type_name("X");
   cmd.add_option("--max-iterations", v.max_iterations,
                  "Cap on the queries' iterations, in [1, 100000] (default 64); reaching it is did_not_converge")

@@ -8,6 +8,18 @@
 // answer bit for bit (a_contains_b <-> b_contains_a), at any ratio of sizes. A body and a
 // bit-identical copy are `equal` (float and double, any aspect ratio). Scaling both bodies
 // by 2^k changes nothing, at any scale the factories accept (docs/method.md, section 7).
+//
+// Exact relations (Options::tolerance = Tolerance::exact = 0): the relation of the bodies
+// as stored, with no band: the closed sets { x : (x - center)^T M (x - center) <= 1 },
+// M = axes diag(radii)^-2 axes^T formed exactly from the stored numbers (axes as given),
+// float and double, 2D and 3D, every finite scale. `touching`: the boundaries meet and
+// the interiors do not; containment includes internal tangency; `equal`: the same set
+// (also stored differently: axes permuted or flipped with their radii). The floating-point
+// decision answers where every comparison lies beyond its rounding plus 1e-14 of its
+// threshold; the rest (near-tangent pairs only: none of the random benchmark pairs) is
+// decided in rational arithmetic from the Perram-Wertheim polynomial and the containment
+// dual (docs/method.md, section 10), at 10 us to a few ms a pair (bench/RESULTS.md).
+// overlap(a, b, exact) == (classify(a, b, exact) != separated).
 #pragma once
 
 #include <ellipsect/options.hpp>
@@ -22,11 +34,11 @@ namespace ellipsect {
 // hold them as written).
 enum class Relation : std::int8_t {
   separated,     // no common point
-  touching,      // boundaries meet, interiors disjoint (within the tolerance band)
+  touching,      // boundaries meet, interiors disjoint (within the tolerance band, or exactly)
   overlapping,   // interiors intersect, neither contains the other
   a_contains_b,  // b is inside a (boundaries may touch from inside)
   b_contains_a,  // a is inside b
-  equal,         // same set (within the tolerance band)
+  equal,         // same set (within the tolerance band, or exactly)
 };
 
 std::string_view to_string(Relation r) noexcept;

@@ -22,6 +22,11 @@
 // about 1e16), the normal is the large body's at the small one's center and the point the
 // small body's support point along it: off by about the small body's size over the large
 // one's radius of curvature (tests/regression/scales_test.cpp).
+// At Options::tolerance = 0 (exact) the status at t = 0 is classify's exact relation:
+// touching_at_start only for bodies that touch exactly, overlapping_at_start for every
+// other common point; bodies apart by less than the narrowest band (1e-14) that close are a
+// hit at -gap / slope (at least the smallest positive time), within the accuracy above.
+// The rigid-motion first_contact below treats 0 as the narrowest band.
 #pragma once
 
 #include <ellipsect/options.hpp>

@@ -15,7 +15,9 @@
 //
 // Method (docs/distance.md): trust-region Newton on the sphere of directions. The status
 // is classify's (certified far from touching by the Perram-Wertheim test or by a converged
-// gap above the tangency band, otherwise decided in classify's reduced frame). Separated
+// gap above the tangency band, otherwise decided in classify's reduced frame; at
+// Options::tolerance = 0 classify's exact relation: touching only for bodies that touch
+// exactly). Separated
 // and touching bodies need one descent, started in {g > 0}: g is concave and positively
 // homogeneous, so its maximum on that cone is unique. Penetration depth is not a convex
 // problem (g can have several local maxima), so overlapping bodies also start from the

@@ -30,9 +30,10 @@
 namespace ellipsect {
 
 namespace detail {
-// Throw InputError(field, "must be in [low, high] (got value)"), an integer given by its
+// Throw InputError("tolerance", "must be 0 or in [low, high] (got value)"), and
+// InputError(field, "must be in [low, high] (got value)") for an integer given by its
 // decimal digits (src/options.cpp).
-[[noreturn]] void reject_option(const char* field, double value, double low, double high);
+[[noreturn]] void reject_tolerance(double value, double low, double high);
 [[noreturn]] void reject_option(const char* field, const char* digits, int low, int high);
 inline constexpr char max_iterations_field[] = "max_iterations";
 inline constexpr char max_motion_steps_field[] = "max_motion_steps";
@@ -43,22 +44,31 @@ inline constexpr char max_motion_steps_field[] = "max_motion_steps";
 //   min = 1e-14 (45 ulps): near its edges the band is decided in long double (or compensated
 //        arithmetic), whose rounding, 32 ulps (3.5e-18) of the reduced frame's lengths,
 //        stays below it while those lengths are within about 3000 of the sphere body's size;
-//        a narrower band would be decided by rounding, differently by each query. A band of
-//        0 is none: an exact tangency would be overlapping for classify (gap <= -tol) and
-//        touching for first_contact and signed_distance (gap >= -tol).
+//        a narrower band would be decided by rounding, differently by each query.
 //   max = 1e-9: the early outs prove answers beyond a fixed relative margin of 1e-9 (the
 //        inscribed balls of classify's certificates, the broad phase's boxes padded by 1e-9
 //        of each radius); in a wider band they contradict the exact path (1e-6: unit balls
 //        2 - 1e-8 apart are overlapping for classify, touching_at_start for first_contact).
+//   exact = 0: no band. classify and overlap answer the relation of the bodies as stored,
+//        settling the pairs within the narrowest band (min) and within rounding of it in
+//        rational arithmetic (classify.hpp); first_contact (linear motion) and
+//        signed_distance take their statuses at the start from that relation (contact.hpp,
+//        distance.hpp). The other queries use the narrowest band, min.
 class Tolerance {
 public:
+  static constexpr double exact = 0;
   static constexpr double min = 1e-14;
   static constexpr double max = 1e-9;
 
   constexpr Tolerance(double value) : value_(value) {
-    if (!(value >= min && value <= max)) detail::reject_option("tolerance", value, min, max);
+    if (!(value == exact || (value >= min && value <= max))) detail::reject_tolerance(value, min, max);
   }
-  constexpr operator double() const noexcept { return value_; }
+  // The band the computations use: `min` for exact, whose queries then settle the pairs
+  // inside it exactly.
+  constexpr operator double() const noexcept { return value_ == exact ? min : value_; }
+  // The value as given (0 for exact).
+  constexpr double value() const noexcept { return value_; }
+  constexpr bool is_exact() const noexcept { return value_ == exact; }
 
 private:
   double value_;
@@ -91,9 +101,9 @@ private:
 };
 
 struct Options {
-  // Relative tangency band (see above), in [Tolerance::min, Tolerance::max] = [1e-14, 1e-9].
-  // Pairs whose gap lies within it are reported as touching; outside it, answers are exact
-  // up to the accuracy stated per query.
+  // Relative tangency band (see above), in [Tolerance::min, Tolerance::max] = [1e-14, 1e-9],
+  // or Tolerance::exact = 0. Pairs whose gap lies within the band are reported as touching;
+  // outside it, answers are exact up to the accuracy stated per query.
   Tolerance tolerance = 1e-12;
   // Cap on the outer (contact-time) iteration, in [1, 100000]. Reaching it is reported as a
   // status (ContactStatus::did_not_converge), never returned as an answer.

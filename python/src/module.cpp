@@ -822,7 +822,7 @@ void def_scalar(py::module_& m) {
            py::arg("tolerance") = double(Options{}.tolerance), py::arg("max_iterations") = int(Options{}.max_iterations),
            py::arg("max_motion_steps") = int(Options{}.max_motion_steps))
       .def_property(
-          "tolerance", [](const Options& o) { return double(o.tolerance); },
+          "tolerance", [](const Options& o) { return o.tolerance.value(); },
           [](Options& o, double tolerance) { o.tolerance = tolerance; })
       .def_property(
           "max_iterations", [](const Options& o) { return int(o.max_iterations); },
@@ -832,7 +832,7 @@ void def_scalar(py::module_& m) {
           [cap](Options& o, const py::object& n) { o.max_motion_steps = cap(std::type_identity<MaxMotionSteps>{}, n); })
       .def(py::pickle(
           [](const Options& o) {
-            return py::make_tuple(double(o.tolerance), int(o.max_iterations), int(o.max_motion_steps));
+            return py::make_tuple(o.tolerance.value(), int(o.max_iterations), int(o.max_motion_steps));
           },
           [cap](const py::tuple& t) {
             return Options{t[0].cast<double>(), cap(std::type_identity<MaxIterations>{}, t[1]),

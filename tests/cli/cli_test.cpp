@@ -909,12 +909,11 @@ TEST(CliOptions, InvalidValuesNameTheOption) {
   const auto dir = work_dir();
   const std::string scene = (scenes / "swept_2d.json").string();
   const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
-      {{"--tolerance", "nan"}, "--tolerance: must be in [1e-14, 1e-09] (got nan)"},
-      {{"--tolerance", "0"}, "--tolerance: must be in [1e-14, 1e-09] (got 0)"},
-      {{"--tolerance", "-1e-12"}, "--tolerance: must be in [1e-14, 1e-09] (got -1e-12)"},
-      {{"--tolerance", "inf"}, "--tolerance: must be in [1e-14, 1e-09] (got inf)"},
-      {{"--tolerance", "1e-3"}, "--tolerance: must be in [1e-14, 1e-09] (got 0.001)"},
-      {{"--tolerance", "1e-15"}, "--tolerance: must be in [1e-14, 1e-09] (got 1e-15)"},
+      {{"--tolerance", "nan"}, "--tolerance: must be 0 or in [1e-14, 1e-09] (got nan)"},
+      {{"--tolerance", "-1e-12"}, "--tolerance: must be 0 or in [1e-14, 1e-09] (got -1e-12)"},
+      {{"--tolerance", "inf"}, "--tolerance: must be 0 or in [1e-14, 1e-09] (got inf)"},
+      {{"--tolerance", "1e-3"}, "--tolerance: must be 0 or in [1e-14, 1e-09] (got 0.001)"},
+      {{"--tolerance", "1e-15"}, "--tolerance: must be 0 or in [1e-14, 1e-09] (got 1e-15)"},
       {{"--tolerance", "tiny"}, "--tolerance"},
       {{"--max-iterations", "0"}, "--max-iterations: must be in [1, 100000] (got 0)"},
       {{"--max-iterations", "-3"}, "--max-iterations: must be in [1, 100000] (got -3)"},

@@ -33,7 +33,7 @@ static_assert(std::is_aggregate_v<Options> && std::is_trivially_copyable_v<Optio
 
 TEST(Options, InvalidToleranceNamesTheField) {
   const double smallest = Tolerance::min, largest = Tolerance::max;
-  for (const double t : {nan, -nan, inf, -inf, 0.0, -0.0, -1e-12, std::numeric_limits<double>::denorm_min(),
+  for (const double t : {nan, -nan, inf, -inf, -1e-12, std::numeric_limits<double>::denorm_min(),
                          std::nextafter(smallest, 0.0), std::nextafter(largest, 1.0), 1e-6, 1.0, 1e300}) {
     expect_field([&] { (void)Options{.tolerance = t}; }, "tolerance");
     expect_field([&] { (void)Options{t}; }, "tolerance");
@@ -45,7 +45,7 @@ TEST(Options, InvalidToleranceNamesTheField) {
     (void)Options{.tolerance = nan};
     ADD_FAILURE() << "no InputError";
   } catch (const InputError& e) {
-    EXPECT_STREQ(e.what(), "ellipsect: tolerance: must be in [1e-14, 1e-09] (got nan)");
+    EXPECT_STREQ(e.what(), "ellipsect: tolerance: must be 0 or in [1e-14, 1e-09] (got nan)");
   }
 }
 
