@@ -1,13 +1,21 @@
-// Shared test helpers: case counts and scale, InputError expectations.
+// Shared test helpers: case counts and scale, InputError expectations, the exact mode's
+// options, a count of wrong answers.
 #pragma once
 
+#include <ellipsect/options.hpp>
 #include <ellipsect/shapes.hpp>
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <cstdlib>
+#include <map>
+#include <optional>
+#include <sstream>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace ellipsect::testing {
 
@@ -39,5 +47,60 @@ void expect_field(F&& f, const std::string& field) {
     EXPECT_NE(std::string(e.what()).find(": " + field + ": "), std::string::npos) << e.what();
   }
 }
+
+// Options{.tolerance = 0}, the exact mode; where it is rejected, a failure saying so and
+// nullopt.
+inline std::optional<Options> exact_options() {
+  try {
+    return Options{.tolerance = 0};
+  } catch (const InputError& e) {
+    ADD_FAILURE() << "Options{.tolerance = 0} is rejected: " << e.what();
+    return std::nullopt;
+  }
+}
+
+// Answers checked against expected ones, counted per query; report() prints the counts and
+// fails once, listing the first wrong answers, where any is wrong. Values: bool, or an enum
+// with a to_string (Relation, ContactStatus, DistanceStatus).
+class AnswerCount {
+public:
+  template <class V>
+  void check(const std::string& where, const std::string& query, V want, V got) {
+    auto& [checked, wrong] = per_query_[query];
+    ++checked;
+    if (want == got) return;
+    ++wrong;
+    if (lines_.size() < 60) lines_.push_back(where + ": " + query + " want " + str(want) + ", got " + str(got));
+  }
+  int wrong() const {
+    int n = 0;
+    for (const auto& [query, counts] : per_query_) n += counts.second;
+    return n;
+  }
+  void report(const std::string& title) const {
+    std::ostringstream s;
+    int checked = 0;
+    for (const auto& [query, counts] : per_query_) {
+      s << "\n  " << query << ": " << counts.second << " wrong of " << counts.first;
+      checked += counts.first;
+    }
+    std::printf("%s: %d answers, %d wrong%s\n", title.c_str(), checked, wrong(), s.str().c_str());
+    if (wrong() == 0) return;
+    std::ostringstream f;
+    f << title << ": " << wrong() << " wrong answers of " << checked << s.str() << "\nthe first " << lines_.size()
+      << ":";
+    for (const auto& line : lines_) f << "\n  " << line;
+    ADD_FAILURE() << f.str();
+  }
+
+private:
+  static std::string str(bool b) { return b ? "true" : "false"; }
+  template <class E>
+  static std::string str(E e) {
+    return std::string(to_string(e));
+  }
+  std::map<std::string, std::pair<int, int>> per_query_;
+  std::vector<std::string> lines_;
+};
 
 }  // namespace ellipsect::testing

@@ -4,7 +4,9 @@
 //
 // Claim under test (classify.hpp): the relation is exact whenever every tangency measure
 // of the reference (margin) is farther than 2 * tolerance from 1, and a pair reported
-// touching has |mu - 1| <= 2 * tolerance.
+// touching has |mu - 1| <= 2 * tolerance; at tolerance 0 (the exact mode, last tests) the
+// relation of the stored bodies is exact for every pair the reference decides (margin above
+// 1e-40), at relative gaps down to 1e-20.
 #include <ellipsect/batch.hpp>
 #include <ellipsect/intersect2.hpp>
 
@@ -14,7 +16,9 @@
 
 #include <Eigen/SVD>
 
+#include <algorithm>
 #include <memory>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -325,5 +329,206 @@ void check_extreme_radius_ratios(int n) {
 
 TEST(ClassifyProperty, SwapSymmetricAtExtremeRadiusRatios2D) { check_extreme_radius_ratios<2>(cases(300)); }
 TEST(ClassifyProperty, SwapSymmetricAtExtremeRadiusRatios3D) { check_extreme_radius_ratios<3>(cases(300)); }
+
+
+// ---- The exact mode: Options::tolerance = 0 ----------------------------------------------
+//
+// Claim under test (options.hpp, classify.hpp): at tolerance 0, classify and overlap answer
+// the exact relation of the bodies as stored (the quadrics of the stored centers, axes as
+// given and radii), float and double, either argument order, and the batch classify the
+// same. Referee: ref::classify_stored, the stored quadrics in 50 digits (not the
+// re-orthonormalised axes of ref::classify, which move a body by about an ulp). A pair is
+// decided where the referee's margin exceeds 1e-40, or where it finds the bodies equal
+// (identical copies); the others, exact tangencies that 50 digits cannot tell from 1, are
+// counted. Pairs: every scenario category (aspect ratios to 1e4), and pairs steered from
+// the random, high-aspect and containment scenarios to relative gaps of +-1e-15, 1e-17 and
+// 1e-20 (float data: 1e-9, 1e-11, 1e-13) from external or internal tangency.
+
+constexpr double referee_floor = 1e-40;
+
+template <class T, int N>
+ref::Body<N> stored(const Ellipsoid<T, N>& e) {
+  return {e.center().template cast<double>(), e.axes().template cast<double>(), e.radii().template cast<double>()};
+}
+
+// The tangency a steered pair approaches: from outside (the contact scale mu of the stored
+// bodies) or b inside a (the largest value of a's gauge on b's boundary).
+enum class Tangency { external, internal };
+
+template <class T, int N>
+ref::Real tangency_measure(Tangency t, const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b) {
+  const auto ra = ref::detail::make_stored_rbody<N>(stored(a)), rb = ref::detail::make_stored_rbody<N>(stored(b));
+  if (t == Tangency::internal) return ref::detail::metric_range_impl<N>(ra, rb).max;
+  return sqrt(ref::detail::pw_solve<N>(ra.P, rb.P, ref::RVec<N>(rb.c - ra.c)).F);
+}
+
+// The pair (a, b) with centers and radii moved by a few ulps each, chosen so that the
+// tangency measure is about 1 + target: the measure is linear in ulp steps to about 1e-31
+// (double), so its first differences, one reference evaluation per value, predict every
+// combination of steps, and a meet in the middle over steps in [-m, m] (m = 3 in 2D, 2 in
+// 3D: 7^8 and 5^12 combinations) finds the one closest to the target.
+template <class T, int N>
+std::pair<Ellipsoid<T, N>, Ellipsoid<T, N>> steered(Tangency t, const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b,
+                                                    double target) {
+  using E = Ellipsoid<T, N>;
+  std::vector<T> p;
+  for (int i = 0; i < N; ++i) p.push_back(a.center()[i]);
+  for (int i = 0; i < N; ++i) p.push_back(a.radii()[i]);
+  for (int i = 0; i < N; ++i) p.push_back(b.center()[i]);
+  for (int i = 0; i < N; ++i) p.push_back(b.radii()[i]);
+  auto pair_of = [&](const std::vector<T>& q) {
+    auto v = [&](int k) { return Vec<T, N>(Eigen::Map<const Vec<T, N>>(q.data() + k * N)); };
+    return std::pair<E, E>(E::from_axes(v(0), a.axes(), v(1)), E::from_axes(v(2), b.axes(), v(3)));
+  };
+  auto gap = [&](const std::vector<T>& q) {
+    const auto [qa, qb] = pair_of(q);
+    return tangency_measure<T, N>(t, qa, qb) - 1;
+  };
+  const int m = N == 2 ? 3 : 2;
+  const ref::Real g0 = gap(p);
+  // Usable values: nonzero, and m ulps either way on one uniform grid (no power of 2 crossed).
+  std::vector<int> index;
+  std::vector<double> slope;
+  std::vector<T> ulp;
+  for (int i = 0; i < int(p.size()); ++i) {
+    const T u = std::nextafter(p[i], std::numeric_limits<T>::infinity()) - p[i];
+    T lo = p[i], hi = p[i];
+    for (int k = 0; k < m; ++k) {
+      lo = std::nextafter(lo, -std::numeric_limits<T>::infinity());
+      hi = std::nextafter(hi, std::numeric_limits<T>::infinity());
+    }
+    if (p[i] == 0 || hi - p[i] != m * u || p[i] - lo != m * u) continue;
+    std::vector<T> q = p;
+    q[i] += u;
+    index.push_back(i);
+    ulp.push_back(u);
+    slope.push_back(ref::to_double(gap(q) - g0));
+  }
+  // Sums of the predicted changes over the steps of one half of the values.
+  const int count = int(index.size()), half = count / 2;
+  auto sums = [&](int from, int to) {
+    std::vector<std::pair<double, std::vector<int>>> out{{0.0, {}}};
+    for (int i = from; i < to; ++i) {
+      std::vector<std::pair<double, std::vector<int>>> next;
+      for (const auto& [s, steps] : out)
+        for (int k = -m; k <= m; ++k) {
+          auto with = steps;
+          with.push_back(k);
+          next.emplace_back(s + k * slope[std::size_t(i)], std::move(with));
+        }
+      out = std::move(next);
+    }
+    return out;
+  };
+  const auto first = sums(0, half);
+  auto second = sums(half, count);
+  std::sort(second.begin(), second.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+  const double want = target - ref::to_double(g0);
+  double best = std::numeric_limits<double>::infinity();
+  const std::vector<int>*best_first = nullptr, *best_second = nullptr;
+  for (const auto& f : first) {
+    auto it = std::lower_bound(second.begin(), second.end(), want - f.first,
+                               [](const auto& x, double v) { return x.first < v; });
+    for (auto j = it == second.begin() ? it : it - 1; j != second.end() && j <= it; ++j) {
+      const double miss = std::abs(f.first + j->first - want);
+      if (miss < best) best = miss, best_first = &f.second, best_second = &j->second;
+    }
+  }
+  std::vector<T> q = p;
+  for (int i = 0; i < count; ++i) {
+    const int k = i < half ? (*best_first)[std::size_t(i)] : (*best_second)[std::size_t(i - half)];
+    q[std::size_t(index[std::size_t(i)])] += T(k) * ulp[std::size_t(i)];
+  }
+  return pair_of(q);
+}
+
+// Checks one pair at tolerance 0 against the referee (both orders, classify and overlap);
+// returns the referee's relation where it decides, nullopt otherwise.
+template <class T, int N>
+std::optional<Relation> check_exact_pair(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b, const Options& exact,
+                                         const std::string& where, AnswerCount& answers) {
+  const auto r = ref::classify_stored<N>(stored(a), stored(b), referee_floor);
+  const Relation want = from_ref(r.relation);
+  if (!(r.margin > referee_floor) && want != Relation::equal) return std::nullopt;
+  std::ostringstream w;
+  w.precision(17);
+  w << where << " (mu - 1 = " << ref::to_double(r.mu - 1) << ", margin " << ref::to_double(r.margin) << ")";
+  answers.check(w.str(), "classify(a, b)", want, classify(a, b, exact));
+  answers.check(w.str(), "classify(b, a)", mirrored(want), classify(b, a, exact));
+  answers.check(w.str(), "overlap(a, b)", want != Relation::separated, overlap(a, b, exact));
+  answers.check(w.str(), "overlap(b, a)", want != Relation::separated, overlap(b, a, exact));
+  return want;
+}
+
+template <class T, int N>
+void check_exact_against_reference(int per_category, int steered_bases) {
+  const auto exact = exact_options();
+  if (!exact) return;
+  const std::string type = sizeof(T) == sizeof(double) ? "double" : "float";
+  AnswerCount answers;
+  Tally tally;
+  Pairs<T, N> pairs;
+  std::vector<Relation> wants;
+  std::vector<std::string> wheres;
+  auto check = [&](const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b, const std::string& group,
+                   const std::string& where) {
+    const auto want = check_exact_pair<T, N>(a, b, *exact, where, answers);
+    tally.add(group, want ? std::string(to_string(*want)) : "undecided");
+    if (!want) return;
+    pairs.push_back(a, b);
+    wants.push_back(*want);
+    wheres.push_back(where);
+  };
+  for (const auto category : scenarios::all_categories)
+    for (int i = 0; i < per_category; ++i) {
+      const auto c = scenarios::make_case<N>(category, 400000 + std::uint64_t(i));
+      check(as<T>(c.a), as<T>(c.b), std::string(scenarios::name(category)), describe(c));
+    }
+  const std::vector<double> targets =
+      sizeof(T) == sizeof(double) ? std::vector<double>{1e-15, 1e-17, 1e-20} : std::vector<double>{1e-9, 1e-11, 1e-13};
+  for (int i = 0; i < steered_bases; ++i) {
+    const Tangency t = i % 2 == 0 ? Tangency::external : Tangency::internal;
+    const auto category = t == Tangency::internal ? scenarios::Category::containment
+                          : i % 4 == 0            ? scenarios::Category::random
+                                                  : scenarios::Category::high_aspect;
+    const auto c = scenarios::make_case<N>(category, 410000 + std::uint64_t(i));
+    using E = Ellipsoid<T, N>;
+    const E a0 = as<T>(c.a), b0 = as<T>(c.b);
+    // Onto the tangency, to the rounding of T: both bodies scaled by mu about their centers
+    // (external), or a by its measure of b (internal).
+    const double s = ref::to_double(tangency_measure<T, N>(t, a0, b0));
+    auto scaled = [&](const E& e) {
+      return E::from_axes(e.center(), e.axes(), (e.radii().template cast<double>() * s).template cast<T>());
+    };
+    const E a1 = scaled(a0), b1 = t == Tangency::external ? scaled(b0) : b0;
+    for (const double target : targets)
+      for (const double sign : {1.0, -1.0}) {
+        const auto [a, b] = steered<T, N>(t, a1, b1, sign * target);
+        std::ostringstream where;
+        where << describe(c) << "\n  steered to " << (t == Tangency::external ? "mu" : "b's measure in a")
+              << " = 1 + " << sign * target;
+        const double got = ref::to_double(tangency_measure<T, N>(t, a, b) - 1);
+        const int decade = got == 0 ? -99 : int(std::floor(std::log10(std::abs(got))));
+        check(a, b, (t == Tangency::external ? "steered external, gap 1e" : "steered internal, gap 1e") +
+                        std::to_string(decade),
+              where.str());
+      }
+  }
+  std::vector<Relation> got(pairs.size());
+  classify(pairs, std::span<Relation>(got), BatchOptions{.query = *exact});
+  for (std::size_t i = 0; i < pairs.size(); ++i) answers.check(wheres[i], "batch classify", wants[i], got[i]);
+  tally.print("exact classify vs the stored-body reference, " + type + " N=" + std::to_string(N));
+  answers.report("exact classify vs the stored-body reference, " + type + " N=" + std::to_string(N));
+  EXPECT_GT(int(pairs.size()), (per_category * 10 + steered_bases * 6) * 8 / 10);  // most are decided
+}
+
+TEST(ClassifyProperty, ExactModeMatchesStoredReference2D) {
+  check_exact_against_reference<double, 2>(cases(100), cases(60));
+  check_exact_against_reference<float, 2>(cases(100), cases(60));
+}
+TEST(ClassifyProperty, ExactModeMatchesStoredReference3D) {
+  check_exact_against_reference<double, 3>(cases(100), cases(60));
+  check_exact_against_reference<float, 3>(cases(100), cases(60));
+}
 
 }  // namespace

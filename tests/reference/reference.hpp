@@ -32,9 +32,11 @@
 //
 // Input bodies are double; they are converted EXACTLY to Real, and the axes are then
 // re-orthonormalised in Real (modified Gram-Schmidt, twice), which defines the exact body
-// used by every function.  Results are exact for that body to roughly 1e-45 relative (see
-// the notes at each function); more precisely about 1e-50 times the condition number of the
-// quadrics involved (e.g. ~1e-39 for axis ratios of 1e6 inside one body).
+// used by every function (but classify_stored, which takes the axes as given: the body of
+// the exact mode, whose quadric is formed from the stored axes).  Results are exact for
+// that body to roughly 1e-45 relative (see the notes at each function); more precisely
+// about 1e-50 times the condition number of the quadrics involved (e.g. ~1e-39 for axis
+// ratios of 1e6 inside one body).
 //
 // `band` (classify, first_contact) only widens the tests `touching`, `equal` and
 // `touching_at_start`; exact tangencies computed here come out as 1 +- ~1e-50, so pass a
@@ -42,6 +44,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <Eigen/LU>
 #include <boost/multiprecision/cpp_bin_float.hpp>
 #include <boost/multiprecision/eigen.hpp>
 
@@ -621,8 +624,8 @@ template <int N> Range<N> metric_range(const Body<N>& metric, const Body<N>& bou
 // separated    if mu > 1 + band
 // touching     if |mu - 1| <= band
 // overlapping  otherwise                 (checked in this order)
-template <int N> Classification<N> classify(const Body<N>& a, const Body<N>& b, double band) {
-  const detail::RBody<N> ra = detail::make_rbody<N>(a, "a"), rb = detail::make_rbody<N>(b, "b");
+namespace detail {
+template <int N> Classification<N> classify_rbodies(const RBody<N>& ra, const RBody<N>& rb, double band) {
   Classification<N> c;
   const detail::PwState<N> s = detail::pw_solve<N>(ra.P, rb.P, RVec<N>(rb.c - ra.c));
   c.mu = sqrt(s.F);
@@ -650,6 +653,45 @@ template <int N> Classification<N> classify(const Body<N>& a, const Body<N>& b, 
   else
     c.relation = Relation::overlapping;
   return c;
+}
+
+// The body exactly as stored: the quadric M = A diag(radii)^-2 A^T of the axes A as given
+// (orthonormal only to their rounding), not re-orthonormalised. Its boundary is
+// c + L u, |u| = 1, with L = A^-T diag(radii) (L^T M L = I), and P = M^-1 = L L^T; the
+// gauge (x - c)^T M (x - c) = |diag(radii)^-1 A^T (x - c)|^2 uses A as given.
+template <int N> RBody<N> make_stored_rbody(const Body<N>& b, const char* name = "body") {
+  RBody<N> r = make_rbody<N>(b, name);  // validation, centre, radii, rmin, rmax
+  for (int i = 0; i < N; ++i)
+    for (int j = 0; j < N; ++j) r.axes(i, j) = Real(b.axes(i, j));
+  const RMat<N> inv_t = r.axes.inverse().transpose();
+  for (int i = 0; i < N; ++i) {
+    for (int k = 0; k < N; ++k) r.L(i, k) = inv_t(i, k) * r.radii(k);
+    for (int j = 0; j <= i; ++j) {
+      Real m = 0;
+      for (int k = 0; k < N; ++k) m += r.axes(i, k) * r.axes(j, k) / (r.radii(k) * r.radii(k));
+      r.M(i, j) = r.M(j, i) = m;
+    }
+  }
+  for (int i = 0; i < N; ++i)
+    for (int j = 0; j <= i; ++j) {
+      Real p = 0;
+      for (int k = 0; k < N; ++k) p += r.L(i, k) * r.L(j, k);
+      r.P(i, j) = r.P(j, i) = p;
+    }
+  return r;
+}
+}  // namespace detail
+
+template <int N> Classification<N> classify(const Body<N>& a, const Body<N>& b, double band) {
+  return detail::classify_rbodies<N>(detail::make_rbody<N>(a, "a"), detail::make_rbody<N>(b, "b"), band);
+}
+
+// classify() of the bodies exactly as stored (detail::make_stored_rbody): the referee of the
+// exact mode (Options::tolerance = 0), which answers for the stored quadrics. Its margins
+// resolve relative gaps down to about 1e-45 (times the quadrics' condition numbers).
+template <int N> Classification<N> classify_stored(const Body<N>& a, const Body<N>& b, double band) {
+  return detail::classify_rbodies<N>(detail::make_stored_rbody<N>(a, "a"), detail::make_stored_rbody<N>(b, "b"),
+                                     band);
 }
 
 // ------------------------------------------------------------------------------------------
