@@ -180,14 +180,25 @@ case "${1:-}" in
     step "Release build"
     build build/release -DCMAKE_BUILD_TYPE=Release -DELLIPSECT_BUILD_TESTS=ON -DELLIPSECT_BUILD_BENCH=ON \
       -DELLIPSECT_BUILD_TOOLS=ON
+    # The sanitized build runs alongside the next three steps at the lowest priority, on the
+    # cores they leave idle (a test suite's last tests, the browser, pytest); in a process
+    # group of its own (set -m), which ends with the script.
+    step "sanitized build (tests and fuzz targets), in the background: build/sanitize.log"
+    set -m
+    (renice -n 19 -p "$BASHPID" >/dev/null && build_sanitized all fuzz) >build/sanitize.log 2>&1 &
+    sanitized_build=$!
+    set +m
+    trap 'kill -- "-$sanitized_build" 2>/dev/null || true' EXIT
     step "Release tests"
     (cd build/release && ctest --output-on-failure --no-tests=error -j "$(nproc)")
     step "demo page: build and browser test"
     web_test
     step "Python package: build and tests"
     python_test
-    step "sanitized build (tests and fuzz targets)"
-    build_sanitized all fuzz
+    step "sanitized build: waiting for it"
+    wait "$sanitized_build" || { cat build/sanitize.log; exit 1; }
+    trap - EXIT
+    cat build/sanitize.log
     # Same suite under the sanitizers, fewer random cases per property test.
     step "sanitized tests"
     (cd build/sanitize && ELLIPSECT_CASE_SCALE=0.05 ctest --output-on-failure --no-tests=error -j "$(nproc)")

@@ -1,5 +1,5 @@
 // Independent high-precision REFERENCE for the Perram-Wertheim contact function and the
-// distance of closest approach (header-only; builds on reference.hpp, N = 2 or 3).
+// distance of closest approach (header templates; builds on reference.hpp, N = 2 or 3).
 //
 // Routes, in `Real` (about 50 digits), chosen to differ from the library's (reduced frame,
 // Newton on F') and from reference.hpp's pw() (Newton on F'):
@@ -101,5 +101,14 @@ template <int N> Real closest_approach(const Body<N>& a, const Body<N>& b, const
   }
   return (lo + hi) / 2;
 }
+
+// The functions the tests and benchmarks call, for N = 2 and 3: compiled once, in
+// contact_function_reference.cpp (the library ellipsect_reference), not in every program that includes
+// this header.
+#define ELLIPSECT_CONTACT_FUNCTION_REFERENCE_FUNCTIONS(extern_, N) \
+  extern_ template ContactFunctionRef<N> contact_function<N>(const Body<N>&, const Body<N>&); \
+  extern_ template Real closest_approach<N>(const Body<N>&, const Body<N>&, const DVec<N>&);
+ELLIPSECT_CONTACT_FUNCTION_REFERENCE_FUNCTIONS(extern, 2)
+ELLIPSECT_CONTACT_FUNCTION_REFERENCE_FUNCTIONS(extern, 3)
 
 }  // namespace ellipsect::reference

@@ -1,5 +1,5 @@
 // Independent high-precision REFERENCE for distances, penetration depths, and the boundary
-// intersection points and overlap area of two ellipses (header-only; builds on reference.hpp).
+// intersection points and overlap area of two ellipses (header templates; builds on reference.hpp).
 //
 // Routes, all in `Real` (about 50 digits) unless said otherwise, chosen to differ from the
 // library's (reduced frame, secular equation, trust-region Newton from one or a few starts):
@@ -400,5 +400,13 @@ inline Real overlap_area(const Body<2>& a, const Body<2>& b) {
   }
   return area;
 }
+
+// The functions the tests and benchmarks call, for N = 2 and 3: compiled once, in
+// distance_reference.cpp (the library ellipsect_reference), not in every program that includes
+// this header.
+#define ELLIPSECT_DISTANCE_REFERENCE_FUNCTIONS(extern_, N) \
+  extern_ template SignedDistance<N> signed_distance<N>(const Body<N>&, const Body<N>&);
+ELLIPSECT_DISTANCE_REFERENCE_FUNCTIONS(extern, 2)
+ELLIPSECT_DISTANCE_REFERENCE_FUNCTIONS(extern, 3)
 
 }  // namespace ellipsect::reference

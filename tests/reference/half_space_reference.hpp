@@ -1,4 +1,4 @@
-// 50-digit reference for a body against a half-space { x : n . (x - p) <= 0 } (header-only,
+// 50-digit reference for a body against a half-space { x : n . (x - p) <= 0 } (header templates,
 // never includes the library).
 //
 // Route, different from the library's (compensated double arithmetic on |diag(r) A^T n| and
@@ -87,5 +87,15 @@ Real half_space_contact_time(const Body<N>& body, const DVec<N>& point, const DV
   }
   return hi;
 }
+
+// The functions the tests and benchmarks call, for N = 2 and 3: compiled once, in
+// half_space_reference.cpp (the library ellipsect_reference), not in every program that includes
+// this header.
+#define ELLIPSECT_HALF_SPACE_REFERENCE_FUNCTIONS(extern_, N) \
+  extern_ template HalfSpaceGaps<N> half_space_gaps<N>(const Body<N>&, const DVec<N>&, const DVec<N>&); \
+  extern_ template Real half_space_contact_time<N>(const Body<N>&, const DVec<N>&, const DVec<N>&, const DVec<N>&, \
+                                                   const DVec<N>&, double);
+ELLIPSECT_HALF_SPACE_REFERENCE_FUNCTIONS(extern, 2)
+ELLIPSECT_HALF_SPACE_REFERENCE_FUNCTIONS(extern, 3)
 
 }  // namespace ellipsect::reference

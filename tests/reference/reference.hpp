@@ -1,4 +1,4 @@
-// Independent high-precision REFERENCE for the ellipsect tests (header-only, N = 2 or 3).
+// Independent high-precision REFERENCE for the ellipsect tests (header templates, N = 2 or 3).
 //
 // Everything here is computed in `Real` (168-bit binary floating point, about 50 decimal
 // digits) by routes that are deliberately different from the library's (Eberly: affine map
@@ -832,5 +832,20 @@ Contact<N> first_contact(const Body<N>& a, const Eigen::Matrix<double, N, 1>& va
   fill(c, t_hit, state_at(t_hit));
   return c;
 }
+
+// The functions the tests and benchmarks call, for N = 2 and 3: compiled once, in
+// reference.cpp (the library ellipsect_reference), not in every program that includes
+// this header.
+#define ELLIPSECT_REFERENCE_FUNCTIONS(extern_, N) \
+  extern_ template detail::RBody<N> detail::make_rbody<N>(const Body<N>&, const char*); \
+  extern_ template PwResult<N> pw<N>(const Body<N>&, const Body<N>&); \
+  extern_ template Real pw_scale<N>(const Body<N>&, const Body<N>&); \
+  extern_ template PwResult<N> pw_at<N>(const Body<N>&, const DVec<N>&, const Body<N>&, const DVec<N>&, const Real&); \
+  extern_ template Range<N> metric_range<N>(const Body<N>&, const Body<N>&); \
+  extern_ template Classification<N> classify<N>(const Body<N>&, const Body<N>&, double); \
+  extern_ template Contact<N> first_contact<N>(const Body<N>&, const DVec<N>&, const Body<N>&, const DVec<N>&, double, \
+                                               double);
+ELLIPSECT_REFERENCE_FUNCTIONS(extern, 2)
+ELLIPSECT_REFERENCE_FUNCTIONS(extern, 3)
 
 }  // namespace ellipsect::reference

@@ -1,5 +1,5 @@
 // Independent 50-digit REFERENCE for the first contact of two bodies in rigid motion
-// (constant linear velocity of the centre, constant angular velocity about it), header-only.
+// (constant linear velocity of the centre, constant angular velocity about it), header templates.
 //
 // Route, all in Real (reference.hpp), chosen to differ from the library's (signed distance
 // by trust-region Newton, slab gap along its normal with first- and second-order bounds):
@@ -225,5 +225,15 @@ RigidContact<N> rigid_first_contact(const Body<N>& a, const RigidMotionRef<N>& m
     return finish(ContactKind::hit, left, sample(left));
   }
 }
+
+// The functions the tests and benchmarks call, for N = 2 and 3: compiled once, in
+// rigid_contact_reference.cpp (the library ellipsect_reference), not in every program that includes
+// this header.
+#define ELLIPSECT_RIGID_CONTACT_REFERENCE_FUNCTIONS(extern_, N) \
+  extern_ template detail::RBody<N> detail::body_at<N>(const detail::RBody<N>&, const RigidMotionRef<N>&, const Real&); \
+  extern_ template RigidContact<N> rigid_first_contact<N>(const Body<N>&, const RigidMotionRef<N>&, const Body<N>&, \
+                                                          const RigidMotionRef<N>&, double, double, long);
+ELLIPSECT_RIGID_CONTACT_REFERENCE_FUNCTIONS(extern, 2)
+ELLIPSECT_RIGID_CONTACT_REFERENCE_FUNCTIONS(extern, 3)
 
 }  // namespace ellipsect::reference

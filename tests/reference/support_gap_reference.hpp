@@ -1,5 +1,5 @@
 // 50-digit reference for the signed distance of a body and a convex polytope given by its
-// vertices (header-only, never includes the library).
+// vertices (header templates, never includes the library).
 //
 // The signed distance is the maximum over unit n of the support gap
 //     G(n) = min_k n . (v_k - c) - sqrt(n^T A diag(r^2) A^T n)
@@ -300,5 +300,14 @@ template <int N>
 Real support_gap_at(const Body<N>& body, const std::vector<DVec<N>>& vertices, const DVec<N>& n) {
   return support_gap_of<Real, N>(body, vertices)(to_real<N>(n));
 }
+
+// The functions the tests and benchmarks call, for N = 2 and 3: compiled once, in
+// support_gap_reference.cpp (the library ellipsect_reference), not in every program that includes
+// this header.
+#define ELLIPSECT_SUPPORT_GAP_REFERENCE_FUNCTIONS(extern_, N) \
+  extern_ template SupportGapMaximum<N> max_support_gap<N>(const Body<N>&, const std::vector<DVec<N>>&); \
+  extern_ template Real support_gap_at<N>(const Body<N>&, const std::vector<DVec<N>>&, const DVec<N>&);
+ELLIPSECT_SUPPORT_GAP_REFERENCE_FUNCTIONS(extern, 2)
+ELLIPSECT_SUPPORT_GAP_REFERENCE_FUNCTIONS(extern, 3)
 
 }  // namespace ellipsect::reference

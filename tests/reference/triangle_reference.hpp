@@ -1,4 +1,4 @@
-// 50-digit reference for a body against a triangle (header-only, never includes the library).
+// 50-digit reference for a body against a triangle (header templates, never includes the library).
 //
 // Route, different from the library's (the unit-ball frame, the nearest of seven candidates
 // as barycentric weights, a certified bracket in double and double-length arithmetic, the
@@ -163,5 +163,19 @@ TriangleContact triangle_contact_time(const MovingTriangle<N>& m, const Real& wi
   out.time = hi;
   return out;
 }
+
+// The functions the tests and benchmarks call, for N = 2 and 3: compiled once, in
+// triangle_reference.cpp (the library ellipsect_reference), not in every program that includes
+// this header.
+#define ELLIPSECT_TRIANGLE_REFERENCE_FUNCTIONS(extern_, N) \
+  extern_ template RMat<N> quadric_of<N>(const Body<N>&); \
+  extern_ template TriangleGaps<N> triangle_gaps<N>(const RMat<N>&, const RVec<N>&, const RTriangle<N>&); \
+  extern_ template TriangleGaps<N> triangle_gaps<N>(const Body<N>&, const std::array<DVec<N>, 3>&); \
+  extern_ template struct MovingTriangle<N>; \
+  extern_ template MovingTriangle<N> moving_triangle<N>(const Body<N>&, const std::array<DVec<N>, 3>&, const DVec<N>&, \
+                                                        const DVec<N>&); \
+  extern_ template TriangleContact triangle_contact_time<N>(const MovingTriangle<N>&, const Real&);
+ELLIPSECT_TRIANGLE_REFERENCE_FUNCTIONS(extern, 2)
+ELLIPSECT_TRIANGLE_REFERENCE_FUNCTIONS(extern, 3)
 
 }  // namespace ellipsect::reference
