@@ -505,8 +505,10 @@ void check_exact_against_reference(int per_category, int steered_bases) {
       for (const double sign : {1.0, -1.0}) {
         const auto [a, b] = steered<T, N>(t, a1, b1, sign * target);
         std::ostringstream where;
+        where.precision(std::numeric_limits<T>::max_digits10);
         where << describe(c) << "\n  steered to " << (t == Tangency::external ? "mu" : "b's measure in a")
-              << " = 1 + " << sign * target;
+              << " = 1 + " << sign * target << ":\n  a: c=" << a.center().transpose() << " r=" << a.radii().transpose()
+              << "\n  b: c=" << b.center().transpose() << " r=" << b.radii().transpose();
         const double got = ref::to_double(tangency_measure<T, N>(t, a, b) - 1);
         const int decade = got == 0 ? -99 : int(std::floor(std::log10(std::abs(got))));
         check(a, b, (t == Tangency::external ? "steered external, gap 1e" : "steered internal, gap 1e") +
