@@ -84,8 +84,10 @@ public:
       s << "\n  " << query << ": " << counts.second << " wrong of " << counts.first;
       checked += counts.first;
     }
-    std::printf("%s: %d answers, %d wrong%s\n", title.c_str(), checked, wrong(), s.str().c_str());
-    if (wrong() == 0) return;
+    if (wrong() == 0) {
+      std::printf("%s: %d answers, none wrong%s\n", title.c_str(), checked, s.str().c_str());
+      return;
+    }
     std::ostringstream f;
     f << title << ": " << wrong() << " wrong answers of " << checked << s.str() << "\nthe first " << lines_.size()
       << ":";

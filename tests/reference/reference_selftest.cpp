@@ -459,6 +459,46 @@ TYPED_TEST(Ref, RandomPwPointIsTouchingPoint) {
   }
 }
 
+// classify_stored's body is the quadric of the axes as given: with axes 1e-9 off
+// orthonormal, M = A diag(r)^-2 A^T (formed here directly), P = M^-1, and the boundary
+// parametrisation c + L u lies on (x - c)^T M (x - c) = 1; with exactly orthonormal axes
+// (signed permutations) it is classify's body, measure for measure.
+TYPED_TEST(Ref, StoredBodyIsTheStoredQuadric) {
+  constexpr int N = TypeParam::value;
+  std::mt19937_64 rng(31 + N);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (int k = 0; k < 50; ++k) {
+    Body<N> b = random_body<N>(rng, 4);
+    for (int i = 0; i < N; ++i)
+      for (int j = 0; j < N; ++j) b.axes(i, j) += 1e-9 * u(rng);
+    const auto rb = ellipsect::reference::detail::make_stored_rbody<N>(b);
+    Eigen::Matrix<Real, N, N> M = Eigen::Matrix<Real, N, N>::Zero();
+    for (int i = 0; i < N; ++i)
+      for (int j = 0; j < N; ++j)
+        for (int m = 0; m < N; ++m)
+          M(i, j) += Real(b.axes(i, m)) * Real(b.axes(j, m)) / (Real(b.radii(m)) * Real(b.radii(m)));
+    const Eigen::Matrix<Real, N, N> PM = rb.P * M;
+    for (int i = 0; i < N; ++i)
+      for (int j = 0; j < N; ++j) {
+        EXPECT_TRUE(near(rb.M(i, j), M(i, j)));
+        EXPECT_TRUE(near(PM(i, j), Real(i == j ? 1 : 0)));
+      }
+    RV<N> v;
+    for (int i = 0; i < N; ++i) v(i) = Real(u(rng));
+    const RV<N> x = rb.c + rb.L * (v / rnorm<N>(v));
+    EXPECT_TRUE(near((x - rb.c).dot(M * (x - rb.c)), Real(1)));
+  }
+  for (int k = 0; k < 20; ++k) {
+    const Body<N> a = aligned_permuted<N>(V<N>(u(rng), u(rng), u(rng)), V<N>(1 + u(rng) / 2, 2, 1.5)),
+                  b = aligned<N>(V<N>(1 + u(rng), u(rng), u(rng)), V<N>(0.5, 1 + u(rng) / 2, 0.75));
+    const auto want = classify<N>(a, b, 1e-30), got = classify_stored<N>(a, b, 1e-30);
+    EXPECT_EQ(got.relation, want.relation);
+    EXPECT_TRUE(near(got.mu, want.mu));
+    EXPECT_TRUE(near(got.a_in_b, want.a_in_b));
+    EXPECT_TRUE(near(got.b_in_a, want.b_in_a));
+  }
+}
+
 // metric_range against an unrelated method: Newton on the Lagrange (KKT) system
 // (H - s I) u = -g, |u| = 1, in Real, started from the best boundary samples (double), the
 // eigenvectors of H and random directions.  Every converged KKT point is feasible, so the
