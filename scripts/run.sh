@@ -44,10 +44,11 @@ install_missing() {
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq "${missing[@]}" >/dev/null
 }
 
+# The Python module is left to pip (python_test), which builds it in the Release tree.
 build() {  # build DIR [cmake args...]
   local dir=$1
   shift
-  cmake -S . -B "$dir" -G Ninja "$@" >/dev/null
+  cmake -S . -B "$dir" -G Ninja -DELLIPSECT_BUILD_PYTHON=OFF "$@" >/dev/null
   cmake --build "$dir" -j "$(nproc)"
 }
 
@@ -153,13 +154,13 @@ web_test() {
 # ---- end web
 
 # The Python package: a virtual environment build/venv from Debian's python3 (with its
-# packages), `pip install ./python` (the module built by the project's CMake, in build/python),
-# then its pytest suite (docs/python.md).
+# packages), `pip install ./python` (the module built by the project's CMake in the Release
+# tree, beside the library it links), then its pytest suite (docs/python.md).
 python_test() {
   [ -x build/venv/bin/python ] || /usr/bin/python3 -m venv --system-site-packages build/venv
   local launcher
   launcher=$(command -v ccache || true)
-  CMAKE_CXX_COMPILER_LAUNCHER=$launcher CMAKE_BUILD_PARALLEL_LEVEL=$(nproc) \
+  ELLIPSECT_BUILD_DIR=build/release CMAKE_CXX_COMPILER_LAUNCHER=$launcher CMAKE_BUILD_PARALLEL_LEVEL=$(nproc) \
     build/venv/bin/pip install -q --no-build-isolation ./python
   build/venv/bin/python -m pytest -q python/tests
 }

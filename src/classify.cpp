@@ -54,8 +54,11 @@ Relation classify(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b, const Opti
   using W = detail::Wide<R>;
   if (detail::identical(a, b)) return Relation::equal;
   const detail::Scale scale = detail::scale_of(a, b);
-  if (scale.range == detail::Range::scaled)
+  if (scale.range == detail::Range::scaled) {
+    if (options.tolerance.is_exact() && !detail::scales_exactly(a, b, -scale.exponent))
+      return detail::exact_relation(a, b);  // a subnormal difference the scaling would lose
     return classify(detail::scaled(a, -scale.exponent), detail::scaled(b, -scale.exponent), options);
+  }
   const bool wide = scale.range == detail::Range::wide;
   namespace hw = detail::HWY_NAMESPACE;
   const double code = wide ? 0 : hw::certificate_code<true>(a, b, options.tolerance);
@@ -84,9 +87,11 @@ bool overlap(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b, const Options& 
   using R = detail::Work<T>;
   using W = detail::Wide<R>;
   const detail::Scale scale = detail::scale_of(a, b);
-  if (scale.range == detail::Range::scaled)
-    return overlap(detail::scaled(a, -scale.exponent), detail::scaled(b, -scale.exponent), options);
   const bool exact = options.tolerance.is_exact();
+  if (scale.range == detail::Range::scaled) {
+    if (exact && !detail::scales_exactly(a, b, -scale.exponent)) return classify(a, b, options) != Relation::separated;
+    return overlap(detail::scaled(a, -scale.exponent), detail::scaled(b, -scale.exponent), options);
+  }
   if (scale.range == detail::Range::wide) {
     if (exact) return classify(a, b, options) != Relation::separated;
     const auto pair = detail::order_pair(a, b);

@@ -209,6 +209,29 @@ Contact<T, N> solve_contact(const Ellipsoid<T, N>& s, const Ellipsoid<T, N>& o, 
   return delta <= tol ? finish(ContactStatus::hit, t, &p) : finish(ContactStatus::did_not_converge, t, nullptr);
 }
 
+// The answer for a pair whose exact relation at t = 0 is `rel`, given the answer `c` for the
+// pair rescaled with a subnormal difference lost: a start status from rel; a separated pair
+// that the rescaled one saw touching is a hit at the first positive time when closing along
+// c's normal (relative velocity u), else never.
+template <class T, int N>
+void exact_start(Contact<T, N>& c, Relation rel, const Vec<T, N>& u, T t_max) noexcept {
+  const bool at_start = c.status == ContactStatus::touching_at_start || c.status == ContactStatus::overlapping_at_start;
+  if (rel == Relation::separated && !at_start) return;
+  if (rel == Relation::touching && c.status == ContactStatus::touching_at_start) return;
+  const bool closing = c.normal.allFinite() && c.normal.dot(u) < T(0);
+  const T first = std::numeric_limits<T>::denorm_min();
+  if (rel == Relation::separated && closing && first <= t_max) {
+    c.status = ContactStatus::hit;
+    c.time = first;
+    return;
+  }
+  c = detail::unanswered_contact<T, N>();
+  c.status = rel == Relation::separated ? ContactStatus::no_contact_in_window
+             : rel == Relation::touching ? ContactStatus::touching_at_start
+                                         : ContactStatus::overlapping_at_start;
+  if (rel != Relation::separated) c.time = T(0);
+}
+
 template <class T, int N>
 Contact<T, N> first_contact(const Ellipsoid<T, N>& a, const VecArg<T, N>& velocity_a, const Ellipsoid<T, N>& b,
                             const VecArg<T, N>& velocity_b, T t_max, const Options& options) noexcept {
@@ -244,6 +267,8 @@ Contact<T, N> first_contact(const Ellipsoid<T, N>& a, const VecArg<T, N>& veloci
     if (swap) c.normal = -c.normal;
     c.time = std::ldexp(c.time, -f);
     c.point = detail::times_pow2(c.point, e);
+    if (options.tolerance.is_exact() && !detail::scales_exactly(a, b, -e))
+      exact_start(c, detail::exact_relation(a, b), Vec<T, N>(velocity_b - velocity_a), t_max);
     return c.status == ContactStatus::hit ? beyond_window(c) : c;
   }
   if (wide) {  // long double throughout, without the double-precision quick out

@@ -114,6 +114,15 @@ R separation_margin(const Ellipsoid<T, N>& s, const Ellipsoid<T, N>& o, const de
   return tol * a_max + R(4 * detail::reduced_frame_ulps) * std::numeric_limits<R>::epsilon() * aspect * size;
 }
 
+// The status from classify's exact relation (Options::tolerance = 0).
+template <class T, int N>
+DistanceStatus exact_status(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b) {
+  const Relation rel = detail::exact_relation(a, b);
+  return rel == Relation::touching    ? DistanceStatus::touching
+         : rel == Relation::separated ? DistanceStatus::separated
+                                      : DistanceStatus::overlapping;
+}
+
 // Directions sampled for the penetration search, in addition to the other starts.
 template <int N>
 constexpr int penetration_starts = N == 2 ? 3 : 4;
@@ -152,10 +161,7 @@ Distance<T, N> solve(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b, const O
     Start<R, N> st = start<R, R>(s, o, R(options.tolerance), doubt);
     if (doubt) st = start<detail::Wide<R>, R>(s, o, detail::Wide<R>(options.tolerance), doubt);
     if (st.status == DistanceStatus::touching && options.tolerance.is_exact()) {  // the exact relation decides
-      const Relation rel = detail::exact_relation(s, o);
-      st.status = rel == Relation::touching    ? DistanceStatus::touching
-                  : rel == Relation::separated ? DistanceStatus::separated
-                                               : DistanceStatus::overlapping;
+      st.status = exact_status(s, o);
     }
     out.status = st.status;
     // Absent only when S's center lies exactly on O's boundary (the bodies overlap).
@@ -223,6 +229,12 @@ Distance<T, N> solve_at_scale(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b
   d.distance = std::ldexp(d.distance, e);
   d.point_a = detail::times_pow2(d.point_a, e);
   d.point_b = detail::times_pow2(d.point_b, e);
+  if (options.tolerance.is_exact() && d.status != DistanceStatus::did_not_converge &&
+      !detail::scales_exactly(a, b, -e)) {  // the status of the pair as given, not of the scaled one
+    d.status = exact_status(a, b);
+    if (d.status == DistanceStatus::separated && !(d.distance > T(0))) d.distance = T(0);
+    if (d.status == DistanceStatus::overlapping && d.distance > T(0)) d.distance = T(0);
+  }
   return d;
 }
 

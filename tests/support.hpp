@@ -11,7 +11,6 @@
 #include <cstdio>
 #include <cstdlib>
 #include <map>
-#include <optional>
 #include <sstream>
 #include <string>
 #include <utility>
@@ -48,16 +47,8 @@ void expect_field(F&& f, const std::string& field) {
   }
 }
 
-// Options{.tolerance = 0}, the exact mode; where it is rejected, a failure saying so and
-// nullopt.
-inline std::optional<Options> exact_options() {
-  try {
-    return Options{.tolerance = 0};
-  } catch (const InputError& e) {
-    ADD_FAILURE() << "Options{.tolerance = 0} is rejected: " << e.what();
-    return std::nullopt;
-  }
-}
+// The exact mode's options (classify.hpp).
+inline constexpr Options exact_options{.tolerance = Tolerance::exact};
 
 // Answers checked against expected ones, counted per query; report() prints the counts and
 // fails once, listing the first wrong answers, where any is wrong. Values: bool, or an enum

@@ -127,4 +127,17 @@ Ellipsoid<T, N> scaled(const Ellipsoid<T, N>& e, int k) noexcept {
   return ShapeAccess::unchecked<T, N>(times_pow2(e.center(), k), e.axes(), times_pow2(e.radii(), k));
 }
 
+// Whether scaled(e, k) keeps every number (no center coordinate or radius underflows), so
+// that the exact relation (Options::tolerance = 0) of the scaled pair is the given pair's.
+template <class T, int N>
+bool scales_exactly(const Ellipsoid<T, N>& e, int k) noexcept {
+  const Ellipsoid<T, N> s = scaled(e, k);
+  return times_pow2(s.center(), -k) == e.center() && times_pow2(s.radii(), -k) == e.radii();
+}
+
+template <class T, int N>
+bool scales_exactly(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b, int k) noexcept {
+  return scales_exactly(a, k) && scales_exactly(b, k);
+}
+
 }  // namespace ellipsect::detail

@@ -464,8 +464,7 @@ ref::Classification<N> check_exact_pair(const Ellipsoid<T, N>& a, const Ellipsoi
 template <class T, int N>
 void check_exact_against_reference(int per_category, int steered_bases) {
   using E = Ellipsoid<T, N>;
-  const auto exact = exact_options();
-  if (!exact) return;
+  const Options exact = exact_options;
   const std::string type = sizeof(T) == sizeof(double) ? "double" : "float";
   AnswerCount answers;
   Tally tally;
@@ -474,7 +473,7 @@ void check_exact_against_reference(int per_category, int steered_bases) {
   std::vector<std::string> wheres;
   // group: the category, or for a steered pair the tangency and the decade of its gap.
   auto check = [&](const E& a, const E& b, std::optional<Tangency> t, std::string group, const std::string& where) {
-    const auto r = check_exact_pair<T, N>(a, b, *exact, where, answers);
+    const auto r = check_exact_pair<T, N>(a, b, exact, where, answers);
     const Relation want = from_ref(r.relation);
     if (t) {
       const double gap = ref::to_double((*t == Tangency::external ? r.mu : r.b_in_a) - 1);
@@ -521,7 +520,7 @@ void check_exact_against_reference(int per_category, int steered_bases) {
       }
   }
   std::vector<Relation> got(pairs.size());
-  classify(pairs, std::span<Relation>(got), BatchOptions{.query = *exact});
+  classify(pairs, std::span<Relation>(got), BatchOptions{.query = exact});
   for (std::size_t i = 0; i < pairs.size(); ++i) answers.check(wheres[i], "batch classify", wants[i], got[i]);
   tally.print("exact classify vs the stored-body reference, " + type + " N=" + std::to_string(N));
   answers.report("exact classify vs the stored-body reference, " + type + " N=" + std::to_string(N));

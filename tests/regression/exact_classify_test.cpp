@@ -358,11 +358,10 @@ void check_queries(const std::vector<Case<T, N>>& cases, const Options& options,
 
 template <class T, int N>
 void check_exact(const std::vector<Config<N>>& configs) {
-  const auto exact = exact_options();
-  if (!exact) return;
+  const Options exact = exact_options;
   const auto cases = all_cases<T, N>(configs);
   AnswerCount answers;
-  check_queries<T, N>(cases, *exact, "(tolerance 0)", answers);
+  check_queries<T, N>(cases, exact, "(tolerance 0)", answers);
   answers.report(std::string("exact, ") + Range<T>::name + " " + std::to_string(N) + "D, " +
                  std::to_string(cases.size()) + " pairs");
 }
