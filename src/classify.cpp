@@ -23,20 +23,21 @@ std::string_view to_string(Relation r) noexcept {
 namespace {
 
 // The reduced-frame decision in working precision R, repeated in the wider type when
-// rounding (plus `slack`) could have flipped one of its comparisons; `sure` is false when
-// it could there too.
+// rounding (plus `slack` relative to the frame's lengths) could have flipped one of its
+// comparisons; `sure` is false when it could there too.
 template <class R, class T, int N>
 detail::ReducedRelation decide(const Ellipsoid<T, N>& s, const Ellipsoid<T, N>& o, R tol, R slack, bool& sure) noexcept {
   const auto red = detail::reduce_settled<R>(s, o);
   R margin;
   const auto rel = detail::classify_reduced<R, N>(red.e, red.k, tol, margin);
   sure = true;
-  if (margin > detail::reduced_rounding<R>(s, o, red.e, red.k) + slack) return rel;
+  if (margin > detail::reduced_rounding<R>(s, o, red.e, red.k) + slack * (red.k.norm() + red.e.maxCoeff() + 1))
+    return rel;
   using W = detail::Wide<R>;
   const auto wide = detail::reduce_settled<W>(s, o);
   W wide_margin;
   const auto wide_rel = detail::classify_reduced<W, N>(wide.e, wide.k, W(tol), wide_margin);
-  sure = wide_margin > detail::reduced_rounding<W>(s, o, wide.e, wide.k) + W(slack);
+  sure = wide_margin > detail::reduced_rounding<W>(s, o, wide.e, wide.k) + W(slack) * (wide.k.norm() + wide.e.maxCoeff() + 1);
   return wide_rel;
 }
 
@@ -65,7 +66,9 @@ Relation classify(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b, const Opti
   if (code != 0) return detail::certified_relation(code);
   const auto [s, o, a_is_s] = detail::order_pair(a, b);
   // Exact: every comparison against 1 itself, and one within its rounding plus the
-  // narrowest band of a threshold is settled in rational arithmetic.
+  // narrowest band (relative to the reduced frame's lengths: the rounding model is an
+  // estimate, which this covers 3000 times over in long double) of a threshold is settled
+  // in rational arithmetic.
   const bool exact = options.tolerance.is_exact();
   const R tol = exact ? R(0) : R(options.tolerance), slack = exact ? R(Tolerance::min) : R(0);
   bool sure;

@@ -25,6 +25,7 @@
 // (it terminates: distinct roots of rational polynomials are a positive distance apart).
 #include "detail/exact_relation.hpp"
 
+#include "detail/axes.hpp"
 #include "detail/instantiate.hpp"
 
 #if ELLIPSECT_EXACT_GMP
@@ -258,8 +259,11 @@ struct Body {
   QMat<N> quadric;  // axes diag(radii)^-2 axes^T
 };
 
+// The body every query computes with: double's stored axes as given; float's their
+// orthonormal polar factor in double (detail/axes.hpp), exact from there.
 template <class T, int N>
 Body<N> exact_body(const Ellipsoid<T, N>& e) {
+  const Mat<double, N> axes = work_axes<double>(e);
   Body<N> b;
   std::array<Q, N> inv_r2;
   for (int k = 0; k < N; ++k) {
@@ -270,7 +274,7 @@ Body<N> exact_body(const Ellipsoid<T, N>& e) {
     b.center[i] = Q(double(e.center()[i]));
     for (int j = 0; j < N; ++j) {
       Q s = 0;
-      for (int k = 0; k < N; ++k) s += Q(double(e.axes()(i, k))) * Q(double(e.axes()(j, k))) * inv_r2[k];
+      for (int k = 0; k < N; ++k) s += Q(axes(i, k)) * Q(axes(j, k)) * inv_r2[k];
       b.quadric[i][j] = s;
     }
   }

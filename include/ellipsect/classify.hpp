@@ -11,8 +11,9 @@
 //
 // Exact relations (Options::tolerance = Tolerance::exact = 0): the relation of the bodies
 // as stored, with no band: the closed sets { x : (x - center)^T M (x - center) <= 1 },
-// M = axes diag(radii)^-2 axes^T formed exactly from the stored numbers (axes as given),
-// float and double, 2D and 3D, every finite scale. `touching`: the boundaries meet and
+// M = axes diag(radii)^-2 axes^T formed exactly from the stored numbers (double axes as
+// given; float axes, orthonormal only to 6e-8, as every query takes them: their orthonormal
+// polar factor computed in double), float and double, 2D and 3D, every finite scale. `touching`: the boundaries meet and
 // the interiors do not; containment includes internal tangency; `equal`: the same set
 // (also stored differently: axes permuted or flipped with their radii). The floating-point
 // decision answers where every comparison lies beyond its rounding plus 1e-14 of its

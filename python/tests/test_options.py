@@ -83,3 +83,21 @@ def test_exact_tangency_is_touching_for_every_query_at_the_smallest_band():
     assert ellipsect.overlap(a, b, o)
     assert ellipsect.first_contact(a, [0, 0], b, [0, 0], 1.0, o).status == ellipsect.ContactStatus.touching_at_start
     assert ellipsect.signed_distance(a, b, o).status == ellipsect.DistanceStatus.touching
+
+
+def test_exact_mode_answers_the_stored_numbers():
+    # Circles of radii 3 and 2 whose centers are 5 apart touch exactly; one ulp farther they
+    # are apart, one ulp nearer they overlap: tolerance 0 tells all three, the band cannot.
+    exact = ellipsect.Options(tolerance=0)
+    assert exact.tolerance == 0.0
+    assert pickle.loads(pickle.dumps(exact)).tolerance == 0.0
+    a = ellipsect.Ellipse([0, 0], [3, 3])
+    want = {5.0: "touching", math.nextafter(5.0, 6.0): "separated", math.nextafter(5.0, 4.0): "overlapping"}
+    for x, name in want.items():
+        b = ellipsect.Ellipse([x, 0], [2, 2])
+        assert ellipsect.classify(a, b, exact) == getattr(ellipsect.Relation, name)
+        assert ellipsect.overlap(a, b, exact) == (name != "separated")
+        assert ellipsect.classify(a, b) == ellipsect.Relation.touching  # the default band of 1e-12
+        many_a = ellipsect.Ellipses(centers=[[0, 0]] * 2, radii=[[3, 3]] * 2)
+        many_b = ellipsect.Ellipses(centers=[[x, 0]] * 2, radii=[[2, 2]] * 2)
+        assert ellipsect.classify(many_a, many_b, exact).tolist() == [int(getattr(ellipsect.Relation, name))] * 2

@@ -7,8 +7,9 @@
 namespace ellipsect::detail {
 
 // The relation of the closed quadrics { x : (x - center)^T M (x - center) <= 1 } with
-// M = axes diag(radii)^-2 axes^T formed from the stored numbers (axes as given, orthonormal
-// or not), decided in rational arithmetic: no rounding, no band. Costs tens of
+// M = axes diag(radii)^-2 axes^T formed from the stored numbers (double axes as given,
+// orthonormal or not; float axes as every query takes them, their polar factor in double:
+// detail/axes.hpp), decided in rational arithmetic: no rounding, no band. Costs tens of
 // microseconds to milliseconds (bench/RESULTS.md); meant for the rare undecided pair.
 template <class T, int N>
 Relation exact_relation(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b);

@@ -11,6 +11,7 @@
 #include <ellipsect/intersect2.hpp>
 
 #include "common.hpp"
+#include "detail/axes.hpp"
 #include "detail/batch_kernels.hpp"
 #include "tests/unit/scenario_pairs.hpp"
 
@@ -335,7 +336,7 @@ TEST(ClassifyProperty, SwapSymmetricAtExtremeRadiusRatios3D) { check_extreme_rad
 //
 // Claim under test (options.hpp, classify.hpp): at tolerance 0, classify and overlap answer
 // the exact relation of the bodies as stored (the quadrics of the stored centers, axes as
-// given and radii), float and double, either argument order, and the batch classify the
+// given (float: their polar factor in double) and radii), float and double, either argument order, and the batch classify the
 // same. Referee: ref::classify_stored, the stored quadrics in 50 digits (not the
 // re-orthonormalised axes of ref::classify, which move a body by about an ulp). A pair is
 // decided where the referee's margin exceeds 1e-40, or where it finds the bodies equal
@@ -346,9 +347,11 @@ TEST(ClassifyProperty, SwapSymmetricAtExtremeRadiusRatios3D) { check_extreme_rad
 
 constexpr double referee_floor = 1e-40;
 
+// The stored body in double; float axes as the exact mode defines them (classify.hpp):
+// their orthonormal polar factor in double, the axes every query computes with.
 template <class T, int N>
 ref::Body<N> stored(const Ellipsoid<T, N>& e) {
-  return {e.center().template cast<double>(), e.axes().template cast<double>(), e.radii().template cast<double>()};
+  return {e.center().template cast<double>(), detail::work_axes<double>(e), e.radii().template cast<double>()};
 }
 
 // The tangency a steered pair approaches: from outside (the contact scale mu of the stored
