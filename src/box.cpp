@@ -1,6 +1,7 @@
 #include <ellipsect/box.hpp>
 #include <ellipsect/half_space.hpp>
 
+#include "detail/at_body.hpp"
 #include "detail/contact_start.hpp"
 #include "detail/instantiate.hpp"
 #include "detail/polytope_distance.hpp"
@@ -193,25 +194,13 @@ Settled settled_relation(const Ellipsoid<T, N>& a, const Box<T, N>& b, const Opt
   return settled_relation(InBoxFrame<T, N>(a, b, options));
 }
 
-// The pair moved by minus the body's center: the body at the origin (exactly) and the box's
-// center at the difference of the centers, rounded once. The box's corners, computed in T,
-// are then rounded to ulps of the pair's extent rather than of its coordinates (a box 1e6
-// sizes from the origin had corners 1e-10 of its size off, beyond the accuracy stated).
-// Left in place where that difference overflows; points of the moved pair plus `shift` are
-// the world's.
+// The pair moved by minus the body's center (detail/at_body.hpp): the box's corners,
+// computed in T, are rounded to ulps of the pair's extent (a box 1e6 sizes from the origin had
+// corners 1e-10 of its size off, beyond the accuracy stated).
 template <class T, int N>
-struct AtBody {
-  Ellipsoid<T, N> a;
-  Box<T, N> b;
-  Vec<T, N> shift = Vec<T, N>::Zero();
-
-  AtBody(const Ellipsoid<T, N>& a_world, const Box<T, N>& b_world) noexcept : a(a_world), b(b_world) {
-    const Vec<T, N> c = a_world.center();
-    if (c.isZero(0) || !Vec<T, N>(b_world.center() - c).allFinite()) return;
-    a = a_world.translated(-c);  // no throw: the moved centers are finite
-    b = b_world.translated(-c);
-    shift = c;
-  }
+struct AtBody : detail::AtBody<T, N, Box<T, N>> {
+  AtBody(const Ellipsoid<T, N>& a_world, const Box<T, N>& b_world) noexcept
+      : detail::AtBody<T, N, Box<T, N>>(a_world, b_world, b_world.center()) {}
 };
 
 template <class T, int N>

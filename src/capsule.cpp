@@ -2,6 +2,7 @@
 // and the capsule's segment (detail/polytope_distance.hpp), less the capsule's radius.
 #include <ellipsect/capsule.hpp>
 
+#include "detail/at_body.hpp"
 #include "detail/contact_start.hpp"
 #include "detail/instantiate.hpp"
 #include "detail/polytope_distance.hpp"
@@ -77,60 +78,16 @@ Relation relation_of(const Ellipsoid<T, N>& a, const Capsule<T, N>& b, const det
   return Relation::overlapping;
 }
 
-}  // namespace
-
+// Every query runs on the pair moved by minus the body's center (detail/at_body.hpp), so
+// that the segment, also as moved by t w in first_contact, is rounded to ulps of the pair's
+// extent, and all of them decide the relation on the same rounded pair.
 template <class T, int N>
-Relation classify(const Ellipsoid<T, N>& a, const Capsule<T, N>& b, const Options& options) noexcept {
-  return relation_of(a, b, support_of<T, N>(a, b, Vec<T, N>::Zero()), options);
-}
+struct AtBody : detail::AtBody<T, N, Capsule<T, N>> {
+  AtBody(const Ellipsoid<T, N>& a_world, const Capsule<T, N>& b_world) noexcept
+      : detail::AtBody<T, N, Capsule<T, N>>(a_world, b_world, b_world.point(0), b_world.point(1)) {}
+};
 
-template <class T, int N>
-bool overlap(const Ellipsoid<T, N>& a, const Capsule<T, N>& b, const Options& options) noexcept {
-  if (options.tolerance < 1e-9) {
-    const int spheres = by_spheres(a, b);
-    if (spheres != 0) return spheres < 0;
-  }
-  return classify(a, b, options) != Relation::separated;
-}
-
-template <class T, int N>
-Distance<T, N> signed_distance(const Ellipsoid<T, N>& a, const Capsule<T, N>& b, const Options& options) noexcept {
-  const detail::Support<T, N> s = support_of<T, N>(a, b, Vec<T, N>::Zero());
-  return detail::distance_of(s, b.radius(), relation_of(a, b, s, options));
-}
-
-template <class T, int N>
-Distance<T, N> distance(const Ellipsoid<T, N>& a, const Capsule<T, N>& b, const Options& options) noexcept {
-  return detail::unsigned_distance(signed_distance(a, b, options));
-}
-
-namespace {
-
-// first_contact on the pair moved by minus the body's center (the body at the origin, the
-// segment's points less that center rounded once), so that the segment moved by t w is
-// rounded to ulps of the pair's extent rather than of its coordinates (1e6 sizes from the
-// origin, the gap at the returned time was off by 1e-10 of the size); the contact point is
-// moved back. Left in place where those differences overflow.
-template <class T, int N>
-Contact<T, N> contact_at_body(const Ellipsoid<T, N>& a, const VecArg<T, N>& velocity_a, const Capsule<T, N>& b,
-                              const VecArg<T, N>& velocity_b, T t_max, const Options& options) noexcept;
-
-}  // namespace
-
-template <class T, int N>
-Contact<T, N> first_contact(const Ellipsoid<T, N>& a, const VecArg<T, N>& velocity_a, const Capsule<T, N>& b,
-                            const VecArg<T, N>& velocity_b, T t_max, const Options& options) noexcept {
-  const Vec<T, N> c = a.center();
-  if (c.isZero(0) || !Vec<T, N>(b.point(0) - c).allFinite() || !Vec<T, N>(b.point(1) - c).allFinite())
-    return contact_at_body<T, N>(a, velocity_a, b, velocity_b, t_max, options);
-  Contact<T, N> out =
-      contact_at_body<T, N>(a.translated(-c), velocity_a, b.translated(-c), velocity_b, t_max, options);  // no throw
-  out.point += c;  // NaN stays NaN
-  return out;
-}
-
-namespace {
-
+// first_contact of the moved pair (AtBody).
 template <class T, int N>
 Contact<T, N> contact_at_body(const Ellipsoid<T, N>& a, const VecArg<T, N>& velocity_a, const Capsule<T, N>& b,
                               const VecArg<T, N>& velocity_b, T t_max, const Options& options) noexcept {
@@ -184,6 +141,46 @@ Contact<T, N> contact_at_body(const Ellipsoid<T, N>& a, const VecArg<T, N>& velo
 }
 
 }  // namespace
+
+template <class T, int N>
+Relation classify(const Ellipsoid<T, N>& a_world, const Capsule<T, N>& b_world, const Options& options) noexcept {
+  const AtBody<T, N> p(a_world, b_world);
+  return relation_of(p.a, p.b, support_of<T, N>(p.a, p.b, Vec<T, N>::Zero()), options);
+}
+
+template <class T, int N>
+bool overlap(const Ellipsoid<T, N>& a, const Capsule<T, N>& b, const Options& options) noexcept {
+  if (options.tolerance < 1e-9) {
+    const int spheres = by_spheres(a, b);
+    if (spheres != 0) return spheres < 0;
+  }
+  return classify(a, b, options) != Relation::separated;
+}
+
+template <class T, int N>
+Distance<T, N> signed_distance(const Ellipsoid<T, N>& a_world, const Capsule<T, N>& b_world,
+                               const Options& options) noexcept {
+  const AtBody<T, N> p(a_world, b_world);
+  const detail::Support<T, N> s = support_of<T, N>(p.a, p.b, Vec<T, N>::Zero());
+  Distance<T, N> out = detail::distance_of(s, p.b.radius(), relation_of(p.a, p.b, s, options));
+  out.point_a += p.shift;  // NaN stays NaN
+  out.point_b += p.shift;
+  return out;
+}
+
+template <class T, int N>
+Distance<T, N> distance(const Ellipsoid<T, N>& a, const Capsule<T, N>& b, const Options& options) noexcept {
+  return detail::unsigned_distance(signed_distance(a, b, options));
+}
+
+template <class T, int N>
+Contact<T, N> first_contact(const Ellipsoid<T, N>& a_world, const VecArg<T, N>& velocity_a, const Capsule<T, N>& b_world,
+                            const VecArg<T, N>& velocity_b, T t_max, const Options& options) noexcept {
+  const AtBody<T, N> p(a_world, b_world);
+  Contact<T, N> out = contact_at_body<T, N>(p.a, velocity_a, p.b, velocity_b, t_max, options);
+  out.point += p.shift;  // NaN stays NaN
+  return out;
+}
 
 #define ELLIPSECT_INSTANTIATE(T, N)                                                                                 \
   template Relation classify<T, N>(const Ellipsoid<T, N>&, const Capsule<T, N>&, const Options&) noexcept;        \

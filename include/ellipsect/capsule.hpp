@@ -32,10 +32,11 @@
 //                 functions), with slope n*(t) . w: Newton from t = 0 climbs monotonically to
 //                 its first root (Eberly's h(t)), at most Options::max_iterations steps.
 //                 Stops when L(t) falls to 1e-14 of the pair's size (a hit), the slope is >= 0
-//                 (the gap never closes: no contact), or the step passes t_max. Runs on the
-//                 pair moved by minus the body's center (the segment's points less it rounded
-//                 once), so that the moved segment is rounded to ulps of the pair's extent,
-//                 not of its coordinates.
+//                 (the gap never closes: no contact), or the step passes t_max.
+// Every query runs on the pair moved by minus the body's center (the segment's points less
+// it rounded once), so that the segment is rounded to ulps of the pair's extent, not of its
+// coordinates, and classify, signed_distance and first_contact's start decide on the same
+// numbers.
 // Accuracy (tests/property/capsule_property_test.cpp, against the 50-digit search of the
 // sphere of tests/reference/support_gap_reference.hpp; random, aspect ratios to 1e4, near
 // tangency, containment both ways and needles across the surface, balls (p0 = p1), long
