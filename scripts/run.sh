@@ -107,9 +107,9 @@ fuzz_mutate() {
     { echo "$log" | tail -40; return 1; }
 }
 
-# Inputs per target for the CI mutation run: about 40 s each on one core.
-declare -A fuzz_runs=([factories]=900000 [queries]=20000 [intersect2]=400000 [niemitalo]=230000 [scene]=65000
-                       [rigid]=10000 [broad_phase]=4000)
+# Inputs per target for the CI mutation run: about 25 s each on one core.
+declare -A fuzz_runs=([factories]=560000 [queries]=12500 [intersect2]=250000 [niemitalo]=145000 [scene]=40000
+                       [rigid]=6000 [broad_phase]=2500)
 
 # Every target's check and mutation run, as many at once as there are cores; each target's
 # output is printed when it ends, and the step fails if any target did (all of them run).
