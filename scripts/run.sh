@@ -182,7 +182,7 @@ case "${1:-}" in
     step "Release build"
     build build/release -DCMAKE_BUILD_TYPE=Release -DELLIPSECT_BUILD_TESTS=ON -DELLIPSECT_BUILD_BENCH=ON \
       -DELLIPSECT_BUILD_TOOLS=ON
-    # The sanitized build runs alongside the next three steps, filling the cores they leave idle
+    # The sanitized build runs alongside the next three steps at the same priority, sharing the cores
     # (a test suite's last tests, the browser, pytest); in a process group of its own
     # (set -m), which ends with the script.
     step "sanitized build (tests and fuzz targets), in the background: build/sanitize.log"
