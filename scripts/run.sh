@@ -76,22 +76,23 @@ fuzz_targets() {
   done
 }
 
-# fuzz_check NAME: every kept input of fuzz/regressions/NAME/ and every file of the committed
-# corpus fuzz/corpus/NAME/, each run once (no mutation: docs/fuzzing.md says why); a
-# failing input is written to build/sanitize/artifacts/.
+# fuzz_check NAME: every kept input of fuzz/regressions/NAME/, each run once (no mutation:
+# docs/fuzzing.md says why); the corpus is run by fuzz_mutate, which starts with every file
+# of it. A failing input is written to build/sanitize/artifacts/.
 fuzz_check() {
   local name=$1 program=build/sanitize/fuzz/fuzz_$1 log f inputs=() artifacts=build/sanitize/artifacts/
-  for f in fuzz/regressions/"$name"/* fuzz/corpus/"$name"/*; do [ -f "$f" ] && inputs+=("$f"); done
+  for f in fuzz/regressions/"$name"/*; do [ -f "$f" ] && inputs+=("$f"); done
   mkdir -p "$artifacts"
-  echo "==> fuzz_$name: ${#inputs[@]} kept and corpus inputs"
+  echo "==> fuzz_$name: ${#inputs[@]} kept inputs"
   [ ${#inputs[@]} -gt 0 ] || return 0  # with no file named, libFuzzer would start mutating
   log=$("$program" -timeout=30 -artifact_prefix="$artifacts" "${inputs[@]}" 2>&1) || { echo "$log"; return 1; }
 }
 
-# fuzz_mutate NAME RUNS: a short mutation run that tries the same inputs on every machine and
-# in every clone: seed 1, RUNS executions in one process, from a copy of the committed
-# corpus, the batch functions pinned to the portable SIMD target (their coverage would
-# otherwise follow the CPU), no mutations from the operands of traced comparisons and
+# fuzz_mutate NAME RUNS: every file of the committed corpus fuzz/corpus/NAME/, then a short
+# mutation run that tries the same inputs on every machine and in every clone: seed 1, RUNS
+# executions in one process (the corpus's included), from a copy of the corpus, the batch
+# functions pinned to the portable SIMD target (their coverage would otherwise follow the
+# CPU), no mutations from the operands of traced comparisons and
 # memory searches (-use_cmp=0 -use_memmem=0: those operands include addresses, which differ
 # from run to run), and no timed re-reading of the corpus directory (-reload=0: it runs
 # extra inputs at moments set by the clock). -max_total_time only cuts a slow machine's run
@@ -107,9 +108,10 @@ fuzz_mutate() {
     { echo "$log" | tail -40; return 1; }
 }
 
-# Inputs per target for the CI mutation run: about 25 s each on one core.
-declare -A fuzz_runs=([factories]=560000 [queries]=12500 [intersect2]=250000 [niemitalo]=145000 [scene]=40000
-                       [rigid]=6000 [broad_phase]=2500)
+# Executions per target for the CI mutation run, the corpus's included: about 25 s each on
+# one core, rigid about 90 s (its corpus alone about 45 s).
+declare -A fuzz_runs=([factories]=250000 [queries]=3000 [intersect2]=150000 [niemitalo]=90000 [scene]=30000
+                       [rigid]=800 [broad_phase]=2000)
 
 # Every target's check and mutation run, as many at once as there are cores; each target's
 # output is printed when it ends, and the step fails if any target did (all of them run).
@@ -180,7 +182,8 @@ case "${1:-}" in
     install_missing
     # Options set explicitly: `example` may have configured build/release without tests.
     step "Release build"
-    build build/release -DCMAKE_BUILD_TYPE=Release -DELLIPSECT_BUILD_TESTS=ON -DELLIPSECT_BUILD_BENCH=ON \
+    # The benchmarks are built by `bench`, which runs them.
+    build build/release -DCMAKE_BUILD_TYPE=Release -DELLIPSECT_BUILD_TESTS=ON -DELLIPSECT_BUILD_BENCH=OFF \
       -DELLIPSECT_BUILD_TOOLS=ON
     # The sanitized build runs alongside the next three steps at the same priority, sharing the cores
     # (a test suite's last tests, the browser, pytest); in a process group of its own
@@ -204,7 +207,7 @@ case "${1:-}" in
     # Same suite under the sanitizers, fewer random cases per property test.
     step "sanitized tests"
     (cd build/sanitize && ELLIPSECT_CASE_SCALE=0.05 ctest --output-on-failure --no-tests=error -j "$(nproc)")
-    step "fuzz targets: kept inputs, corpus, seeded mutation runs"
+    step "fuzz targets: kept inputs, then corpus and seeded mutation run"
     fuzz_all
     step "all passed"
     ;;
