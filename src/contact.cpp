@@ -19,6 +19,7 @@
 #include "detail/compensated.hpp"
 #include "detail/contact_start.hpp"
 #include "detail/exact_relation.hpp"
+#include "detail/gradient.hpp"
 #include "detail/instantiate.hpp"
 #include "detail/scale.hpp"
 
@@ -315,9 +316,25 @@ Contact<T, N> first_contact(const Ellipsoid<T, N>& a, const VecArg<T, N>& veloci
   return out.status == ContactStatus::hit ? beyond_window(out) : out;
 }
 
+template <class T, int N>
+ContactGradient<T, N> first_contact_gradient(const Ellipsoid<T, N>& a, const VecArg<T, N>& velocity_a,
+                                             const Ellipsoid<T, N>& b, const VecArg<T, N>& velocity_b, T t_max,
+                                             const Options& options) noexcept {
+  using R = detail::Work<T>;
+  ContactGradient<T, N> out = detail::unanswered_gradient(first_contact(a, velocity_a, b, velocity_b, t_max, options));
+  if (out.value.status != ContactStatus::hit) return out;
+  const RotationVector<R, N> still = detail::constant_gradient<R, N>(R(0)).orientation;
+  detail::contact_time_gradient<T, N, R>(out, a, b, velocity_a.template cast<R>(), velocity_b.template cast<R>(), still,
+                                         still);
+  return out;
+}
+
 #define ELLIPSECT_INSTANTIATE(T, N)                                                                            \
   template Contact<T, N> first_contact<T, N>(const Ellipsoid<T, N>&, const Vec<T, N>&, const Ellipsoid<T, N>&, \
-                                             const Vec<T, N>&, T, const Options&) noexcept;
+                                             const Vec<T, N>&, T, const Options&) noexcept;                     \
+  template ContactGradient<T, N> first_contact_gradient<T, N>(const Ellipsoid<T, N>&, const Vec<T, N>&,         \
+                                                              const Ellipsoid<T, N>&, const Vec<T, N>&, T,      \
+                                                              const Options&) noexcept;
 ELLIPSECT_FOR_EACH_TYPE_AND_DIM(ELLIPSECT_INSTANTIATE)
 #undef ELLIPSECT_INSTANTIATE
 

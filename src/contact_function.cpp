@@ -14,6 +14,7 @@
 #include <ellipsect/contact_function.hpp>
 
 #include "detail/classify_impl.hpp"
+#include "detail/gradient.hpp"
 #include "detail/instantiate.hpp"
 #include "detail/scale.hpp"
 
@@ -143,13 +144,10 @@ T directed(R x, bool up) noexcept {
   return y;
 }
 
-// The pair in query order (detail::order_pair): the sphere body s, the other body o, and
-// r = center(o) - center(s) as a unit direction and its length.
-template <class R, class T, int N>
-ContactFunction<T> contact_function(const Ellipsoid<T, N>& s, const Ellipsoid<T, N>& o, bool a_is_s,
-                                    const Vec<R, N>& direction, R norm, const Options& options) noexcept {
+// perram_wertheim's value from the solve, for r = center(o) - center(s) of length `norm`.
+template <class T, class R, int N>
+ContactFunction<T> value_of(const Solved<R, N>& sol, bool a_is_s, R norm) noexcept {
   ContactFunction<T> out;
-  const Solved<R, N> sol = solve<R>(s, o, direction, options);
   const Maximum<R>& m = sol.max;
   const R f = norm * (norm * m.f);
   out.iterations = m.iterations;
@@ -162,6 +160,54 @@ ContactFunction<T> contact_function(const Ellipsoid<T, N>& s, const Ellipsoid<T,
     out.f = directed<T>(f * (R(1) - sol.rounding), false);
     out.f_upper = directed<T>(norm * (norm * m.f_upper) * (R(1) + sol.rounding), true);
   }
+  return out;
+}
+
+// The pair in query order (detail::order_pair): the sphere body s, the other body o, and
+// r = center(o) - center(s) as a unit direction and its length.
+template <class R, class T, int N>
+ContactFunction<T> contact_function(const Ellipsoid<T, N>& s, const Ellipsoid<T, N>& o, bool a_is_s,
+                                    const Vec<R, N>& direction, R norm, const Options& options) noexcept {
+  return value_of<T>(solve<R>(s, o, direction, options), a_is_s, norm);
+}
+
+// F and its gradient (contact_function.hpp) for the pair scaled by 2^-e. In the Z frame, per
+// unit of |r|, y = k / D; in the world frame y = to_z^T (k / D), M_S^-1 y = to_world (k / D)
+// and M_O^-1 y = to_world (e^2 k / D).
+template <class R, class T, int N>
+ContactFunctionGradient<T, N> contact_function_gradient(const Ellipsoid<T, N>& s, const Ellipsoid<T, N>& o,
+                                                        bool a_is_s, const Vec<R, N>& direction, R norm, int e,
+                                                        const Options& options) noexcept {
+  const Solved<R, N> sol = solve<R>(s, o, direction, options);
+  const BodyGradient<T, N> unknown = detail::constant_gradient<T, N>(std::numeric_limits<T>::quiet_NaN());
+  ContactFunctionGradient<T, N> out{value_of<T>(sol, a_is_s, norm), unknown, unknown};
+  const Maximum<R>& m = sol.max;
+  if (!m.converged) return out;
+  Vec<R, N> z, ez;
+  for (int i = 0; i < N; ++i) {
+    z[i] = sol.k[i] / (m.u + m.v * sol.red.e[i] * sol.red.e[i]);
+    ez[i] = sol.red.e[i] * sol.red.e[i] * z[i];
+  }
+  const Vec<R, N> y = sol.red.to_z.transpose() * z;
+  const R uv2 = R(2) * m.u * m.v * norm;  // 2 lambda (1 - lambda) |r|
+  // The body X with weight w and M_X^-1 y = my: d/d radii and d/d phi, in the scaled frame.
+  auto body = [&](const Ellipsoid<T, N>& x, R w, const Vec<R, N>& my, const Vec<R, N>& center) {
+    const Vec<R, N> q = detail::work_axes<R>(x).transpose() * y;
+    BodyGradient<R, N> g;
+    g.center = center;
+    g.radii = -(uv2 * norm * w) * x.radii().template cast<R>().cwiseProduct(q.cwiseAbs2());
+    g.orientation = detail::times<R, N>(detail::turn_rate<R, N>(my, y), -uv2 * norm * w);
+    return g;
+  };
+  BodyGradient<R, N> gs = body(s, m.u, Vec<R, N>(sol.red.to_world * z), Vec<R, N>(-uv2 * y));
+  BodyGradient<R, N> go = body(o, m.v, Vec<R, N>(sol.red.to_world * ez), Vec<R, N>(uv2 * y));
+  // Lengths of the pair scaled by 2^-e: the derivatives by a length scale by 2^-e.
+  for (BodyGradient<R, N>* g : {&gs, &go}) {
+    g->center = detail::times_pow2(g->center, -e);
+    g->radii = detail::times_pow2(g->radii, -e);
+  }
+  out.a = detail::gradient_in<T>(a_is_s ? gs : go, R(1));
+  out.b = detail::gradient_in<T>(a_is_s ? go : gs, R(1));
   return out;
 }
 
@@ -196,22 +242,14 @@ ClosestApproach<T, N> approach(const Ellipsoid<T, N>& s, const Ellipsoid<T, N>& 
   return out;
 }
 
-}  // namespace
-
 // F is dimensionless: pairs outside the native range (detail/scale.hpp) run rescaled by a
 // power of two, or in long double. The sphere body is chosen before rescaling (rescaling
 // can merge bodies that differ only below the smallest subnormal; swap symmetry needs the
-// order they had).
-template <class T, int N>
-ContactFunction<T> perram_wertheim(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b, const Options& options) noexcept {
+// order they had). `finish(s, o, a_is_s, direction, norm, e)` solves the pair in query order,
+// scaled by 2^-e, with r = norm * direction in the working type of direction.
+template <class T, int N, class Finish>
+auto at_scale(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b, Finish finish) noexcept {
   using R = detail::Work<T>;
-  if (a.center() == b.center()) {
-    ContactFunction<T> out;
-    out.status = ContactFunctionStatus::concentric;
-    out.f = out.f_upper = T(0);
-    out.lambda = std::numeric_limits<T>::quiet_NaN();
-    return out;
-  }
   using W = detail::Wide<R>;
   const auto [s, o, a_is_s] = detail::order_pair(a, b);
   auto difference = [](const auto& x, const auto& y, auto type) {
@@ -221,11 +259,11 @@ ContactFunction<T> perram_wertheim(const Ellipsoid<T, N>& a, const Ellipsoid<T, 
   const detail::Scale scale = detail::scale_of(a, b);
   if (scale.range == detail::Range::wide) {
     const Vec<W, N> r = difference(s, o, W());
-    return contact_function<W>(s, o, a_is_s, detail::unit_vector<W, N>(r), detail::stable_norm<W, N>(r), options);
+    return finish(s, o, a_is_s, detail::unit_vector<W, N>(r), detail::stable_norm<W, N>(r), 0);
   }
   if (scale.range == detail::Range::native) {
     const Vec<R, N> r = difference(s, o, R());
-    return contact_function<R>(s, o, a_is_s, detail::unit_vector<R, N>(r), detail::stable_norm<R, N>(r), options);
+    return finish(s, o, a_is_s, detail::unit_vector<R, N>(r), detail::stable_norm<R, N>(r), 0);
   }
   // Rescaled: the same arithmetic as at the native scale (answers equal bit for bit), unless
   // the rescaled centers are too close to keep the direction's digits (r subnormal or zero);
@@ -239,7 +277,38 @@ ContactFunction<T> perram_wertheim(const Ellipsoid<T, N>& a, const Ellipsoid<T, 
     r = detail::unit_vector<W, N>(wide).template cast<R>();
     norm = R(std::ldexp(detail::stable_norm<W, N>(wide), -e));
   }
-  return contact_function<R>(s2, o2, a_is_s, detail::unit_vector<R, N>(r), norm, options);
+  return finish(s2, o2, a_is_s, detail::unit_vector<R, N>(r), norm, e);
+}
+
+template <class T>
+ContactFunction<T> concentric() noexcept {
+  ContactFunction<T> out;
+  out.status = ContactFunctionStatus::concentric;
+  out.f = out.f_upper = T(0);
+  out.lambda = std::numeric_limits<T>::quiet_NaN();
+  return out;
+}
+
+}  // namespace
+
+template <class T, int N>
+ContactFunction<T> perram_wertheim(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b, const Options& options) noexcept {
+  if (a.center() == b.center()) return concentric<T>();
+  return at_scale(a, b, [&](const Ellipsoid<T, N>& s, const Ellipsoid<T, N>& o, bool a_is_s, const auto& direction,
+                            auto norm, int) { return contact_function(s, o, a_is_s, direction, norm, options); });
+}
+
+template <class T, int N>
+ContactFunctionGradient<T, N> perram_wertheim_gradient(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b,
+                                                       const Options& options) noexcept {
+  if (a.center() == b.center()) {
+    // F vanishes to second order in r: every derivative is 0.
+    return {concentric<T>(), detail::constant_gradient<T, N>(T(0)), detail::constant_gradient<T, N>(T(0))};
+  }
+  return at_scale(a, b, [&](const Ellipsoid<T, N>& s, const Ellipsoid<T, N>& o, bool a_is_s, const auto& direction,
+                            auto norm, int e) {
+    return contact_function_gradient(s, o, a_is_s, direction, norm, e, options);
+  });
 }
 
 template <class T, int N>
@@ -266,6 +335,8 @@ ClosestApproach<T, N> closest_approach(const Ellipsoid<T, N>& a, const Ellipsoid
 #define ELLIPSECT_INSTANTIATE(T, N)                                                                                   \
   template ContactFunction<T> perram_wertheim<T, N>(const Ellipsoid<T, N>&, const Ellipsoid<T, N>&,                   \
                                                     const Options&) noexcept;                                         \
+  template ContactFunctionGradient<T, N> perram_wertheim_gradient<T, N>(const Ellipsoid<T, N>&, const Ellipsoid<T, N>&, \
+                                                                        const Options&) noexcept;                     \
   template ClosestApproach<T, N> closest_approach<T, N>(const Ellipsoid<T, N>&, const Ellipsoid<T, N>&,               \
                                                         const VecArg<T, N>&, const Options&);
 ELLIPSECT_FOR_EACH_TYPE_AND_DIM(ELLIPSECT_INSTANTIATE)

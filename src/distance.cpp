@@ -24,6 +24,7 @@
 #include "detail/classify_impl.hpp"
 #include "detail/distance_gap.hpp"
 #include "detail/exact_relation.hpp"
+#include "detail/gradient.hpp"
 #include "detail/instantiate.hpp"
 #include "detail/scale.hpp"
 
@@ -250,9 +251,28 @@ Distance<T, N> signed_distance(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& 
   return solve_at_scale(a, b, options, true);
 }
 
+template <class T, int N>
+DistanceGradient<T, N> signed_distance_gradient(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b,
+                                                const Options& options) noexcept {
+  using R = detail::Work<T>;
+  const BodyGradient<T, N> unknown = detail::constant_gradient<T, N>(std::numeric_limits<T>::quiet_NaN());
+  DistanceGradient<T, N> out{signed_distance(a, b, options), unknown, unknown};
+  if (out.value.status == DistanceStatus::did_not_converge) return out;
+  // d = max over n of n . (center(b) - center(a)) - rho_a(n) - rho_b(n), at the returned n.
+  const Vec<R, N> n = out.value.normal.template cast<R>();
+  BodyGradient<R, N> ga = detail::support_radius_gradient<R>(a, n), gb = detail::support_radius_gradient<R>(b, n);
+  ga.center = n;
+  gb.center = -n;
+  out.a = detail::gradient_in<T>(ga, R(-1));
+  out.b = detail::gradient_in<T>(gb, R(-1));
+  return out;
+}
+
 #define ELLIPSECT_INSTANTIATE(T, N)                                                                              \
   template Distance<T, N> distance<T, N>(const Ellipsoid<T, N>&, const Ellipsoid<T, N>&, const Options&) noexcept; \
-  template Distance<T, N> signed_distance<T, N>(const Ellipsoid<T, N>&, const Ellipsoid<T, N>&, const Options&) noexcept;
+  template Distance<T, N> signed_distance<T, N>(const Ellipsoid<T, N>&, const Ellipsoid<T, N>&, const Options&) noexcept; \
+  template DistanceGradient<T, N> signed_distance_gradient<T, N>(const Ellipsoid<T, N>&, const Ellipsoid<T, N>&,      \
+                                                                 const Options&) noexcept;
 ELLIPSECT_FOR_EACH_TYPE_AND_DIM(ELLIPSECT_INSTANTIATE)
 #undef ELLIPSECT_INSTANTIATE
 

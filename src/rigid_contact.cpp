@@ -17,6 +17,7 @@
 #include <ellipsect/distance.hpp>
 
 #include "detail/contact_start.hpp"
+#include "detail/gradient.hpp"
 #include "detail/instantiate.hpp"
 #include "detail/reduce.hpp"
 #include "detail/rigid_motion.hpp"
@@ -299,10 +300,37 @@ Contact<T, N> first_contact(const Ellipsoid<T, N>& a, const RigidMotion<T, N>& m
   return c;
 }
 
+template <class T, int N>
+ContactGradient<T, N> first_contact_gradient(const Ellipsoid<T, N>& a, const RigidMotion<T, N>& motion_a,
+                                             const Ellipsoid<T, N>& b, const RigidMotion<T, N>& motion_b, T t_max,
+                                             const Options& options) noexcept {
+  using W = detail::Work<T>;
+  ContactGradient<T, N> out = detail::unanswered_gradient(first_contact(a, motion_a, b, motion_b, t_max, options));
+  if (out.value.status != ContactStatus::hit) return out;
+  auto omega = [](const RigidMotion<T, N>& m) {
+    if constexpr (N == 2) {
+      return W(m.angular_velocity);
+    } else {
+      return Vec<W, 3>(m.angular_velocity.template cast<W>());
+    }
+  };
+  try {
+    const T t = out.value.time;
+    detail::contact_time_gradient<T, N, W>(out, body_at(a, motion_a, t), body_at(b, motion_b, t),
+                                           motion_a.velocity.template cast<W>(), motion_b.velocity.template cast<W>(),
+                                           omega(motion_a), omega(motion_b));
+  } catch (const InputError&) {  // the bodies at the hit's time leave the range of T: no derivatives
+  }
+  return out;
+}
+
 #define ELLIPSECT_INSTANTIATE(T, N)                                                                                 \
   template Ellipsoid<T, N> body_at<T, N>(const Ellipsoid<T, N>&, const RigidMotion<T, N>&, T);                    \
   template Contact<T, N> first_contact<T, N>(const Ellipsoid<T, N>&, const RigidMotion<T, N>&, const Ellipsoid<T, N>&, \
-                                             const RigidMotion<T, N>&, T, const Options&) noexcept;
+                                             const RigidMotion<T, N>&, T, const Options&) noexcept;                \
+  template ContactGradient<T, N> first_contact_gradient<T, N>(const Ellipsoid<T, N>&, const RigidMotion<T, N>&,   \
+                                                              const Ellipsoid<T, N>&, const RigidMotion<T, N>&, T, \
+                                                              const Options&) noexcept;
 ELLIPSECT_FOR_EACH_TYPE_AND_DIM(ELLIPSECT_INSTANTIATE)
 #undef ELLIPSECT_INSTANTIATE
 

@@ -52,6 +52,7 @@
 // Cost: about 0.2 us in 2D and 0.55 us in 3D per query (bench/RESULTS.md).
 #pragma once
 
+#include <ellipsect/gradient.hpp>
 #include <ellipsect/options.hpp>
 #include <ellipsect/shapes.hpp>
 
@@ -115,6 +116,33 @@ static_assert(detail::has_plain_layout<ClosestApproach<float, 2>, ContactFunctio
 template <class T, int N>
 ContactFunction<T> perram_wertheim(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b,
                                    const Options& options = {}) noexcept;
+
+// ---- Gradient (gradient.hpp's parameters) ---------------------------------------------
+//
+// perram_wertheim(a, b) and the derivatives of F. By the envelope theorem at the maximizer
+// lambda, with y = C(lambda)^-1 r and w_a = 1 - lambda, w_b = lambda the weights of the bodies'
+// matrices (M_X^-1 = A_X diag(r_X^2) A_X^T):
+//     dF/d center(b) = 2 lambda (1 - lambda) y = -dF/d center(a),
+//     dF/d radii(X)_i = -2 lambda (1 - lambda) w_X r_X,i (A_X^T y)_i^2,
+//     dF/d phi_X = -2 lambda (1 - lambda) w_X (M_X^-1 y) x y,
+// with y from the reduced frame of the solve (y = to_z^T of its diagonal solution), so it
+// keeps the solve's relative accuracy at any aspect ratio it supports. F is differentiable
+// everywhere (F(lambda) is strictly concave for r != 0, so its maximizer is unique; at
+// concentric bodies F vanishes to second order in r: the gradient is 0, status concentric).
+// did_not_converge: the gradient fields are NaN.
+// Accuracy (tests/property/gradient_property_test.cpp, against 50-digit central differences of
+// F by golden-section search in the world frame): each component within 1e-12 of its unit,
+// the largest derivative by a center or a radius (times the pair's largest radius for the
+// orientations), on the cases of signed_distance_gradient; measured up to 1.1e-13.
+template <class T, int N>
+struct ContactFunctionGradient {
+  ContactFunction<T> value;  // perram_wertheim(a, b)
+  BodyGradient<T, N> a, b;   // of value.f
+};
+
+template <class T, int N>
+ContactFunctionGradient<T, N> perram_wertheim_gradient(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b,
+                                                       const Options& options = {}) noexcept;
 
 // The distance of closest approach of b to a along `direction` (any nonzero finite length; it
 // is normalized). b keeps its orientation and shape; only its center moves, along the ray from

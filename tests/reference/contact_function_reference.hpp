@@ -30,8 +30,8 @@ template <int N> struct ContactFunctionRef {
   Real lambda;  // its maximizer, to about 1e-25
 };
 
-template <int N> ContactFunctionRef<N> contact_function(const Body<N>& a, const Body<N>& b) {
-  const detail::RBody<N> ra = detail::make_rbody<N>(a, "a"), rb = detail::make_rbody<N>(b, "b");
+// The same for bodies in Real (their P and centers).
+template <int N> ContactFunctionRef<N> contact_function(const detail::RBody<N>& ra, const detail::RBody<N>& rb) {
   const RVec<N> r = rb.c - ra.c;
   auto F = [&](const Real& l) {
     RMat<N> C;
@@ -63,6 +63,10 @@ template <int N> ContactFunctionRef<N> contact_function(const Body<N>& a, const 
   }
   const Real l = (lo + hi) / 2;
   return {F(l), l};
+}
+
+template <int N> ContactFunctionRef<N> contact_function(const Body<N>& a, const Body<N>& b) {
+  return contact_function<N>(detail::make_rbody<N>(a, "a"), detail::make_rbody<N>(b, "b"));
 }
 
 // sigma for the direction u (any nonzero length; normalized in Real).
@@ -107,6 +111,7 @@ template <int N> Real closest_approach(const Body<N>& a, const Body<N>& b, const
 // this header.
 #define ELLIPSECT_CONTACT_FUNCTION_REFERENCE_FUNCTIONS(extern_, N) \
   extern_ template ContactFunctionRef<N> contact_function<N>(const Body<N>&, const Body<N>&); \
+  extern_ template ContactFunctionRef<N> contact_function<N>(const detail::RBody<N>&, const detail::RBody<N>&); \
   extern_ template Real closest_approach<N>(const Body<N>&, const Body<N>&, const DVec<N>&);
 ELLIPSECT_CONTACT_FUNCTION_REFERENCE_FUNCTIONS(extern, 2)
 ELLIPSECT_CONTACT_FUNCTION_REFERENCE_FUNCTIONS(extern, 3)

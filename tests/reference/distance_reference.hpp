@@ -401,11 +401,20 @@ inline Real overlap_area(const Body<2>& a, const Body<2>& b) {
   return area;
 }
 
+// The maximum of the support gap of two bodies in Real, by the polish of signed_distance
+// from the direction n (a local maximum: the global one from signed_distance's normal, for
+// bodies moved by much less than their gap to the other local maxima).
+template <int N> Real gap_maximum(const detail::RBody<N>& a, const detail::RBody<N>& b, const RVec<N>& n) {
+  const detail::GapData<Real, N> d{a.P, b.P, RVec<N>(b.c - a.c)};
+  return detail::gap<Real, N>(d, detail::ascend<Real, N>(d, n, 24, Real("1e-44")));
+}
+
 // The functions the tests and benchmarks call, for N = 2 and 3: compiled once, in
 // distance_reference.cpp (the library ellipsect_reference), not in every program that includes
 // this header.
 #define ELLIPSECT_DISTANCE_REFERENCE_FUNCTIONS(extern_, N) \
-  extern_ template SignedDistance<N> signed_distance<N>(const Body<N>&, const Body<N>&);
+  extern_ template SignedDistance<N> signed_distance<N>(const Body<N>&, const Body<N>&); \
+  extern_ template Real gap_maximum<N>(const detail::RBody<N>&, const detail::RBody<N>&, const RVec<N>&);
 ELLIPSECT_DISTANCE_REFERENCE_FUNCTIONS(extern, 2)
 ELLIPSECT_DISTANCE_REFERENCE_FUNCTIONS(extern, 3)
 

@@ -1,0 +1,39 @@
+// Derivatives of query results with respect to the bodies' parameters: the types shared by
+// the value-and-gradient functions, which live beside the values they differentiate
+// (signed_distance_gradient in distance.hpp, perram_wertheim_gradient in
+// contact_function.hpp, first_contact_gradient in contact.hpp).
+//
+// Parameters of a body: its center, its radii (in the stored order of its axes), and its
+// orientation as a world-frame rotation vector phi at the current pose: the body turned about
+// its center to axes exp([phi]x) * axes (2D: phi a counterclockwise angle), differentiated at
+// phi = 0. So d/dphi of a quantity q is the rate of q as the body spins about its center
+// with unit angular velocity about each world axis; for a body given by a unit quaternion q0,
+// the derivative along a change dq of the quaternion is d/dphi . 2 (dq q0^-1).vec.
+//
+// Method: at an exact solution the derivatives follow in closed form, with no second solve:
+// optimal values by the envelope theorem (the derivative of the maximized function at the
+// maximizer), solution times by implicit differentiation of the contact condition. Each
+// function states where its value is not differentiable and what it returns there.
+#pragma once
+
+#include <ellipsect/shapes.hpp>
+
+#include <type_traits>
+
+namespace ellipsect {
+
+// A rotation vector: an angle in 2D, a world-frame axis times angle in 3D.
+template <class T, int N>
+using RotationVector = std::conditional_t<N == 2, T, Vec<T, 3>>;
+
+// The gradient of a scalar with respect to one body's parameters.
+template <class T, int N>
+struct BodyGradient {
+  Vec<T, N> center;
+  RotationVector<T, N> orientation;
+  Vec<T, N> radii;
+};
+static_assert(detail::has_plain_layout<BodyGradient<float, 2>, float[2], float, float[2]> &&
+              detail::has_plain_layout<BodyGradient<double, 3>, double[3], double[3], double[3]>);
+
+}  // namespace ellipsect

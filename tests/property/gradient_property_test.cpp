@@ -1,0 +1,396 @@
+// Gradients (gradient.hpp) against 50-digit central differences of the values, each value
+// computed by a route of its own in the world frame: the maximum of the support gap polished
+// by Newton on the sphere (signed distance), golden-section search on lambda (the
+// Perram-Wertheim F), and the secant root in time of that maximum (the linear contact time).
+// Bodies are moved in Real: centers, radii and velocities by h, orientations by the world
+// rotation exp(h [e_j]x), so the differences see no rounding of the perturbed bodies.
+#include <ellipsect/contact.hpp>
+#include <ellipsect/contact_function.hpp>
+#include <ellipsect/distance.hpp>
+
+#include "scenarios/rigid.hpp"
+#include "tests/property/common.hpp"
+#include "tests/reference/contact_function_reference.hpp"
+#include "tests/reference/distance_reference.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <string>
+
+namespace ellipsect::testing {
+namespace {
+
+using ref::Real;
+template <int N>
+using RBody = ref::detail::RBody<N>;
+template <int N>
+using RVec = ref::RVec<N>;
+
+// A body's parameters in gradient.hpp's order: center (N), orientation (1 in 2D, 3 in 3D),
+// radii (N); kind 0, 1, 2.
+template <int N>
+constexpr int turns = N == 2 ? 1 : 3;
+template <int N>
+constexpr int params = 2 * N + turns<N>;
+template <int N>
+int kind_of(int k) {
+  return k < N ? 0 : k < N + turns<N> ? 1 : 2;
+}
+
+template <int N>
+RBody<N> moved(RBody<N> b, int k, const Real& h) {
+  if (kind_of<N>(k) == 0) {
+    b.c(k) += h;
+  } else if (kind_of<N>(k) == 2) {
+    b.radii(k - N - turns<N>) += h;
+  } else {
+    const Real c = cos(h), s = sin(h);
+    ref::RMat<N> q = ref::RMat<N>::Identity();
+    if constexpr (N == 2) {
+      q << c, -s, s, c;
+    } else {
+      const int j = k - N, j1 = (j + 1) % 3, j2 = (j + 2) % 3;  // turn about e_j: e_j1 -> e_j2
+      q(j1, j1) = c;
+      q(j2, j2) = c;
+      q(j1, j2) = -s;
+      q(j2, j1) = s;
+    }
+    b.axes = q * b.axes;
+  }
+  ref::detail::complete_rbody<N>(b);
+  return b;
+}
+
+template <int N>
+double component(const BodyGradient<double, N>& g, int k) {
+  if (kind_of<N>(k) == 0) return g.center[k];
+  if (kind_of<N>(k) == 2) return g.radii[k - N - turns<N>];
+  if constexpr (N == 2) {
+    return g.orientation;
+  } else {
+    return g.orientation[k - N];
+  }
+}
+
+// The derivatives to compare: the library's and the central differences, by kind (center,
+// orientation, radii, velocity, angular velocity), over both bodies.
+struct Comparison {
+  std::array<std::vector<std::pair<double, Real>>, 5> kinds;
+  Real scale = 1;  // the pair's length scale: an orientation's derivative is a length times a center's
+
+  void add(int kind, double library, const Real& reference) { kinds[kind].push_back({library, reference}); }
+  Real largest(int kind) const {
+    Real m = 0;
+    for (const auto& [l, r] : kinds[kind]) m = std::max(m, Real(abs(r)));
+    return m;
+  }
+  // The largest error of a component relative to the largest reference component of its
+  // unit: centers and radii together (per length), orientations as that times the scale,
+  // velocities, and angular velocities as the velocities' times the scale (a kind that is 0
+  // by symmetry, a disk's turn, is measured in the units of the others).
+  double worst() const {
+    const Real per_length = std::max(largest(0), largest(2)), per_speed = largest(3);
+    const std::array<Real, 5> unit = {per_length, std::max(largest(1), per_length * scale), per_length, per_speed,
+                                      std::max(largest(4), per_speed * scale)};
+    double worst = 0;
+    for (int k = 0; k < 5; ++k) {
+      if (unit[k] == 0) continue;
+      for (const auto& [l, r] : kinds[k]) worst = std::max(worst, ref::to_double(Real(abs(Real(l) - r) / unit[k])));
+    }
+    return worst;
+  }
+  std::string show() const {
+    std::string s;
+    for (int k = 0; k < 5; ++k)
+      for (const auto& [l, r] : kinds[k])
+        s += "  kind " + std::to_string(k) + ": " + std::to_string(l) + " vs " + r.str(20) + "\n";
+    return s;
+  }
+};
+
+// Central differences of value(a', b') over every parameter of both bodies, h relative to
+// the pair's scale for lengths.
+template <int N>
+void differentiate(const RBody<N>& a, const RBody<N>& b, const BodyGradient<double, N>& ga,
+                   const BodyGradient<double, N>& gb, const std::function<Real(const RBody<N>&, const RBody<N>&)>& value,
+                   Comparison& out) {
+  const Real scale = std::max(a.rmax, b.rmax);
+  out.scale = scale;
+  for (int body = 0; body < 2; ++body)
+    for (int k = 0; k < params<N>; ++k) {
+      const Real h = kind_of<N>(k) == 1 ? Real("1e-15") : Real("1e-15") * scale;
+      const Real plus = body == 0 ? value(moved<N>(a, k, h), b) : value(a, moved<N>(b, k, h));
+      const Real minus = body == 0 ? value(moved<N>(a, k, -h), b) : value(a, moved<N>(b, k, -h));
+      out.add(kind_of<N>(k), component<N>(body == 0 ? ga : gb, k), (plus - minus) / (2 * h));
+    }
+}
+
+// The pair, also moved by `offset` (bodies far from the origin).
+template <int N>
+std::pair<Ellipsoid<double, N>, Ellipsoid<double, N>> placed(const scenarios::Case<N>& c, const Vec<double, N>& offset) {
+  return {c.a.translated(offset), c.b.translated(offset)};
+}
+
+constexpr std::array<scenarios::Category, 8> distance_categories = {
+    scenarios::Category::random,       scenarios::Category::high_aspect,  scenarios::Category::near_tangent,
+    scenarios::Category::containment,  scenarios::Category::spheres,      scenarios::Category::scaled_small,
+    scenarios::Category::scaled_large, scenarios::Category::far_apart};
+
+std::string scientific(double x) {
+  char s[32];
+  std::snprintf(s, sizeof s, "%.2e", x);
+  return s;
+}
+
+// The accuracies the headers state, of each component relative to its unit (Comparison):
+// the static gradients are exact up to rounding at the returned normal; the contact time's
+// carry the normal's error (contact.hpp: 1e-9 rad) through the support points.
+constexpr double static_tolerance = 1e-12;
+constexpr double contact_tolerance = 1e-8;
+
+template <int N>
+void signed_distance_matches_differences() {
+  Tally tally;
+  double worst = 0;
+  const int n = static_cast<int>(distance_categories.size());
+  for (int i = 0; i < cases(480); ++i) {
+    const auto category = distance_categories[i % n];
+    const int far = i / n % 2;
+    const scenarios::Case<N> c = scenarios::make_case<N>(category, 7000 + i);
+    const double size = c.a.radii().maxCoeff() + c.b.radii().maxCoeff();
+    const auto [a, b] = placed<N>(c, Vec<double, N>::Constant(far ? 1e6 * size : 0.0));
+    const DistanceGradient<double, N> g = signed_distance_gradient(a, b);
+    const ref::SignedDistance<N> r = ref::signed_distance<N>(to_ref(a), to_ref(b));
+    // Several deepest directions (or nearly): not differentiable there (distance.hpp).
+    if (g.value.status == DistanceStatus::overlapping && r.runner_up > r.distance - 1e-6 * size) {
+      tally.add(scenarios::name(category), "tied maxima, skipped");
+      continue;
+    }
+    const RBody<N> ra = ref::detail::make_rbody<N>(to_ref(a)), rb = ref::detail::make_rbody<N>(to_ref(b));
+    Comparison cmp;
+    differentiate<N>(ra, rb, g.a, g.b,
+                     [&](const RBody<N>& x, const RBody<N>& y) { return ref::gap_maximum<N>(x, y, r.normal); }, cmp);
+    const double e = cmp.worst();
+    worst = std::max(worst, e);
+    EXPECT_LE(e, static_tolerance) << describe(c) << "\n far " << far << "\n" << cmp.show();
+    tally.add(scenarios::name(category), to_string(g.value.status));
+  }
+  tally.print("signed_distance_gradient, worst relative error " + scientific(worst));
+}
+
+template <int N>
+void perram_wertheim_matches_differences() {
+  Tally tally;
+  double worst = 0;
+  const int n = static_cast<int>(distance_categories.size());
+  for (int i = 0; i < cases(240); ++i) {
+    const auto category = distance_categories[i % n];
+    const int far = i / n % 2;
+    const scenarios::Case<N> c = scenarios::make_case<N>(category, 7100 + i);
+    const double size = c.a.radii().maxCoeff() + c.b.radii().maxCoeff();
+    const auto [a, b] = placed<N>(c, Vec<double, N>::Constant(far ? 1e6 * size : 0.0));
+    const ContactFunctionGradient<double, N> g = perram_wertheim_gradient(a, b);
+    if (g.value.status == ContactFunctionStatus::concentric) {
+      // F vanishes to second order in the centers' difference: every derivative is 0.
+      for (const auto& x : {g.a, g.b}) {
+        EXPECT_EQ(x.center, (Vec<double, N>::Zero()));
+        EXPECT_EQ(x.radii, (Vec<double, N>::Zero()));
+      }
+      tally.add(scenarios::name(category), "concentric");
+      continue;
+    }
+    ASSERT_EQ(g.value.status, ContactFunctionStatus::ok) << describe(c);
+    const RBody<N> ra = ref::detail::make_rbody<N>(to_ref(a)), rb = ref::detail::make_rbody<N>(to_ref(b));
+    Comparison cmp;
+    differentiate<N>(ra, rb, g.a, g.b,
+                     [](const RBody<N>& x, const RBody<N>& y) { return ref::contact_function<N>(x, y).f; }, cmp);
+    const double e = cmp.worst();
+    worst = std::max(worst, e);
+    EXPECT_LE(e, static_tolerance) << describe(c) << "\n far " << far << "\n" << cmp.show();
+    tally.add(scenarios::name(category), "ok");
+  }
+  tally.print("perram_wertheim_gradient, worst relative error " + scientific(worst));
+}
+
+// A motion in Real: velocity and angular velocity (one component in 2D).
+template <int N>
+struct RMotion {
+  RVec<N> velocity;
+  Eigen::Matrix<Real, turns<N>, 1> omega;
+};
+
+template <int N>
+RMotion<N> to_real_motion(const RigidMotion<double, N>& m) {
+  RMotion<N> out{ref::to_real<N>(m.velocity), {}};
+  if constexpr (N == 2) {
+    out.omega(0) = m.angular_velocity;
+  } else {
+    out.omega = ref::to_real<3>(m.angular_velocity);
+  }
+  return out;
+}
+
+// exp([w]x) by Rodrigues' formula in Real.
+template <int N>
+ref::RMat<N> rotation_of(const Eigen::Matrix<Real, turns<N>, 1>& w) {
+  ref::RMat<N> q = ref::RMat<N>::Identity();
+  if constexpr (N == 2) {
+    q << cos(w(0)), -sin(w(0)), sin(w(0)), cos(w(0));
+  } else {
+    const Real angle = sqrt(w.dot(w));
+    if (angle == 0) return q;
+    const RVec<3> u = w / angle;
+    ref::RMat<3> k;
+    k << 0, -u(2), u(1), u(2), 0, -u(0), -u(1), u(0), 0;
+    q += sin(angle) * k + (1 - cos(angle)) * k * k;
+  }
+  return q;
+}
+
+template <int N>
+RBody<N> at_time(RBody<N> b, const RMotion<N>& m, const Real& t) {
+  b.c += t * m.velocity;
+  b.axes = rotation_of<N>(Eigen::Matrix<Real, turns<N>, 1>(t * m.omega)) * b.axes;
+  ref::detail::complete_rbody<N>(b);
+  return b;
+}
+
+// The root in time of the gap's maximum for a and b in their motions, by the secant method
+// from t0 (the root near it), the direction carried from step to step.
+template <int N>
+Real contact_time(const RBody<N>& a, const RMotion<N>& ma, const RBody<N>& b, const RMotion<N>& mb, const Real& t0,
+                  RVec<N> n) {
+  auto gap_at = [&](const Real& t) {
+    const RBody<N> x = at_time<N>(a, ma, t), y = at_time<N>(b, mb, t);
+    const ref::detail::GapData<Real, N> d{x.P, y.P, RVec<N>(y.c - x.c)};
+    n = ref::detail::ascend<Real, N>(d, n, 24, Real("1e-44"));
+    return ref::detail::gap<Real, N>(d, n);
+  };
+  Real t_prev = t0 * (1 + Real("1e-9")), t = t0;
+  Real g_prev = gap_at(t_prev), g = gap_at(t);
+  for (int step = 0; step < 40 && g != 0 && g != g_prev; ++step) {
+    const Real next = t - g * (t - t_prev) / (g - g_prev);
+    t_prev = t;
+    g_prev = g;
+    t = next;
+    g = gap_at(t);
+    if (abs(t - t_prev) <= Real("1e-45") * abs(t)) break;
+  }
+  return t;
+}
+
+template <int N>
+double angular_component(const RotationVector<double, N>& w, int i) {
+  if constexpr (N == 2) {
+    return w;
+  } else {
+    return w[i];
+  }
+}
+
+// The contact time's gradient of a pair that the library reports hit, against central
+// differences of contact_time over every parameter of the bodies and their motions.
+template <int N>
+double compare_contact_time(const Ellipsoid<double, N>& a, const RigidMotion<double, N>& ma,
+                            const Ellipsoid<double, N>& b, const RigidMotion<double, N>& mb,
+                            const ContactGradient<double, N>& g, std::string& shown) {
+  const RBody<N> ra = ref::detail::make_rbody<N>(to_ref(a)), rb = ref::detail::make_rbody<N>(to_ref(b));
+  const RMotion<N> rma = to_real_motion<N>(ma), rmb = to_real_motion<N>(mb);
+  const RVec<N> n0 = ref::to_real<N>(Vec<double, N>(g.value.normal));
+  const Real t0 = g.value.time;
+  Comparison cmp;
+  differentiate<N>(ra, rb, g.a, g.b,
+                   [&](const RBody<N>& x, const RBody<N>& y) { return contact_time<N>(x, rma, y, rmb, t0, n0); }, cmp);
+  // Steps that move the bodies at the contact time by 1e-15 of their scale, or turn them by
+  // 1e-15 rad.
+  const Real scale = std::max(ra.rmax, rb.rmax);
+  for (int body = 0; body < 2; ++body)
+    for (int k = 0; k < N + turns<N>; ++k) {
+      const bool linear = k < N;
+      const Real h = (linear ? Real("1e-15") * scale : Real("1e-15")) / t0;
+      auto with = [&](const Real& dh) {
+        RMotion<N> x = rma, y = rmb;
+        RMotion<N>& m = body == 0 ? x : y;
+        if (linear) {
+          m.velocity(k) += dh;
+        } else {
+          m.omega(k - N) += dh;
+        }
+        return contact_time<N>(ra, x, rb, y, t0, n0);
+      };
+      const double library = linear ? (body == 0 ? g.velocity_a : g.velocity_b)[k]
+                                    : angular_component<N>(body == 0 ? g.angular_velocity_a : g.angular_velocity_b, k - N);
+      cmp.add(linear ? 3 : 4, library, (with(h) - with(-h)) / (2 * h));
+    }
+  shown = cmp.show();
+  return cmp.worst();
+}
+
+template <int N>
+void linear_contact_time_matches_differences() {
+  Tally tally;
+  double worst = 0;
+  constexpr std::array<scenarios::Category, 5> categories = {
+      scenarios::Category::random, scenarios::Category::high_aspect, scenarios::Category::scaled_small,
+      scenarios::Category::scaled_large, scenarios::Category::far_apart};
+  const int n = static_cast<int>(categories.size());
+  for (int i = 0; i < cases(N == 2 ? 100 : 50); ++i) {
+    const auto category = categories[i % n];
+    const int far = i / n % 2;
+    const scenarios::Case<N> c = scenarios::make_contact_case<N>(category, 7200 + i, 1e-3);
+    const double size = c.a.radii().maxCoeff() + c.b.radii().maxCoeff();
+    const auto [a, b] = placed<N>(c, Vec<double, N>::Constant(far ? 1e6 * size : 0.0));
+    const ContactGradient<double, N> g = first_contact_gradient(a, c.va, b, c.vb, c.t_max);
+    tally.add(scenarios::name(category), to_string(g.value.status));
+    if (g.value.status != ContactStatus::hit) {
+      EXPECT_TRUE(g.value.status == ContactStatus::overlapping_at_start ? g.a.center.isZero(0)
+                                                                         : std::isnan(g.a.center[0]))
+          << describe(c);
+      continue;
+    }
+    RigidMotion<double, N> ma, mb;
+    ma.velocity = c.va;
+    mb.velocity = c.vb;
+    std::string shown;
+    const double e = compare_contact_time<N>(a, ma, b, mb, g, shown);
+    worst = std::max(worst, e);
+    EXPECT_LE(e, contact_tolerance) << describe(c) << "\n far " << far << "\n" << shown;
+  }
+  tally.print("first_contact_gradient (linear), worst relative error " + scientific(worst));
+}
+
+template <int N>
+void rigid_contact_time_matches_differences() {
+  Tally tally;
+  double worst = 0;
+  constexpr std::array<scenarios::Spin, 6> spins = {scenarios::Spin::random, scenarios::Spin::slow,
+                                                    scenarios::Spin::fast,   scenarios::Spin::needles,
+                                                    scenarios::Spin::scaled_small, scenarios::Spin::scaled_large};
+  for (int i = 0; i < cases(120); ++i) {
+    const auto spin = spins[i % spins.size()];
+    const scenarios::Moving<N> m = scenarios::make_moving<N>(spin, 7300 + i);
+    const ContactGradient<double, N> g = first_contact_gradient(m.a, m.ma, m.b, m.mb, m.t_max);
+    tally.add(scenarios::name(spin), to_string(g.value.status));
+    if (g.value.status != ContactStatus::hit) continue;
+    std::string shown;
+    const double e = compare_contact_time<N>(m.a, m.ma, m.b, m.mb, g, shown);
+    worst = std::max(worst, e);
+    EXPECT_LE(e, contact_tolerance) << scenarios::describe_moving<N>(spin, 7300 + i, m) << "\n" << shown;
+  }
+  tally.print("first_contact_gradient (rigid), worst relative error " + scientific(worst));
+}
+
+TEST(GradientProperty, SignedDistance2D) { signed_distance_matches_differences<2>(); }
+TEST(GradientProperty, SignedDistance3D) { signed_distance_matches_differences<3>(); }
+TEST(GradientProperty, PerramWertheim2D) { perram_wertheim_matches_differences<2>(); }
+TEST(GradientProperty, PerramWertheim3D) { perram_wertheim_matches_differences<3>(); }
+TEST(GradientProperty, LinearContactTime2D) { linear_contact_time_matches_differences<2>(); }
+TEST(GradientProperty, LinearContactTime3D) { linear_contact_time_matches_differences<3>(); }
+TEST(GradientProperty, RigidContactTime2D) { rigid_contact_time_matches_differences<2>(); }
+TEST(GradientProperty, RigidContactTime3D) { rigid_contact_time_matches_differences<3>(); }
+
+}  // namespace
+}  // namespace ellipsect::testing
