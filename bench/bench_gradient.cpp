@@ -5,12 +5,15 @@
 //   perram_wertheim/N/{value,gradient}/*   perram_wertheim, perram_wertheim_gradient
 //   first_contact/N/{value,gradient}/*     first_contact (linear), first_contact_gradient, on
 //                                          pairs that touch at a known time
+//   overlap_area/2/{value,gradient}/*      overlap_area, overlap_area_gradient
+//   iou/2/{value,gradient}/*               intersection_over_union, intersection_over_union_gradient
 //
 // Counter: median_ns, the median over pairs of the time of one query (bench_support.hpp).
 // The last name component is the category ("mix": the pairs of every category together).
 #include <ellipsect/contact.hpp>
 #include <ellipsect/contact_function.hpp>
 #include <ellipsect/distance.hpp>
+#include <ellipsect/intersect2.hpp>
 
 #include "bench/bench_support.hpp"
 #include "scenarios/scenarios.hpp"
@@ -75,6 +78,29 @@ void first_contact_query(benchmark::State& state, int category) {
   });
 }
 
+// 2D: overlap_area and intersection_over_union with their gradients.
+template <bool gradient>
+void overlap_area_query(benchmark::State& state, int category) {
+  bench::time_cases(state, cases<2>(category, false), [](const scenarios::Case<2>& c) {
+    if constexpr (gradient) {
+      return overlap_area_gradient(c.a, c.b).a.center[0];
+    } else {
+      return overlap_area(c.a, c.b).area;
+    }
+  });
+}
+
+template <bool gradient>
+void iou_query(benchmark::State& state, int category) {
+  bench::time_cases(state, cases<2>(category, false), [](const scenarios::Case<2>& c) {
+    if constexpr (gradient) {
+      return intersection_over_union_gradient(c.a, c.b).a.center[0];
+    } else {
+      return intersection_over_union(c.a, c.b);
+    }
+  });
+}
+
 template <int N>
 void register_dimension(const std::string& cat, int category) {
   const std::string n = "/" + std::to_string(N);
@@ -85,6 +111,12 @@ void register_dimension(const std::string& cat, int category) {
                                category);
   benchmark::RegisterBenchmark(("first_contact" + n + "/value" + cat).c_str(), first_contact_query<N, false>, category);
   benchmark::RegisterBenchmark(("first_contact" + n + "/gradient" + cat).c_str(), first_contact_query<N, true>, category);
+  if constexpr (N == 2) {
+    benchmark::RegisterBenchmark(("overlap_area/2/value" + cat).c_str(), overlap_area_query<false>, category);
+    benchmark::RegisterBenchmark(("overlap_area/2/gradient" + cat).c_str(), overlap_area_query<true>, category);
+    benchmark::RegisterBenchmark(("iou/2/value" + cat).c_str(), iou_query<false>, category);
+    benchmark::RegisterBenchmark(("iou/2/gradient" + cat).c_str(), iou_query<true>, category);
+  }
 }
 
 void register_all() {

@@ -29,7 +29,7 @@ command -v npm >/dev/null || packages+=(npm)
 # The Python package (python/, python_test below): built by setuptools through CMake.
 packages+=(python3-dev python3-venv python3-pip python3-setuptools python3-wheel python3-pybind11 python3-numpy
            python3-pytest python3-hypothesis python3-mpmath python3-matplotlib python3-dask python3-distributed
-           python3-pandas python3-shapely mypy)
+           python3-pandas python3-shapely python3-torch mypy)
 
 install_missing() {
   local missing=()

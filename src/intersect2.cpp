@@ -26,6 +26,7 @@
 #include <ellipsect/intersect2.hpp>
 
 #include "detail/classify_impl.hpp"
+#include "detail/gradient.hpp"
 #include "detail/scale.hpp"
 
 #include <algorithm>
@@ -333,16 +334,11 @@ detail::Work<T> area_of(const Ellipse2<T>& e) {
   return std::numbers::pi_v<R> * R(e.radii()[0]) * R(e.radii()[1]);
 }
 
-}  // namespace
-
-template <class T>
-OverlapArea<T> overlap_area(const Ellipse2<T>& a, const Ellipse2<T>& b, const Options& options) noexcept {
-  if (const detail::Scale scale = detail::scale_of(a, b); scale.range == detail::Range::scaled) {
-    const int e = scale.exponent;
-    OverlapArea<T> out = overlap_area(detail::scaled(a, -e), detail::scaled(b, -e), options);
-    out.area = std::ldexp(out.area, 2 * e);  // +inf beyond the largest finite T
-    return out;
-  }
+// overlap_area of a pair in the native range; `crossings(c, pair)` also receives the common
+// points of an overlapping pair (the reduced frame of pair.s and pair.o).
+template <class T, class Crossings>
+OverlapArea<T> native_overlap_area(const Ellipse2<T>& a, const Ellipse2<T>& b, const Options& options,
+                                   Crossings crossings) noexcept {
   OverlapArea<T> out{T(0), classify(a, b, options)};
   const auto pair = detail::order_pair(a, b);
   const Ellipse2<T>& s = pair.s;
@@ -356,6 +352,7 @@ OverlapArea<T> overlap_area(const Ellipse2<T>& a, const Ellipse2<T>& b, const Op
       with_common_points<T>(s, pair.o, options, [&](const auto& c) {
         using W = typename std::decay_t<decltype(c.red.e)>::Scalar;
         out.area = T(lens_area<W>(c) * W(s.radii()[0]) * W(s.radii()[1]));
+        crossings(c, pair);
       });
       // The intersection lies inside both ellipses. When the smaller one lies within the
       // tangency band of the larger (radius ratios beyond about 1e12) the lens is formed
@@ -363,6 +360,121 @@ OverlapArea<T> overlap_area(const Ellipse2<T>& a, const Ellipse2<T>& b, const Op
       // either sign); bounding it keeps the area within [0, smaller].
       out.area = std::clamp(out.area, T(0), T(std::min(area_of(a), area_of(b))));
       break;
+  }
+  return out;
+}
+
+// d area(x and y) / d (x's parameters) over the arcs of x's boundary inside y
+// (intersect2.hpp): `rel` holds the m (2 or 4) transverse crossings relative to x's center,
+// `inside(q)` whether the point q (relative to x's center) lies inside y. The arcs between
+// consecutive crossings alternate in and out; the longest one's midpoint decides which.
+template <class R, class T, class Inside>
+BodyGradient<R, 2> arc_gradient(const Ellipse2<T>& x, const std::array<Vec<R, 2>, 4>& rel, int m,
+                                Inside inside) noexcept {
+  const Mat<R, 2> axes = detail::work_axes<R>(x);
+  const Vec<R, 2> r = x.radii().template cast<R>();
+  std::array<R, 4> phi;
+  for (int i = 0; i < m; ++i) {
+    const Vec<R, 2> u = (axes.transpose() * rel[i]).cwiseQuotient(r);
+    phi[i] = std::atan2(u[1], u[0]);
+  }
+  std::sort(phi.begin(), phi.begin() + m);
+  auto span = [&](int i) { return i + 1 < m ? phi[i + 1] - phi[i] : phi[0] + two_pi<R> - phi[i]; };
+  int longest = 0;
+  for (int i = 1; i < m; ++i)
+    if (span(i) > span(longest)) longest = i;
+  const R middle = phi[longest] + span(longest) / 2;
+  const bool longest_inside =
+      inside(Vec<R, 2>(axes * r.cwiseProduct(Vec<R, 2>(std::cos(middle), std::sin(middle)))));
+  BodyGradient<R, 2> g = detail::constant_gradient<R, 2>(R(0));
+  Vec<R, 2> center = Vec<R, 2>::Zero();  // in x's axes
+  const R handedness = axes.determinant() > R(0) ? R(1) : R(-1);
+  for (int i = 0; i < m; ++i) {
+    if (((i - longest + m) % 2 == 0) != longest_inside) continue;
+    const R d = span(i), half = std::sin(d / 2), mid = phi[i] + d / 2, sum = 2 * mid;
+    center += Vec<R, 2>(2 * r[1] * std::cos(mid) * half, 2 * r[0] * std::sin(mid) * half);
+    g.radii[0] += r[1] * (d + std::cos(sum) * std::sin(d)) / 2;
+    g.radii[1] += r[0] * (d - std::cos(sum) * std::sin(d)) / 2;
+    g.orientation += handedness * (r[0] * r[0] - r[1] * r[1]) * std::sin(sum) * std::sin(d) / 2;
+  }
+  g.center = axes * center;
+  return g;
+}
+
+// Whether q (relative to y's center) lies inside y: |diag(1 / r) A^T q| < 1.
+template <class R, class T>
+bool inside_of(const Ellipse2<T>& y, const Vec<R, 2>& q) noexcept {
+  const Vec<R, 2> u = (detail::work_axes<R>(y).transpose() * q).cwiseQuotient(y.radii().template cast<R>());
+  return u.squaredNorm() < R(1);
+}
+
+// d (pi r_0 r_1) / d (the body's parameters).
+template <class R, class T>
+BodyGradient<R, 2> area_gradient(const Ellipse2<T>& e) noexcept {
+  BodyGradient<R, 2> g = detail::constant_gradient<R, 2>(R(0));
+  g.radii = std::numbers::pi_v<R> * Vec<R, 2>(R(e.radii()[1]), R(e.radii()[0]));
+  return g;
+}
+
+}  // namespace
+
+template <class T>
+OverlapArea<T> overlap_area(const Ellipse2<T>& a, const Ellipse2<T>& b, const Options& options) noexcept {
+  if (const detail::Scale scale = detail::scale_of(a, b); scale.range == detail::Range::scaled) {
+    const int e = scale.exponent;
+    OverlapArea<T> out = overlap_area(detail::scaled(a, -e), detail::scaled(b, -e), options);
+    out.area = std::ldexp(out.area, 2 * e);  // +inf beyond the largest finite T
+    return out;
+  }
+  return native_overlap_area(a, b, options, [](const auto&, const auto&) {});
+}
+
+template <class T>
+OverlapAreaGradient<T> overlap_area_gradient(const Ellipse2<T>& a, const Ellipse2<T>& b,
+                                             const Options& options) noexcept {
+  if (const detail::Scale scale = detail::scale_of(a, b); scale.range == detail::Range::scaled) {
+    // The area scales as length^2: its derivatives by lengths as length, by angles as area.
+    const int e = scale.exponent;
+    OverlapAreaGradient<T> out = overlap_area_gradient(detail::scaled(a, -e), detail::scaled(b, -e), options);
+    out.value.area = std::ldexp(out.value.area, 2 * e);
+    for (BodyGradient<T, 2>* g : {&out.a, &out.b}) {
+      g->center = detail::times_pow2(g->center, e);
+      g->radii = detail::times_pow2(g->radii, e);
+      g->orientation = std::ldexp(g->orientation, 2 * e);
+    }
+    return out;
+  }
+  using R = detail::Work<T>;
+  const BodyGradient<T, 2> zero = detail::constant_gradient<T, 2>(T(0));
+  OverlapAreaGradient<T> out{{}, zero, zero};
+  out.value = native_overlap_area(a, b, options, [&](const auto& c, const auto& pair) {
+    using W = typename std::decay_t<decltype(c.red.e)>::Scalar;
+    // The transverse crossings relative to each body's center.
+    const Vec<W, 2> d = pair.o.center().template cast<W>() - pair.s.center().template cast<W>();
+    std::array<Vec<W, 2>, 4> at_s, at_o;
+    int m = 0;
+    for (int i = 0; i < c.count; ++i) {
+      if (c.points[i].kind != CrossingKind::transverse) continue;
+      at_s[m] = c.red.to_world * c.points[i].w;
+      at_o[m] = at_s[m] - d;
+      ++m;
+    }
+    if (m < 2) {
+      out.a = out.b = detail::constant_gradient<T, 2>(std::numeric_limits<T>::quiet_NaN());
+      return;
+    }
+    const BodyGradient<W, 2> gs =
+        arc_gradient<W>(pair.s, at_s, m, [&](const Vec<W, 2>& q) { return inside_of<W>(pair.o, Vec<W, 2>(q - d)); });
+    const BodyGradient<W, 2> go =
+        arc_gradient<W>(pair.o, at_o, m, [&](const Vec<W, 2>& q) { return inside_of<W>(pair.s, Vec<W, 2>(q + d)); });
+    out.a = detail::gradient_in<T>(pair.a_is_s ? gs : go, W(1));
+    out.b = detail::gradient_in<T>(pair.a_is_s ? go : gs, W(1));
+  });
+  switch (out.value.relation) {
+    case Relation::a_contains_b: out.b = detail::gradient_in<T>(area_gradient<R>(b), R(1)); break;
+    case Relation::b_contains_a: out.a = detail::gradient_in<T>(area_gradient<R>(a), R(1)); break;
+    case Relation::equal: out.a = out.b = detail::constant_gradient<T, 2>(std::numeric_limits<T>::quiet_NaN()); break;
+    default: break;
   }
   return out;
 }
@@ -376,6 +488,38 @@ T intersection_over_union(const Ellipse2<T>& a, const Ellipse2<T>& b, const Opti
   return T(common / (area_of(a) + area_of(b) - common));
 }
 
+template <class T>
+IouGradient<T> intersection_over_union_gradient(const Ellipse2<T>& a, const Ellipse2<T>& b,
+                                                const Options& options) noexcept {
+  if (const detail::Scale scale = detail::scale_of(a, b); scale.range == detail::Range::scaled) {
+    // Scale-free: derivatives by lengths scale as 1 / length, by angles not at all.
+    const int e = scale.exponent;
+    IouGradient<T> out = intersection_over_union_gradient(detail::scaled(a, -e), detail::scaled(b, -e), options);
+    for (BodyGradient<T, 2>* g : {&out.a, &out.b}) {
+      g->center = detail::times_pow2(g->center, -e);
+      g->radii = detail::times_pow2(g->radii, -e);
+    }
+    return out;
+  }
+  using R = detail::Work<T>;
+  const OverlapAreaGradient<T> i = overlap_area_gradient(a, b, options);
+  const R common = R(i.value.area), union_area = area_of(a) + area_of(b) - common;
+  IouGradient<T> out{T(common / union_area), i.value.relation, {}, {}};
+  // d IoU = (d I (U + I) - I d area(X)) / U^2, for X = a, b.
+  auto quotient = [&](const BodyGradient<T, 2>& di, const Ellipse2<T>& x) {
+    const BodyGradient<R, 2> da = area_gradient<R>(x);
+    const R k = R(1) / (union_area * union_area), grow = union_area + common;
+    BodyGradient<R, 2> g;
+    g.center = di.center.template cast<R>() * grow;
+    g.orientation = R(di.orientation) * grow;
+    g.radii = di.radii.template cast<R>() * grow - common * da.radii;
+    return detail::gradient_in<T>(g, k);
+  };
+  out.a = quotient(i.a, a);
+  out.b = quotient(i.b, b);
+  return out;
+}
+
 template BoundaryIntersection<float> intersect_boundaries<float>(const Ellipse2<float>&, const Ellipse2<float>&,
                                                                  const Options&) noexcept;
 template BoundaryIntersection<double> intersect_boundaries<double>(const Ellipse2<double>&, const Ellipse2<double>&,
@@ -384,6 +528,14 @@ template OverlapArea<float> overlap_area<float>(const Ellipse2<float>&, const El
 template OverlapArea<double> overlap_area<double>(const Ellipse2<double>&, const Ellipse2<double>&,
                                                   const Options&) noexcept;
 template float intersection_over_union<float>(const Ellipse2<float>&, const Ellipse2<float>&, const Options&) noexcept;
+template OverlapAreaGradient<float> overlap_area_gradient<float>(const Ellipse2<float>&, const Ellipse2<float>&,
+                                                                 const Options&) noexcept;
+template OverlapAreaGradient<double> overlap_area_gradient<double>(const Ellipse2<double>&, const Ellipse2<double>&,
+                                                                   const Options&) noexcept;
+template IouGradient<float> intersection_over_union_gradient<float>(const Ellipse2<float>&, const Ellipse2<float>&,
+                                                                    const Options&) noexcept;
+template IouGradient<double> intersection_over_union_gradient<double>(const Ellipse2<double>&,
+                                                                      const Ellipse2<double>&, const Options&) noexcept;
 template double intersection_over_union<double>(const Ellipse2<double>&, const Ellipse2<double>&,
                                                 const Options&) noexcept;
 

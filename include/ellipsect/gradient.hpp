@@ -7,8 +7,8 @@
 // orientation as a world-frame rotation vector phi at the current pose: the body turned about
 // its center to axes exp([phi]x) * axes (2D: phi a counterclockwise angle), differentiated at
 // phi = 0. So d/dphi of a quantity q is the rate of q as the body spins about its center
-// with unit angular velocity about each world axis; for a body given by a unit quaternion q0,
-// the derivative along a change dq of the quaternion is d/dphi . 2 (dq q0^-1).vec.
+// with unit angular velocity about each world axis (quaternion_gradient below carries it to
+// a quaternion's components).
 //
 // Method: at an exact solution the derivatives follow in closed form, with no second solve:
 // optimal values by the envelope theorem (the derivative of the maximized function at the
@@ -35,5 +35,23 @@ struct BodyGradient {
 };
 static_assert(detail::has_plain_layout<BodyGradient<float, 2>, float[2], float, float[2]> &&
               detail::has_plain_layout<BodyGradient<double, 3>, double[3], double[3], double[3]>);
+
+// The gradient by the components of a quaternion q = (w, x, y, z) of a quantity whose gradient
+// by the world rotation vector is g, for a body whose axes are those of q / |q| (any nonzero
+// norm). A world turn dphi takes q to (1, dphi / 2) q, so a change dq is the turn
+// dphi = 2 vec(dq conj(q)) / |q|^2 = 2 (w dv - dw v + v x dv) / |q|^2 (v = (x, y, z); a change
+// along q turns nothing), and
+//     d/dw = -2 (v . g) / |q|^2,   d/dv = 2 (w g + g x v) / |q|^2.
+// Exact up to rounding (a few ulps of |g|).
+template <class T>
+Vec<T, 4> quaternion_gradient(const Vec<T, 4>& q, const Vec<T, 3>& g) noexcept {
+  const T w = q[0];
+  const Vec<T, 3> v = q.template tail<3>();
+  const T k = T(2) / q.squaredNorm();
+  Vec<T, 4> out;
+  out[0] = -k * v.dot(g);
+  out.template tail<3>() = k * (w * g + g.cross(v));
+  return out;
+}
 
 }  // namespace ellipsect

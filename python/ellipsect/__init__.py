@@ -12,7 +12,9 @@ TriangleMesh2 / TriangleMesh3 (the answer then names the triangle); collide_and_
 a body through a list of half-spaces or a mesh. Among many bodies,
 overlapping_pairs and earliest_contact (open space or a periodic box). Every number comes
 from the library; batch answers equal the scalar ones bit for bit. Pictures: ellipsect.plot;
-Dask: ellipsect.dask.
+Dask: ellipsect.dask. Derivatives: signed_distance_gradient, perram_wertheim_gradient,
+first_contact_gradient, and in 2D overlap_area_gradient and iou_gradient (batches;
+ellipsect.torch wraps them for PyTorch).
 """
 
 from ._ellipsect import (  # noqa: F401
@@ -32,6 +34,7 @@ from ._ellipsect import (  # noqa: F401
     ContactArrays,
     ContactFunction,
     ContactFunctionStatus,
+    ContactGradientArrays,
     ContactStatus,
     CrossingKind,
     Distance2,
@@ -42,6 +45,7 @@ from ._ellipsect import (  # noqa: F401
     Ellipses,
     Ellipsoid,
     Ellipsoids,
+    GradientArrays,
     HalfPlane,
     HalfSpace,
     InputError,
@@ -83,18 +87,24 @@ from ._ellipsect import (  # noqa: F401
     earliest_contact,
     gpu_info,
     first_contact,
+    first_contact_gradient,
     intersect_boundaries,
     iou,
+    iou_gradient,
     niemitalo_error_bound,
     overlap,
     overlap_on_gpu,
     overlap_area,
+    overlap_area_gradient,
     overlapping_pairs,
     pairs,
     perram_wertheim,
+    perram_wertheim_gradient,
     polygonal_overlap,
+    quaternion_gradient,
     segment_circle,
     signed_distance,
+    signed_distance_gradient,
     simd_target,
 )
 
@@ -116,6 +126,7 @@ __all__ = [
     "ContactArrays",
     "ContactFunction",
     "ContactFunctionStatus",
+    "ContactGradientArrays",
     "ContactStatus",
     "CrossingKind",
     "Distance2",
@@ -126,6 +137,7 @@ __all__ = [
     "Ellipses",
     "Ellipsoid",
     "Ellipsoids",
+    "GradientArrays",
     "HalfPlane",
     "HalfSpace",
     "InputError",
@@ -166,19 +178,25 @@ __all__ = [
     "distance",
     "earliest_contact",
     "first_contact",
+    "first_contact_gradient",
     "gpu_info",
     "intersect_boundaries",
     "iou",
+    "iou_gradient",
     "niemitalo_error_bound",
     "overlap",
     "overlap_area",
+    "overlap_area_gradient",
     "overlap_on_gpu",
     "overlapping_pairs",
     "pairs",
     "perram_wertheim",
+    "perram_wertheim_gradient",
     "polygonal_overlap",
+    "quaternion_gradient",
     "segment_circle",
     "signed_distance",
+    "signed_distance_gradient",
     "simd_target",
 ]
 

@@ -235,7 +235,7 @@ std::span<const Ellipsoid<double, N>> span_of(const Bodies<N>& b) {
   return b.items;
 }
 
-py::object contact_arrays, distance_arrays;  // namedtuple classes, set in def_batch
+py::object contact_arrays, distance_arrays, gradient_arrays, contact_gradient_arrays;  // namedtuples, def_batch
 
 // Velocities and time windows of n moving pairs, checked.
 template <int N>
@@ -615,6 +615,199 @@ void def_batch_queries(py::module_& m) {
             .c_str());
 }
 
+// ---- Value and gradient (gradient.hpp) --------------------------------------------------
+
+// Rotation vectors of n rows: (n,) in 2D, (n, 3) in 3D.
+template <int N>
+py::array_t<double> rotation_array(std::size_t n) {
+  return N == 2 ? py::array_t<double>(py::ssize_t(n)) : py::array_t<double>({py::ssize_t(n), py::ssize_t(3)});
+}
+template <int N>
+void put_rotation(double* rows, std::size_t i, const RotationVector<double, N>& w) {
+  if constexpr (N == 2)
+    rows[i] = w;
+  else
+    Eigen::Map<Vec<double, 3>>{rows + i * 3} = w;
+}
+
+// One body's gradients over n pairs: center (n, N), orientation (rotation_array), radii (n, N).
+template <int N>
+struct GradientColumns {
+  py::array_t<double> center, orientation, radii;
+  explicit GradientColumns(std::size_t n)
+      : center({py::ssize_t(n), py::ssize_t(N)}), orientation(rotation_array<N>(n)), radii({py::ssize_t(n), py::ssize_t(N)}) {}
+  // Pointers taken with the GIL held; put() runs without it.
+  struct Rows {
+    double *center, *orientation, *radii;
+    void put(std::size_t i, const BodyGradient<double, N>& g) const {
+      Eigen::Map<Vec<double, N>>{center + i * N} = g.center;
+      Eigen::Map<Vec<double, N>>{radii + i * N} = g.radii;
+      put_rotation<N>(orientation, i, g.orientation);
+    }
+  };
+  Rows rows() { return {center.mutable_data(), orientation.mutable_data(), radii.mutable_data()}; }
+};
+
+// Angular velocities of n bodies ((n,) in 2D, (n, 3) in 3D); None: not turning.
+template <int N>
+std::vector<RotationVector<double, N>> angular_velocities(py::handle given, std::size_t n, const std::string& name) {
+  RotationVector<double, N> still;
+  if constexpr (N == 2)
+    still = 0.0;
+  else
+    still = Vec<double, 3>::Zero();
+  std::vector<RotationVector<double, N>> out(n, still);
+  if (given.is_none()) return out;
+  py::ssize_t rows = static_cast<py::ssize_t>(n);
+  const auto w = checked(given, name, N == 2 ? std::vector<py::ssize_t>{} : std::vector<py::ssize_t>{3}, rows, "a");
+  for (std::size_t i = 0; i < n; ++i) {
+    if constexpr (N == 2)
+      out[i] = w.data()[i];
+    else
+      out[i] = row_vec<3>(w.data() + 3 * i);
+  }
+  return out;
+}
+
+inline const std::string gradient_fields =
+    "center_a (n, N), orientation_a ((n,) angles in 2D, (n, 3) world rotation vectors in 3D: "
+    "quaternion_gradient carries them to quaternions), radii_a (n, N), and the same for b";
+
+template <int N>
+void def_gradient_queries(py::module_& m) {
+  using B = Bodies<N>;
+  // signed_distance_gradient and perram_wertheim_gradient: the scalar function on every pair.
+  // query(a, b, options) -> g with gradients g.a, g.b; read(g) -> {status, value}.
+  auto static_query = [&m](const char* name, auto query, auto read, const std::string& summary,
+                           const std::string& value) {
+    m.def(name,
+          [query, read](const B& a, const B& b, const Options& o, int threads) {
+            const std::size_t n = paired(a, b);
+            py::array_t<std::int8_t> status(static_cast<py::ssize_t>(n));
+            py::array_t<double> values(static_cast<py::ssize_t>(n));
+            GradientColumns<N> ga(n), gb(n);
+            std::int8_t* s = status.mutable_data();
+            double* v = values.mutable_data();
+            const auto ra = ga.rows(), rb = gb.rows();
+            {
+              py::gil_scoped_release release;
+              parallel_for(n, threads, [&](std::size_t i) {
+                const auto g = query(a.items[i], b.items[i], o);
+                const auto [status_i, value_i] = read(g);
+                s[i] = static_cast<std::int8_t>(status_i);
+                v[i] = value_i;
+                ra.put(i, g.a);
+                rb.put(i, g.b);
+              });
+            }
+            return py::reinterpret_steal<GradientArraysObject>(
+                gradient_arrays(status, values, ga.center, ga.orientation, ga.radii, gb.center, gb.orientation,
+                                gb.radii)
+                    .release());
+          },
+          py::arg("a"), py::arg("b"), options_arg(), py::arg("threads") = 0,
+          docs::doc(summary, docs::batch_pair,
+                    "GradientArrays(status int8 (n,), value (n,): " + value + ", " + gradient_fields + ").",
+                    docs::batch_raises)
+              .c_str());
+  };
+  static_query(
+      "signed_distance_gradient",
+      [](const Ellipsoid<double, N>& a, const Ellipsoid<double, N>& b, const Options& o) {
+        return signed_distance_gradient(a, b, o);
+      },
+      [](const DistanceGradient<double, N>& g) { return std::pair{g.value.status, g.value.distance}; },
+      "The signed distance of each pair and its derivatives by both bodies' parameters (distance.hpp).",
+      "the signed distance, status DistanceStatus");
+  static_query(
+      "perram_wertheim_gradient",
+      [](const Ellipsoid<double, N>& a, const Ellipsoid<double, N>& b, const Options& o) {
+        return perram_wertheim_gradient(a, b, o);
+      },
+      [](const ContactFunctionGradient<double, N>& g) { return std::pair{g.value.status, g.value.f}; },
+      "The Perram-Wertheim F of each pair and its derivatives by both bodies' parameters (contact_function.hpp).",
+      "F, status ContactFunctionStatus");
+  if constexpr (N == 2) {
+    static_query(
+        "overlap_area_gradient",
+        [](const Ellipse2<double>& a, const Ellipse2<double>& b, const Options& o) {
+          return overlap_area_gradient(a, b, o);
+        },
+        [](const OverlapAreaGradient<double>& g) { return std::pair{g.value.relation, g.value.area}; },
+        "The overlap area of each pair of ellipses and its derivatives by both bodies' parameters "
+        "(intersect2.hpp).",
+        "the area, status the Relation");
+    static_query(
+        "iou_gradient",
+        [](const Ellipse2<double>& a, const Ellipse2<double>& b, const Options& o) {
+          return intersection_over_union_gradient(a, b, o);
+        },
+        [](const IouGradient<double>& g) { return std::pair{g.relation, g.value}; },
+        "The intersection over union of each pair of ellipses and its derivatives by both bodies' parameters "
+        "(intersect2.hpp).",
+        "the IoU, status the Relation");
+  }
+  m.def("first_contact_gradient",
+        [](const B& a, const ArrayLike& velocity_a, const B& b, const ArrayLike& velocity_b, const ArrayLike& t_max,
+           const std::optional<ArrayLike>& angular_velocity_a, const std::optional<ArrayLike>& angular_velocity_b,
+           const Options& o, int threads) {
+          const std::size_t n = paired(a, b);
+          const Motion<N> motion = motion_of<N>(n, velocity_a, velocity_b, t_max);
+          const bool rigid = angular_velocity_a || angular_velocity_b;
+          const auto wa = angular_velocities<N>(or_none(angular_velocity_a), n, "angular_velocity_a");
+          const auto wb = angular_velocities<N>(or_none(angular_velocity_b), n, "angular_velocity_b");
+          py::array_t<std::int8_t> status(static_cast<py::ssize_t>(n));
+          py::array_t<double> time(static_cast<py::ssize_t>(n));
+          GradientColumns<N> ga(n), gb(n);
+          py::array_t<double> dva({py::ssize_t(n), py::ssize_t(N)}), dvb({py::ssize_t(n), py::ssize_t(N)});
+          py::array_t<double> dwa = rotation_array<N>(n), dwb = rotation_array<N>(n);
+          std::int8_t* s = status.mutable_data();
+          double *t = time.mutable_data(), *va = dva.mutable_data(), *vb = dvb.mutable_data(),
+                 *wa_out = dwa.mutable_data(), *wb_out = dwb.mutable_data();
+          const auto ra = ga.rows(), rb = gb.rows();
+          {
+            py::gil_scoped_release release;
+            parallel_for(n, threads, [&](std::size_t i) {
+              ContactGradient<double, N> g;
+              if (rigid) {
+                g = first_contact_gradient<double, N>(a.items[i], RigidMotion<double, N>{motion.velocity_a[i], wa[i]},
+                                                      b.items[i], RigidMotion<double, N>{motion.velocity_b[i], wb[i]},
+                                                      motion.t_max[i], o);
+              } else {
+                g = first_contact_gradient<double, N>(a.items[i], motion.velocity_a[i], b.items[i],
+                                                      motion.velocity_b[i], motion.t_max[i], o);
+              }
+              s[i] = static_cast<std::int8_t>(g.value.status);
+              t[i] = g.value.time;
+              ra.put(i, g.a);
+              rb.put(i, g.b);
+              Eigen::Map<Vec<double, N>>{va + i * N} = g.velocity_a;
+              Eigen::Map<Vec<double, N>>{vb + i * N} = g.velocity_b;
+              put_rotation<N>(wa_out, i, g.angular_velocity_a);
+              put_rotation<N>(wb_out, i, g.angular_velocity_b);
+            });
+          }
+          return py::reinterpret_steal<ContactGradientArraysObject>(
+              contact_gradient_arrays(status, time, ga.center, ga.orientation, ga.radii, gb.center, gb.orientation,
+                                      gb.radii, dva, dvb, dwa, dwb)
+                  .release());
+        },
+        py::arg("a"), py::arg("velocity_a"), py::arg("b"), py::arg("velocity_b"), py::arg("t_max"),
+        py::arg("angular_velocity_a") = py::none(), py::arg("angular_velocity_b") = py::none(), options_arg(),
+        py::arg("threads") = 0,
+        docs::doc("The first contact time of each pair of moving bodies and its derivatives by both bodies' "
+                  "parameters and motions (contact.hpp): linear motion, or rigid motion where an angular velocity "
+                  "is given.",
+                  "a, b: two Ellipses or two Ellipsoids of equal length.\nvelocity_a, velocity_b: (n, N).\n"
+                  "t_max: a number or (n,).\nangular_velocity_a, angular_velocity_b: None (not turning), (n,) "
+                  "rates in 2D, (n, 3) in 3D.\n" + docs::options + "\n" + docs::threads,
+                  "ContactGradientArrays(status int8 (n,) of ContactStatus, time (n,), " + gradient_fields +
+                      ", velocity_a, velocity_b (n, N), angular_velocity_a, angular_velocity_b ((n,) or (n, 3))); "
+                      "the derivatives are 0 for overlapping_at_start and NaN where the time has none.",
+                  "TypeError: arrays not of numbers.\nValueError: lengths or shapes that differ.")
+            .c_str());
+}
+
 // earliest_contact among n bodies with velocities (n, dim) and, optionally, angular
 // velocities ((n,) in 2D, (n, 3) in 3D), in open space or a periodic box.
 template <int N>
@@ -700,8 +893,19 @@ void def_batch(py::module_& m) {
                               py::arg("module") = "ellipsect");
   distance_arrays = namedtuple("DistanceArrays", py::make_tuple("status", "distance", "point_a", "point_b", "normal"),
                                py::arg("module") = "ellipsect");
+  gradient_arrays = namedtuple("GradientArrays",
+                               py::make_tuple("status", "value", "center_a", "orientation_a", "radii_a", "center_b",
+                                              "orientation_b", "radii_b"),
+                               py::arg("module") = "ellipsect");
+  contact_gradient_arrays =
+      namedtuple("ContactGradientArrays",
+                 py::make_tuple("status", "time", "center_a", "orientation_a", "radii_a", "center_b", "orientation_b",
+                                "radii_b", "velocity_a", "velocity_b", "angular_velocity_a", "angular_velocity_b"),
+                 py::arg("module") = "ellipsect");
   m.attr("ContactArrays") = contact_arrays;
   m.attr("DistanceArrays") = distance_arrays;
+  m.attr("GradientArrays") = gradient_arrays;
+  m.attr("ContactGradientArrays") = contact_gradient_arrays;
 
   def_bodies<2>(m, "Ellipses", "Ellipse")
       .def(py::init([](const ArrayLike& centers, const ArrayLike& radii, const std::optional<ArrayLike>& angles,
@@ -744,6 +948,25 @@ void def_batch(py::module_& m) {
                       [](const py::tuple& t) { return make_ellipsoids(t[0], t[1], py::none(), t[2], false); }));
   def_batch_queries<2>(m);
   def_batch_queries<3>(m);
+  def_gradient_queries<2>(m);
+  def_gradient_queries<3>(m);
+  m.def(
+      "quaternion_gradient",
+      [](const ArrayLike& quaternions, const ArrayLike& gradient) {
+        py::ssize_t rows = -1;
+        const auto q = checked(quaternions, "quaternions", {4}, rows, "quaternions");
+        const auto g = checked(gradient, "gradient", {3}, rows, "quaternions");
+        return rows_of(std::size_t(rows), {4}, [&](std::size_t i, double* p) {
+          Eigen::Map<Vec<double, 4>>{p} = quaternion_gradient<double>(row_vec<4>(q.data() + 4 * i),
+                                                                       row_vec<3>(g.data() + 3 * i));
+        });
+      },
+      py::arg("quaternions"), py::arg("gradient"),
+      docs::doc("Gradients by world rotation vectors carried to quaternions (w, x, y, z) (gradient.hpp).",
+                "quaternions: (n, 4), any nonzero norms (the bodies' axes are those of q / |q|).\ngradient: (n, 3), "
+                "e.g. orientation_a of a GradientArrays.",
+                "float64 array (n, 4).", "TypeError: arrays not of numbers.\nValueError: shapes that differ.")
+          .c_str());
   m.def(
       "gpu_info",
       [] {

@@ -204,7 +204,8 @@ public:
   PYBIND11_OBJECT_DEFAULT(ArrayLike, py::object, any_object)
 };
 // Results that are Python objects, named in signatures and type stubs by what they are:
-// the namedtuples ContactArrays and DistanceArrays, and the prepared pairs of either dtype.
+// the namedtuples ContactArrays, DistanceArrays, GradientArrays and ContactGradientArrays, and
+// the prepared pairs of either dtype.
 class ContactArraysObject : public py::object {
 public:
   PYBIND11_OBJECT_DEFAULT(ContactArraysObject, py::object, any_object)
@@ -212,6 +213,14 @@ public:
 class DistanceArraysObject : public py::object {
 public:
   PYBIND11_OBJECT_DEFAULT(DistanceArraysObject, py::object, any_object)
+};
+class GradientArraysObject : public py::object {
+public:
+  PYBIND11_OBJECT_DEFAULT(GradientArraysObject, py::object, any_object)
+};
+class ContactGradientArraysObject : public py::object {
+public:
+  PYBIND11_OBJECT_DEFAULT(ContactGradientArraysObject, py::object, any_object)
 };
 template <int N>
 class PairsObject : public py::object {
@@ -318,6 +327,14 @@ struct handle_type_name<ellipsect::python::ContactArraysObject> {
 template <>
 struct handle_type_name<ellipsect::python::DistanceArraysObject> {
   static constexpr auto name = const_name("DistanceArrays");
+};
+template <>
+struct handle_type_name<ellipsect::python::GradientArraysObject> {
+  static constexpr auto name = const_name("GradientArrays");
+};
+template <>
+struct handle_type_name<ellipsect::python::ContactGradientArraysObject> {
+  static constexpr auto name = const_name("ContactGradientArrays");
 };
 template <int N>
 struct handle_type_name<ellipsect::python::PairsObject<N>> {

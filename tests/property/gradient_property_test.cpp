@@ -1,12 +1,14 @@
 // Gradients (gradient.hpp) against 50-digit central differences of the values, each value
 // computed by a route of its own in the world frame: the maximum of the support gap polished
 // by Newton on the sphere (signed distance), golden-section search on lambda (the
-// Perram-Wertheim F), and the secant root in time of that maximum (the linear contact time).
+// Perram-Wertheim F), the secant root in time of that maximum (the contact time), and
+// Gauss-Kronrod quadrature of the chord lengths (the overlap area).
 // Bodies are moved in Real: centers, radii and velocities by h, orientations by the world
 // rotation exp(h [e_j]x), so the differences see no rounding of the perturbed bodies.
 #include <ellipsect/contact.hpp>
 #include <ellipsect/contact_function.hpp>
 #include <ellipsect/distance.hpp>
+#include <ellipsect/intersect2.hpp>
 
 #include "scenarios/rigid.hpp"
 #include "tests/property/common.hpp"
@@ -18,6 +20,7 @@
 #include <cmath>
 #include <cstdio>
 #include <functional>
+#include <numbers>
 #include <string>
 
 namespace ellipsect::testing {
@@ -80,6 +83,7 @@ double component(const BodyGradient<double, N>& g, int k) {
 struct Comparison {
   std::array<std::vector<std::pair<double, Real>>, 5> kinds;
   Real scale = 1;  // the pair's length scale: an orientation's derivative is a length times a center's
+  Real per_length_floor = 0;  // the least unit of the derivatives by lengths
 
   void add(int kind, double library, const Real& reference) { kinds[kind].push_back({library, reference}); }
   Real largest(int kind) const {
@@ -92,7 +96,7 @@ struct Comparison {
   // velocities, and angular velocities as the velocities' times the scale (a kind that is 0
   // by symmetry, a disk's turn, is measured in the units of the others).
   double worst() const {
-    const Real per_length = std::max(largest(0), largest(2)), per_speed = largest(3);
+    const Real per_length = std::max({largest(0), largest(2), per_length_floor}), per_speed = largest(3);
     const std::array<Real, 5> unit = {per_length, std::max(largest(1), per_length * scale), per_length, per_speed,
                                       std::max(largest(4), per_speed * scale)};
     double worst = 0;
@@ -106,7 +110,7 @@ struct Comparison {
     std::string s;
     for (int k = 0; k < 5; ++k)
       for (const auto& [l, r] : kinds[k])
-        s += "  kind " + std::to_string(k) + ": " + std::to_string(l) + " vs " + r.str(20) + "\n";
+        s += "  kind " + std::to_string(k) + ": " + Real(l).str(17) + " vs " + r.str(20) + "\n";
     return s;
   }
 };
@@ -150,6 +154,7 @@ std::string scientific(double x) {
 // carry the normal's error (contact.hpp: 1e-9 rad) through the support points.
 constexpr double static_tolerance = 1e-12;
 constexpr double contact_tolerance = 1e-8;
+constexpr double area_tolerance = 1e-9;
 
 template <int N>
 void signed_distance_matches_differences() {
@@ -383,6 +388,92 @@ void rigid_contact_time_matches_differences() {
   tally.print("first_contact_gradient (rigid), worst relative error " + scientific(worst));
 }
 
+// overlap_area_gradient and intersection_over_union_gradient against central differences of
+// the reference's area (Gauss-Kronrod quadrature, ~1e-25 relative) and of the IoU formed from
+// it and the moved bodies' areas in Real, the bodies moved by 1e-10 of their scale (the
+// quadrature's error over the step stays near 1e-15).
+void area_matches_differences() {
+  Tally tally;
+  double worst_area = 0, worst_iou = 0;
+  constexpr std::array<scenarios::Category, 6> categories = {
+      scenarios::Category::random,       scenarios::Category::high_aspect,  scenarios::Category::containment,
+      scenarios::Category::scaled_small, scenarios::Category::scaled_large, scenarios::Category::far_apart};
+  const int n = static_cast<int>(categories.size());
+  const Real pi = boost::math::constants::pi<Real>();
+  auto area = [&](const RBody<2>& x) { return pi * x.radii(0) * x.radii(1); };
+  for (int i = 0; i < cases(60); ++i) {
+    const auto category = categories[i % n];
+    const int far = i / n % 2;
+    scenarios::Case<2> c = scenarios::make_case<2>(category, 7400 + i);
+    const double size = c.a.radii().maxCoeff() + c.b.radii().maxCoeff();
+    // The centers drawn to at most 0.6 of the radii's sum apart, so that most pairs overlap.
+    const Vec<double, 2> apart = c.b.center() - c.a.center();
+    if (apart.norm() > 0.6 * size) c.b = c.b.translated(Vec<double, 2>(apart * (0.6 * size / apart.norm() - 1)));
+    const auto [a, b] = placed<2>(c, Vec<double, 2>::Constant(far ? 1e6 * size : 0.0));
+    const OverlapAreaGradient<double> g = overlap_area_gradient(a, b);
+    const IouGradient<double> u = intersection_over_union_gradient(a, b);
+    tally.add(scenarios::name(category), to_string(g.value.relation));
+    ASSERT_NE(g.value.relation, Relation::equal) << describe(c);
+    const RBody<2> ra = ref::detail::make_rbody<2>(to_ref(a)), rb = ref::detail::make_rbody<2>(to_ref(b));
+    const Real scale = std::max(ra.rmax, rb.rmax);
+    // A sliver's derivatives are small, and they are formed from crossings known to
+    // 1e-12 of the sizes: the units are at least those of a full overlap of the smaller
+    // ellipse (its largest radius for the area, its inverse for the IoU).
+    const Real smaller = area(ra) < area(rb) ? ra.rmax : rb.rmax;
+    Comparison area_cmp, iou_cmp;
+    area_cmp.scale = iou_cmp.scale = scale;
+    area_cmp.per_length_floor = smaller;
+    iou_cmp.per_length_floor = 1 / smaller;
+    for (int body = 0; body < 2; ++body)
+      for (int k = 0; k < params<2>; ++k) {
+        const Real h = kind_of<2>(k) == 1 ? Real("1e-10") : Real("1e-10") * scale;
+        Real area_at[2], iou_at[2];
+        for (int side = 0; side < 2; ++side) {
+          const Real step = side == 0 ? h : Real(-h);
+          const RBody<2> x = body == 0 ? moved<2>(ra, k, step) : ra, y = body == 1 ? moved<2>(rb, k, step) : rb;
+          area_at[side] = ref::overlap_area(x, y);
+          iou_at[side] = area_at[side] / (area(x) + area(y) - area_at[side]);
+        }
+        area_cmp.add(kind_of<2>(k), component<2>(body == 0 ? g.a : g.b, k), (area_at[0] - area_at[1]) / (2 * h));
+        iou_cmp.add(kind_of<2>(k), component<2>(body == 0 ? u.a : u.b, k), (iou_at[0] - iou_at[1]) / (2 * h));
+      }
+    worst_area = std::max(worst_area, area_cmp.worst());
+    worst_iou = std::max(worst_iou, iou_cmp.worst());
+    EXPECT_LE(area_cmp.worst(), area_tolerance) << describe(c) << "\n far " << far << "\n" << area_cmp.show();
+    EXPECT_LE(iou_cmp.worst(), area_tolerance) << describe(c) << "\n far " << far << "\n" << iou_cmp.show();
+  }
+  tally.print("overlap_area_gradient, worst relative error " + scientific(worst_area) +
+              "; intersection_over_union_gradient " + scientific(worst_iou));
+}
+
+// Where there is no derivative or it is 0 in closed form: equal ellipses (NaN), separated
+// and touching (0), containment (the inner one's area derivatives).
+TEST(GradientProperty, AreaAtItsSpecialSets) {
+  const Ellipse2<double> e = make_ellipse<double>(Vec2<double>(1, 2), 0.3, Vec2<double>(2, 0.5));
+  const OverlapAreaGradient<double> same = overlap_area_gradient(e, e);
+  EXPECT_EQ(same.value.relation, Relation::equal);
+  EXPECT_TRUE(std::isnan(same.a.center[0]) && std::isnan(same.b.orientation) && std::isnan(same.a.radii[1]));
+  const Ellipse2<double> far = make_ellipse<double>(Vec2<double>(10, 2), 0.3, Vec2<double>(2, 0.5));
+  const Ellipse2<double> touching = make_ellipse<double>(Vec2<double>(5, 2), 0.0, Vec2<double>(1, 1));
+  const Ellipse2<double> at_origin = make_ellipse<double>(Vec2<double>(1, 2), 0.0, Vec2<double>(3, 1));
+  for (const auto& [x, y] : {std::pair{e, far}, std::pair{at_origin, touching}}) {
+    const IouGradient<double> g = intersection_over_union_gradient(x, y);
+    EXPECT_TRUE(g.relation == Relation::separated || g.relation == Relation::touching);
+    for (const BodyGradient<double, 2>& d : {g.a, g.b}) {
+      EXPECT_EQ(d.center, Vec2<double>::Zero());
+      EXPECT_EQ(d.orientation, 0.0);
+      EXPECT_EQ(d.radii, Vec2<double>::Zero());
+    }
+  }
+  const Ellipse2<double> inner = make_ellipse<double>(Vec2<double>(1.2, 2.1), 1.0, Vec2<double>(0.5, 0.2));
+  const OverlapAreaGradient<double> in = overlap_area_gradient(e, inner);
+  EXPECT_EQ(in.value.relation, Relation::a_contains_b);
+  EXPECT_EQ(in.a.radii, Vec2<double>::Zero());
+  EXPECT_DOUBLE_EQ(in.b.radii[0], std::numbers::pi * 0.2);
+  EXPECT_DOUBLE_EQ(in.b.radii[1], std::numbers::pi * 0.5);
+  EXPECT_EQ(in.b.center, Vec2<double>::Zero());
+}
+
 TEST(GradientProperty, SignedDistance2D) { signed_distance_matches_differences<2>(); }
 TEST(GradientProperty, SignedDistance3D) { signed_distance_matches_differences<3>(); }
 TEST(GradientProperty, PerramWertheim2D) { perram_wertheim_matches_differences<2>(); }
@@ -391,6 +482,7 @@ TEST(GradientProperty, LinearContactTime2D) { linear_contact_time_matches_differ
 TEST(GradientProperty, LinearContactTime3D) { linear_contact_time_matches_differences<3>(); }
 TEST(GradientProperty, RigidContactTime2D) { rigid_contact_time_matches_differences<2>(); }
 TEST(GradientProperty, RigidContactTime3D) { rigid_contact_time_matches_differences<3>(); }
+TEST(GradientProperty, OverlapAreaAndIou) { area_matches_differences(); }
 
 }  // namespace
 }  // namespace ellipsect::testing

@@ -311,9 +311,8 @@ inline std::vector<Real> real_roots(const std::vector<Real>& c) {
 // The points where the boundaries of two ellipses meet (a tangency appears once when it is
 // exact to ~1e-40; nearly tangent pairs give two close points or none). Accuracy ~1e-45
 // relative to the sizes for transverse crossings.
-inline std::vector<RVec<2>> boundary_intersection(const Body<2>& a, const Body<2>& b) {
+inline std::vector<RVec<2>> boundary_intersection(const detail::RBody<2>& ra, const detail::RBody<2>& rb) {
   using namespace detail;
-  const RBody<2> ra = make_rbody<2>(a, "a"), rb = make_rbody<2>(b, "b");
   const RVec<2> d = ra.c - rb.c;
   auto level = [&](const RVec<2>& u) {  // q_b at a's boundary point with parameter u, minus 1
     const RVec<2> v = d + ra.L * u;
@@ -351,10 +350,13 @@ inline std::vector<RVec<2>> boundary_intersection(const Body<2>& a, const Body<2
   return points;
 }
 
+inline std::vector<RVec<2>> boundary_intersection(const Body<2>& a, const Body<2>& b) {
+  return boundary_intersection(detail::make_rbody<2>(a, "a"), detail::make_rbody<2>(b, "b"));
+}
+
 // Area of the intersection of two ellipses (~1e-25 relative to the smaller area).
-inline Real overlap_area(const Body<2>& a, const Body<2>& b) {
+inline Real overlap_area(const detail::RBody<2>& ra, const detail::RBody<2>& rb) {
   using namespace detail;
-  const RBody<2> ra = make_rbody<2>(a, "a"), rb = make_rbody<2>(b, "b");
   struct Chord {
     const RBody<2>& e;
     Real det;  // det M = 1 / (r0 r1)^2
@@ -373,7 +375,7 @@ inline Real overlap_area(const Body<2>& a, const Body<2>& b) {
   const Real lo = std::max(Real(ra.c(0) - wa), Real(rb.c(0) - wb)), hi = std::min(Real(ra.c(0) + wa), Real(rb.c(0) + wb));
   if (!(lo < hi)) return 0;
   std::vector<Real> cuts{lo, hi};
-  for (const RVec<2>& p : boundary_intersection(a, b))
+  for (const RVec<2>& p : boundary_intersection(ra, rb))
     if (p(0) > lo && p(0) < hi) cuts.push_back(p(0));
   std::sort(cuts.begin(), cuts.end());
   auto length = [&](const Real& x) {
@@ -399,6 +401,10 @@ inline Real overlap_area(const Body<2>& a, const Body<2>& b) {
                                                                           Real("1e-24"));
   }
   return area;
+}
+
+inline Real overlap_area(const Body<2>& a, const Body<2>& b) {
+  return overlap_area(detail::make_rbody<2>(a, "a"), detail::make_rbody<2>(b, "b"));
 }
 
 // The maximum of the support gap of two bodies in Real, by the polish of signed_distance
