@@ -108,10 +108,10 @@ fuzz_mutate() {
     { echo "$log" | tail -40; return 1; }
 }
 
-# Executions per target for the CI mutation run, the corpus's included: about 25 s each on
-# one core, rigid about 90 s (its corpus alone about 45 s).
+# Executions per target for the CI mutation run, the corpus's included: 15 to 30 s each on
+# one core.
 declare -A fuzz_runs=([factories]=250000 [queries]=3000 [intersect2]=150000 [niemitalo]=90000 [scene]=30000
-                       [rigid]=800 [broad_phase]=2000)
+                       [rigid]=8000 [broad_phase]=6000)
 
 # Every target's check and mutation run, as many at once as there are cores; each target's
 # output is printed when it ends, and the step fails if any target did (all of them run).
