@@ -323,6 +323,7 @@ ContactGradient<T, N> first_contact_gradient(const Ellipsoid<T, N>& a, const Vec
   using R = detail::Work<T>;
   ContactGradient<T, N> out = detail::unanswered_gradient(first_contact(a, velocity_a, b, velocity_b, t_max, options));
   if (out.value.status != ContactStatus::hit) return out;
+  // The bodies only translate: their support radii at the hit are those at time 0.
   const RotationVector<R, N> still = detail::constant_gradient<R, N>(R(0)).orientation;
   detail::contact_time_gradient<T, N, R>(out, a, b, velocity_a.template cast<R>(), velocity_b.template cast<R>(), still,
                                          still);

@@ -106,6 +106,10 @@ struct ContactGradient {
   Vec<T, N> velocity_a, velocity_b;                        // of value.time
   RotationVector<T, N> angular_velocity_a, angular_velocity_b;  // of value.time
 };
+static_assert(detail::has_plain_layout<ContactGradient<float, 2>, Contact<float, 2>, BodyGradient<float, 2>,
+                                        BodyGradient<float, 2>, float[2], float[2], float, float> &&
+              detail::has_plain_layout<ContactGradient<double, 3>, Contact<double, 3>, BodyGradient<double, 3>,
+                                        BodyGradient<double, 3>, double[3], double[3], double[3], double[3]>);
 
 template <class T, int N>
 ContactGradient<T, N> first_contact_gradient(const Ellipsoid<T, N>& a, const VecArg<T, N>& velocity_a,

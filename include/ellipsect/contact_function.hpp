@@ -139,6 +139,10 @@ struct ContactFunctionGradient {
   ContactFunction<T> value;  // perram_wertheim(a, b)
   BodyGradient<T, N> a, b;   // of value.f
 };
+static_assert(detail::has_plain_layout<ContactFunctionGradient<float, 2>, ContactFunction<float>, BodyGradient<float, 2>,
+                                        BodyGradient<float, 2>> &&
+              detail::has_plain_layout<ContactFunctionGradient<double, 3>, ContactFunction<double>,
+                                        BodyGradient<double, 3>, BodyGradient<double, 3>>);
 
 template <class T, int N>
 ContactFunctionGradient<T, N> perram_wertheim_gradient(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b,

@@ -138,6 +138,10 @@ struct DistanceGradient {
   Distance<T, N> value;    // signed_distance(a, b)
   BodyGradient<T, N> a, b;  // of value.distance
 };
+static_assert(detail::has_plain_layout<DistanceGradient<float, 2>, Distance<float, 2>, BodyGradient<float, 2>,
+                                        BodyGradient<float, 2>> &&
+              detail::has_plain_layout<DistanceGradient<double, 3>, Distance<double, 3>, BodyGradient<double, 3>,
+                                        BodyGradient<double, 3>>);
 
 template <class T, int N>
 DistanceGradient<T, N> signed_distance_gradient(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b,

@@ -10,6 +10,7 @@
 #include <ellipsect/contact_function.hpp>
 #include <ellipsect/distance.hpp>
 #include <ellipsect/gpu.hpp>
+#include <ellipsect/gradient.hpp>
 #include <ellipsect/half_space.hpp>
 #include <ellipsect/slide.hpp>
 #include <ellipsect/intersect2.hpp>

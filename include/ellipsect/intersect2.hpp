@@ -128,6 +128,10 @@ struct OverlapAreaGradient {
   OverlapArea<T> value;     // overlap_area(a, b)
   BodyGradient<T, 2> a, b;  // of value.area
 };
+static_assert(detail::has_plain_layout<OverlapAreaGradient<float>, OverlapArea<float>, BodyGradient<float, 2>,
+                                        BodyGradient<float, 2>> &&
+              detail::has_plain_layout<OverlapAreaGradient<double>, OverlapArea<double>, BodyGradient<double, 2>,
+                                        BodyGradient<double, 2>>);
 
 template <class T>
 OverlapAreaGradient<T> overlap_area_gradient(const Ellipse2<T>& a, const Ellipse2<T>& b,
@@ -139,6 +143,10 @@ struct IouGradient {
   Relation relation;        // classify(a, b)
   BodyGradient<T, 2> a, b;  // of value
 };
+static_assert(detail::has_plain_layout<IouGradient<float>, float, Relation, BodyGradient<float, 2>,
+                                        BodyGradient<float, 2>> &&
+              detail::has_plain_layout<IouGradient<double>, double, Relation, BodyGradient<double, 2>,
+                                        BodyGradient<double, 2>>);
 
 template <class T>
 IouGradient<T> intersection_over_union_gradient(const Ellipse2<T>& a, const Ellipse2<T>& b,
