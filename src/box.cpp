@@ -3,6 +3,7 @@
 
 #include "detail/at_body.hpp"
 #include "detail/contact_start.hpp"
+#include "detail/gradient.hpp"
 #include "detail/instantiate.hpp"
 #include "detail/polytope_distance.hpp"
 
@@ -324,8 +325,30 @@ Distance<T, N> distance(const Ellipsoid<T, N>& a, const Box<T, N>& b, const Opti
   return detail::unsigned_distance(signed_distance(a, b, options));
 }
 
+template <class T, int N>
+DistanceGradient<T, N, BoxGradient<T, N>> signed_distance_gradient(const Ellipsoid<T, N>& a, const Box<T, N>& b,
+                                                                   const Options& options) noexcept {
+  return detail::shape_distance_gradient<T, N, BoxGradient<T, N>>(
+      a, signed_distance(a, b, options), [&](const auto& n, const auto& p, auto d) {
+        using R = decltype(d);
+        const Vec<R, N> y = p + d * n;
+        const Mat<R, N> axes = b.axes().template cast<R>();
+        const Vec<R, N> e = b.half_extents().template cast<R>();
+        // y less the box's center, in the box's frame, on the box.
+        const Vec<R, N> u =
+            (axes.transpose() * (y + (a.center().template cast<R>() - b.center().template cast<R>()))).cwiseMax(-e).cwiseMin(e);
+        BoxGradient<T, N> out;
+        out.center = n.template cast<T>();
+        out.orientation = detail::rotation_in<T, R, N>(detail::turn_rate<R, N>(Vec<R, N>(axes * u), n));
+        out.half_extents = u.cwiseQuotient(e).cwiseProduct(axes.transpose() * n).template cast<T>();
+        return out;
+      });
+}
+
 #define ELLIPSECT_INSTANTIATE(T, N)                                                                                  \
-  template class Box<T, N>;                                                                                         \
+  template class Box<T, N>;                                                                                          \
+  template DistanceGradient<T, N, BoxGradient<T, N>> signed_distance_gradient<T, N>(                                \
+      const Ellipsoid<T, N>&, const Box<T, N>&, const Options&) noexcept;                                                                                         \
   template Relation classify<T, N>(const Ellipsoid<T, N>&, const Box<T, N>&, const Options&) noexcept;            \
   template bool overlap<T, N>(const Ellipsoid<T, N>&, const Box<T, N>&, const Options&) noexcept;                 \
   template Contact<T, N> first_contact<T, N>(const Ellipsoid<T, N>&, const VecArg<T, N>&, const Box<T, N>&,       \

@@ -4,6 +4,7 @@
 
 #include "detail/at_body.hpp"
 #include "detail/contact_start.hpp"
+#include "detail/gradient.hpp"
 #include "detail/instantiate.hpp"
 #include "detail/polytope_distance.hpp"
 #include "detail/scale.hpp"
@@ -169,6 +170,24 @@ Distance<T, N> signed_distance(const Ellipsoid<T, N>& a_world, const Capsule<T, 
 }
 
 template <class T, int N>
+DistanceGradient<T, N, CapsuleGradient<T, N>> signed_distance_gradient(const Ellipsoid<T, N>& a,
+                                                                       const Capsule<T, N>& b,
+                                                                       const Options& options) noexcept {
+  return detail::shape_distance_gradient<T, N, CapsuleGradient<T, N>>(
+      a, signed_distance(a, b, options), [&](const auto& n, const auto& p, auto d) {
+        using R = decltype(d);
+        const Vec<R, N> y = p + d * n;
+        // The segment's point y + R n (less a's center) as (1 - l) p0 + l p1.
+        const Vec<R, N> c = a.center().template cast<R>();
+        const Vec<R, N> p0 = b.point(0).template cast<R>() - c, e = b.point(1).template cast<R>() - c - p0;
+        const R ee = e.squaredNorm();
+        const R l = ee > R(0) ? std::clamp((y + R(b.radius()) * n - p0).dot(e) / ee, R(0), R(1)) : R(0.5);
+        return CapsuleGradient<T, N>{((R(1) - l) * n).template cast<T>(), (l * n).template cast<T>(),
+                                     n.allFinite() ? T(-1) : std::numeric_limits<T>::quiet_NaN()};
+      });
+}
+
+template <class T, int N>
 Distance<T, N> distance(const Ellipsoid<T, N>& a, const Capsule<T, N>& b, const Options& options) noexcept {
   return detail::unsigned_distance(signed_distance(a, b, options));
 }
@@ -186,6 +205,8 @@ Contact<T, N> first_contact(const Ellipsoid<T, N>& a_world, const VecArg<T, N>& 
   template Relation classify<T, N>(const Ellipsoid<T, N>&, const Capsule<T, N>&, const Options&) noexcept;        \
   template bool overlap<T, N>(const Ellipsoid<T, N>&, const Capsule<T, N>&, const Options&) noexcept;             \
   template Distance<T, N> signed_distance<T, N>(const Ellipsoid<T, N>&, const Capsule<T, N>&, const Options&) noexcept; \
+  template DistanceGradient<T, N, CapsuleGradient<T, N>> signed_distance_gradient<T, N>(                              \
+      const Ellipsoid<T, N>&, const Capsule<T, N>&, const Options&) noexcept;                                        \
   template Distance<T, N> distance<T, N>(const Ellipsoid<T, N>&, const Capsule<T, N>&, const Options&) noexcept;  \
   template Contact<T, N> first_contact<T, N>(const Ellipsoid<T, N>&, const VecArg<T, N>&, const Capsule<T, N>&,   \
                                              const VecArg<T, N>&, T, const Options&) noexcept;

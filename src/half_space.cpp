@@ -3,6 +3,7 @@
 #include "detail/axes.hpp"
 #include "detail/compensated.hpp"
 #include "detail/contact_start.hpp"
+#include "detail/gradient.hpp"
 #include "detail/instantiate.hpp"
 #include "detail/reduce.hpp"
 #include "detail/scale.hpp"
@@ -188,6 +189,41 @@ Distance<T, N> signed_distance(const Ellipsoid<T, N>& a, const HalfSpace<T, N>& 
   return distance_of(a, b, options, true);
 }
 
+template <class T, int N>
+DistanceGradient<T, N, HalfSpaceGradient<T, N>> signed_distance_gradient(const Ellipsoid<T, N>& a,
+                                                                         const HalfSpace<T, N>& b,
+                                                                         const Options& options) noexcept {
+  return detail::shape_distance_gradient<T, N, HalfSpaceGradient<T, N>>(
+      a, signed_distance(a, b, options), [&](const auto& n, const auto& support, auto d) {
+        using R = decltype(d);
+        // (y - p) x n for the touching point y = c + support + d n, = (support + c - p) x n, with
+        // c - p split exactly and the products compensated: the plane's point may lie far from
+        // the body, and the lever's part along n cancels.
+        std::array<Vec<R, N>, 3> lever{support, support, support};
+        for (int i = 0; i < N; ++i) {
+          const Double<R> d = detail::two_sum(R(a.center()[i]), -R(b.point()[i]));
+          lever[1][i] = d.hi;
+          lever[2][i] = d.lo;
+        }
+        const auto turn = [&](int j, int k) {  // (lever x n) . e with e_j x e_k = e
+          CompensatedDot<R> dot;
+          for (const auto& x : lever) {
+            dot.add(x[j], n[k]);
+            dot.add(-x[k], n[j]);
+          }
+          return dot.value().hi;
+        };
+        HalfSpaceGradient<T, N> out;
+        out.point = n.template cast<T>();
+        if constexpr (N == 2) {
+          out.normal = T(turn(0, 1));
+        } else {
+          out.normal = Vec<R, 3>(turn(1, 2), turn(2, 0), turn(0, 1)).template cast<T>();
+        }
+        return out;
+      });
+}
+
 // L(t) = L(0) - t sigma: the hit at L(0) / sigma. The velocities are rescaled by 2^-v (v the
 // exponent of the largest speed, or 0), and the time comes back times 2^(exponent - v).
 template <class T, int N>
@@ -245,6 +281,8 @@ Contact<T, N> first_contact(const Ellipsoid<T, N>& a, const VecArg<T, N>& veloci
   template Distance<T, N> distance<T, N>(const Ellipsoid<T, N>&, const HalfSpace<T, N>&, const Options&) noexcept; \
   template Distance<T, N> signed_distance<T, N>(const Ellipsoid<T, N>&, const HalfSpace<T, N>&,                   \
                                                 const Options&) noexcept;                                          \
+  template DistanceGradient<T, N, HalfSpaceGradient<T, N>> signed_distance_gradient<T, N>(                          \
+      const Ellipsoid<T, N>&, const HalfSpace<T, N>&, const Options&) noexcept;                                     \
   template Contact<T, N> first_contact<T, N>(const Ellipsoid<T, N>&, const VecArg<T, N>&, const HalfSpace<T, N>&, \
                                              const VecArg<T, N>&, T, const Options&) noexcept;
 ELLIPSECT_FOR_EACH_TYPE_AND_DIM(ELLIPSECT_INSTANTIATE)

@@ -3,6 +3,7 @@
 #include "detail/axes.hpp"
 #include "detail/compensated.hpp"
 #include "detail/contact_start.hpp"
+#include "detail/gradient.hpp"
 #include "detail/instantiate.hpp"
 #include "detail/polytope_distance.hpp"
 #include "detail/reduce.hpp"
@@ -576,6 +577,26 @@ Distance<T, N> signed_distance(const Ellipsoid<T, N>& a, const Triangle<T, N>& b
 }
 
 template <class T, int N>
+DistanceGradient<T, N, TriangleGradient<T, N>> signed_distance_gradient(const Ellipsoid<T, N>& a,
+                                                                        const Triangle<T, N>& b,
+                                                                        const Options& options) noexcept {
+  return detail::shape_distance_gradient<T, N, TriangleGradient<T, N>>(
+      a, signed_distance(a, b, options), [&](const auto& n, const auto& p, auto d) {
+        using R = decltype(d);
+        const Vec<R, N> y = p + d * n;
+        // The vertices less the touching point y (both less a's center): the triangle's point
+        // nearest the origin is y's nearest.
+        Vertices<R, N> u;
+        for (int k = 0; k < 3; ++k)
+          for (int i = 0; i < N; ++i) u[k][i] = (R(b.vertex(k)[i]) - R(a.center()[i])) - y[i];
+        const std::array<R, 3> w = nearest_weights<R, N>(u, face_of<R, N>(u));
+        TriangleGradient<T, N> out;
+        for (int k = 0; k < 3; ++k) out.vertices[k] = (w[k] * n).template cast<T>();
+        return out;
+      });
+}
+
+template <class T, int N>
 Distance<T, N> distance(const Ellipsoid<T, N>& a, const Triangle<T, N>& b, const Options& options) noexcept {
   return detail::unsigned_distance(signed_distance(a, b, options));
 }
@@ -586,6 +607,8 @@ Distance<T, N> distance(const Ellipsoid<T, N>& a, const Triangle<T, N>& b, const
   template Contact<T, N> first_contact<T, N>(const Ellipsoid<T, N>&, const VecArg<T, N>&, const Triangle<T, N>&, \
                                              const VecArg<T, N>&, T, const Options&) noexcept;     \
   template Distance<T, N> signed_distance<T, N>(const Ellipsoid<T, N>&, const Triangle<T, N>&, const Options&) noexcept; \
+  template DistanceGradient<T, N, TriangleGradient<T, N>> signed_distance_gradient<T, N>(                             \
+      const Ellipsoid<T, N>&, const Triangle<T, N>&, const Options&) noexcept;                                       \
   template Distance<T, N> distance<T, N>(const Ellipsoid<T, N>&, const Triangle<T, N>&, const Options&) noexcept;
 ELLIPSECT_FOR_EACH_TYPE_AND_DIM(ELLIPSECT_INSTANTIATE)
 #undef ELLIPSECT_INSTANTIATE

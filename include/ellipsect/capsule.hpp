@@ -104,6 +104,30 @@ Distance<T, N> signed_distance(const Ellipsoid<T, N>& a, const Capsule<T, N>& b,
 template <class T, int N>
 Distance<T, N> distance(const Ellipsoid<T, N>& a, const Capsule<T, N>& b, const Options& options = {}) noexcept;
 
+// ---- Gradient (gradient.hpp's parameters for the body) -----------------------------------
+//
+// signed_distance(a, b) and the derivatives of its distance d: by the body as for two bodies
+// (distance.hpp), and by the capsule's end points and radius, from the segment's point
+// s = (1 - l) p0 + l p1 nearest to y + R n (y the capsule's point where it touches the body
+// moved by -d n, n the returned normal):
+//     dd/d p0 = (1 - l) n,   dd/d p1 = l n,   dd/d radius = -1.
+// Differentiable where the maximizing n is unique (distance.hpp) and the capsule has a length:
+// with p0 = p1 (a ball) d is the least of the distances to the two end balls, and l = 1/2 gives
+// an element of its generalized gradient (the one-sided derivatives differ). Accuracy as for
+// boxes (box.hpp).
+template <class T, int N>
+struct CapsuleGradient {
+  Vec<T, N> p0, p1;
+  T radius;
+};
+static_assert(detail::has_plain_layout<CapsuleGradient<float, 2>, float[2], float[2], float> &&
+              detail::has_plain_layout<CapsuleGradient<double, 3>, double[3], double[3], double>);
+
+template <class T, int N>
+DistanceGradient<T, N, CapsuleGradient<T, N>> signed_distance_gradient(const Ellipsoid<T, N>& a,
+                                                                       const Capsule<T, N>& b,
+                                                                       const Options& options = {}) noexcept;
+
 // The body moves as center + t * velocity_a, the capsule as its points + t * velocity_b;
 // statuses as for two bodies (contact.hpp), did_not_converge when Options::max_iterations
 // Newton steps end short of the contact (the time reached is a lower bound; point and normal

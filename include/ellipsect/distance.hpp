@@ -133,10 +133,14 @@ Distance<T, N> signed_distance(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& 
 // tangency, overlap, scale 1e-6 and 1e6, far from the origin): each component within 1e-12
 // of its unit, the largest derivative by a center or a radius (times the pair's largest radius
 // for the orientations); measured up to 8e-14.
-template <class T, int N>
+//
+// G: the gradient by b's parameters, a body's here; against a shape, the shape's (half_space.hpp,
+// box.hpp, capsule.hpp, triangle.hpp).
+template <class T, int N, class G = BodyGradient<T, N>>
 struct DistanceGradient {
-  Distance<T, N> value;    // signed_distance(a, b)
-  BodyGradient<T, N> a, b;  // of value.distance
+  Distance<T, N> value;  // signed_distance(a, b)
+  BodyGradient<T, N> a;  // of value.distance
+  G b;                   // of value.distance
 };
 static_assert(detail::has_plain_layout<DistanceGradient<float, 2>, Distance<float, 2>, BodyGradient<float, 2>,
                                         BodyGradient<float, 2>> &&

@@ -99,6 +99,31 @@ template <class T, int N>
 Distance<T, N> signed_distance(const Ellipsoid<T, N>& a, const HalfSpace<T, N>& b,
                                const Options& options = {}) noexcept;
 
+// ---- Gradient (gradient.hpp's parameters for the body) -----------------------------------
+//
+// signed_distance(a, b) and the derivatives of its distance L = n_H . (c - p) - rho(n_H), n_H
+// the half-space's normal: by the body as for two bodies (distance.hpp), and by the half-space's
+// point p and its normal turned about p (a world rotation vector, as a body's orientation):
+//     dL/dp = -n_H,   dL/dphi = (x - p) x n,
+// n = -n_H the returned normal, x the body's lowest point (any point on the line x + s n_H).
+// Differentiable everywhere. The turn's lever x - p is formed with c - p split exactly and
+// compensated products, so a plane point far along the plane costs no digits. Accuracy
+// (tests/property/shape_gradient_property_test.cpp, against 50-digit central differences of L
+// in closed form, on the cases of signed_distance's test, 1e6 sizes from the origin on every
+// other one): each component within 1e-12 of its unit (as for two bodies); measured up to 8e-16.
+template <class T, int N>
+struct HalfSpaceGradient {
+  Vec<T, N> point;
+  RotationVector<T, N> normal;  // the plane turned about its point
+};
+static_assert(detail::has_plain_layout<HalfSpaceGradient<float, 2>, float[2], float> &&
+              detail::has_plain_layout<HalfSpaceGradient<double, 3>, double[3], double[3]>);
+
+template <class T, int N>
+DistanceGradient<T, N, HalfSpaceGradient<T, N>> signed_distance_gradient(const Ellipsoid<T, N>& a,
+                                                                         const HalfSpace<T, N>& b,
+                                                                         const Options& options = {}) noexcept;
+
 // The body moves as center + t * velocity_a, the half-space as point + t * velocity_b
 // (a moving plane; its normal does not turn); contact is searched in [0, t_max]. Statuses as
 // for two bodies: invalid_input for a non-finite velocity or a NaN or negative t_max;

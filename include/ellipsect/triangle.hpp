@@ -149,6 +149,30 @@ Distance<T, N> signed_distance(const Ellipsoid<T, N>& a, const Triangle<T, N>& b
 template <class T, int N>
 Distance<T, N> distance(const Ellipsoid<T, N>& a, const Triangle<T, N>& b, const Options& options = {}) noexcept;
 
+// ---- Gradient (gradient.hpp's parameters for the body) -----------------------------------
+//
+// signed_distance(a, b) and the derivatives of its distance d: by the body as for two bodies
+// (distance.hpp), and by the vertices, from the barycentric weights w of the triangle's point
+// y where it touches the body moved by -d n (n the returned normal; the point of the triangle
+// nearest to point_b):
+//     dd/d v_k = w_k n.
+// Differentiable where the maximizing n is unique (distance.hpp) and the triangle is not
+// degenerate; for collinear or coincident vertices the weights of y are not unique (one-sided
+// derivatives differ), and the fields are those of the nearest of its vertices, edges and face
+// (triangle.cpp's seven candidates), an element of the generalized gradient. Accuracy as for
+// boxes (box.hpp).
+template <class T, int N>
+struct TriangleGradient {
+  std::array<Vec<T, N>, 3> vertices;
+};
+static_assert(detail::has_plain_layout<TriangleGradient<float, 2>, float[6]> &&
+              detail::has_plain_layout<TriangleGradient<double, 3>, double[9]>);
+
+template <class T, int N>
+DistanceGradient<T, N, TriangleGradient<T, N>> signed_distance_gradient(const Ellipsoid<T, N>& a,
+                                                                        const Triangle<T, N>& b,
+                                                                        const Options& options = {}) noexcept;
+
 // The body moves as center + t * velocity_a, the triangle as vertices + t * velocity_b;
 // contact is searched in [0, t_max]. Statuses as for two bodies: invalid_input for a
 // non-finite velocity or a NaN or negative t_max; overlapping_at_start (overlap or

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <ellipsect/contact.hpp>
+#include <ellipsect/distance.hpp>
 #include <ellipsect/gradient.hpp>
 
 #include "detail/axes.hpp"
@@ -27,19 +28,23 @@ RotationVector<R, N> turn_rate(const Vec<R, N>& p, const Vec<R, N>& n) noexcept 
 
 // The gradient of rho(n) = |diag(r) A^T n|, the body's support radius along the unit n:
 //   d rho / d r_i = r_i (A^T n)_i^2 / rho,   d rho / d phi = p x n,   d rho / d center = 0,
-// with p = A diag(r^2) A^T n / rho the body's support point less its center. Formed from
-// diag(r) A^T n / rho (entries at most 1), so no length is squared.
+// with p = A diag(r^2) A^T n / rho the body's support point less its center (also stored in
+// *support where given). Formed from diag(r) A^T n / rho (entries at most 1), so no length is
+// squared.
 template <class R, class T, int N>
-BodyGradient<R, N> support_radius_gradient(const Ellipsoid<T, N>& body, const Vec<R, N>& n) noexcept {
+BodyGradient<R, N> support_radius_gradient(const Ellipsoid<T, N>& body, const Vec<R, N>& n,
+                                           Vec<R, N>* support = nullptr) noexcept {
   const Mat<R, N> axes = work_axes<R>(body);
   const Vec<R, N> r = body.radii().template cast<R>();
   const Vec<R, N> q = axes.transpose() * n;
   Vec<R, N> w = r.cwiseProduct(q);
   w /= stable_norm<R, N>(w);
+  const Vec<R, N> p = axes * r.cwiseProduct(w);
+  if (support != nullptr) *support = p;
   BodyGradient<R, N> out;
   out.center.setZero();
   out.radii = w.cwiseProduct(q);
-  out.orientation = turn_rate<R, N>(Vec<R, N>(axes * r.cwiseProduct(w)), n);
+  out.orientation = turn_rate<R, N>(p, n);
   return out;
 }
 
@@ -52,17 +57,23 @@ RotationVector<R, N> times(const RotationVector<R, N>& v, R factor) noexcept {
   }
 }
 
+// v rounded to T.
+template <class T, class R, int N>
+RotationVector<T, N> rotation_in(const RotationVector<R, N>& v) noexcept {
+  if constexpr (N == 2) {
+    return T(v);
+  } else {
+    return v.template cast<T>();
+  }
+}
+
 // factor * g, rounded to T.
 template <class T, class R, int N>
 BodyGradient<T, N> gradient_in(const BodyGradient<R, N>& g, R factor) noexcept {
   BodyGradient<T, N> out;
   out.center = (g.center * factor).template cast<T>();
   out.radii = (g.radii * factor).template cast<T>();
-  if constexpr (N == 2) {
-    out.orientation = T(g.orientation * factor);
-  } else {
-    out.orientation = (g.orientation * factor).template cast<T>();
-  }
+  out.orientation = rotation_in<T, R, N>(times<R, N>(g.orientation, factor));
   return out;
 }
 
@@ -79,6 +90,25 @@ BodyGradient<T, N> constant_gradient(T x) noexcept {
     out.orientation.setConstant(x);
   }
   return out;
+}
+
+// signed_distance_gradient of the body a and a shape (shapes' headers), from the signed
+// distance d = max over unit n of (min over the shape of n . y) - n . center(a) - rho_a(n)
+// (value, its normal n the maximizer). a's part as against a body (envelope theorem);
+// the shape's from shape(n, p, d) (in R): the point of the shape where it touches a moved by
+// -d n is p + d n less a's center, p a's support point along n less its center (a material
+// point of the shape moved at velocity u changes d at the rate n . u). A value with no normal
+// (did_not_converge) gets NaN for a's part and shape(NaN, NaN, d) for the shape's.
+template <class T, int N, class G, class Shape>
+DistanceGradient<T, N, G> shape_distance_gradient(const Ellipsoid<T, N>& a, const Distance<T, N>& value,
+                                                  Shape&& shape) noexcept {
+  using R = std::conditional_t<(sizeof(T) < sizeof(double)), double, T>;
+  const bool known = value.status != DistanceStatus::did_not_converge && value.normal.allFinite();
+  const Vec<R, N> n = known ? Vec<R, N>(value.normal.template cast<R>()) : Vec<R, N>::Constant(std::numeric_limits<R>::quiet_NaN());
+  Vec<R, N> p;
+  BodyGradient<R, N> ga = support_radius_gradient<R>(a, n, &p);
+  ga.center = n;
+  return {value, gradient_in<T>(ga, R(-1)), shape(n, p, R(value.distance))};
 }
 
 // first_contact_gradient's answer before the derivatives of a hit: 0 where the bodies overlap
@@ -154,13 +184,8 @@ void contact_time_gradient(ContactGradient<T, N>& out, const Ellipsoid<T, N>& a_
     d.orientation = turned_back<R, N>(RotationVector<R, N>(times<R, N>(omega, t)), rho.orientation);
     g = gradient_in<T>(d, k);
     velocity = (center * (t * k)).template cast<T>();
-    const RotationVector<R, N> w = times<R, N>(
-        jacobian_transposed<R, N>(RotationVector<R, N>(times<R, N>(omega, t)), rho.orientation), t * k);
-    if constexpr (N == 2) {
-      angular_velocity = T(w);
-    } else {
-      angular_velocity = w.template cast<T>();
-    }
+    angular_velocity = rotation_in<T, R, N>(times<R, N>(
+        jacobian_transposed<R, N>(RotationVector<R, N>(times<R, N>(omega, t)), rho.orientation), t * k));
   };
   body(ra, n, omega_a, out.a, out.velocity_a, out.angular_velocity_a);
   body(rb, Vec<R, N>(-n), omega_b, out.b, out.velocity_b, out.angular_velocity_b);
