@@ -334,6 +334,13 @@ detail::Work<T> area_of(const Ellipse2<T>& e) {
   return std::numbers::pi_v<R> * R(e.radii()[0]) * R(e.radii()[1]);
 }
 
+// Whether q (relative to y's center) lies inside y: |diag(1 / r) A^T q| < 1.
+template <class R, class T>
+bool inside_of(const Ellipse2<T>& y, const Vec<R, 2>& q) noexcept {
+  const Vec<R, 2> u = (detail::work_axes<R>(y).transpose() * q).cwiseQuotient(y.radii().template cast<R>());
+  return u.squaredNorm() < R(1);
+}
+
 // overlap_area of a pair in the native range; `crossings(c, pair)` also receives the common
 // points of an overlapping pair (the reduced frame of pair.s and pair.o).
 template <class T, class Crossings>
@@ -342,23 +349,42 @@ OverlapArea<T> native_overlap_area(const Ellipse2<T>& a, const Ellipse2<T>& b, c
   OverlapArea<T> out{T(0), classify(a, b, options)};
   const auto pair = detail::order_pair(a, b);
   const Ellipse2<T>& s = pair.s;
+  // Within the tolerance band a contained or equal body may be the larger by a hair: the
+  // intersection's area is at most either's.
+  const T smaller = T(std::min(area_of(a), area_of(b)));
   switch (out.relation) {
     case Relation::separated:
     case Relation::touching: break;
-    case Relation::a_contains_b: out.area = T(area_of(b)); break;
-    case Relation::b_contains_a: out.area = T(area_of(a)); break;
-    case Relation::equal: out.area = T(area_of(s)); break;
+    case Relation::a_contains_b:
+    case Relation::b_contains_a:
+    case Relation::equal: out.area = smaller; break;
     case Relation::overlapping:
       with_common_points<T>(s, pair.o, options, [&](const auto& c) {
         using W = typename std::decay_t<decltype(c.red.e)>::Scalar;
-        out.area = T(lens_area<W>(c) * W(s.radii()[0]) * W(s.radii()[1]));
+        int transverse = 0;
+        for (int i = 0; i < c.count; ++i) transverse += c.points[i].kind == CrossingKind::transverse;
+        if (transverse < 2) {
+          // No crossing resolved: the boundaries lie within rounding of each other or of
+          // tangency (the reduced frame settles offsets below eps of the radii to 0, so
+          // bodies closer than that to equal have only tangent points). The intersection is
+          // then the smaller body, to rounding, where its center lies inside the other; the
+          // empty set where it lies outside.
+          const bool a_smaller = area_of(a) <= area_of(b);
+          const Ellipse2<T>& inner = a_smaller ? a : b;
+          const Ellipse2<T>& outer = a_smaller ? b : a;
+          out.area = inside_of<W>(outer, Vec<W, 2>(inner.center().template cast<W>() - outer.center().template cast<W>()))
+                         ? smaller
+                         : T(0);
+        } else {
+          out.area = T(lens_area<W>(c) * W(s.radii()[0]) * W(s.radii()[1]));
+        }
         crossings(c, pair);
       });
       // The intersection lies inside both ellipses. When the smaller one lies within the
       // tangency band of the larger (radius ratios beyond about 1e12) the lens is formed
       // from crossings the band blurs (its polygon and segments cancel to rounding, of
       // either sign); bounding it keeps the area within [0, smaller].
-      out.area = std::clamp(out.area, T(0), T(std::min(area_of(a), area_of(b))));
+      out.area = std::clamp(out.area, T(0), smaller);
       break;
   }
   return out;
@@ -401,11 +427,13 @@ BodyGradient<R, 2> arc_gradient(const Ellipse2<T>& x, const std::array<Vec<R, 2>
   return g;
 }
 
-// Whether q (relative to y's center) lies inside y: |diag(1 / r) A^T q| < 1.
-template <class R, class T>
-bool inside_of(const Ellipse2<T>& y, const Vec<R, 2>& q) noexcept {
-  const Vec<R, 2> u = (detail::work_axes<R>(y).transpose() * q).cwiseQuotient(y.radii().template cast<R>());
-  return u.squaredNorm() < R(1);
+// The intersection over union from the intersection's area: 1 for equal bodies (the area of
+// either within the tolerance band), at most 1 (the area is at most either body's).
+template <class T>
+T iou_of(const OverlapArea<T>& i, const Ellipse2<T>& a, const Ellipse2<T>& b) noexcept {
+  if (i.relation == Relation::equal) return T(1);
+  const detail::Work<T> common = i.area;
+  return T(common / (area_of(a) + area_of(b) - common));
 }
 
 // d (pi r_0 r_1) / d (the body's parameters).
@@ -483,9 +511,7 @@ template <class T>
 T intersection_over_union(const Ellipse2<T>& a, const Ellipse2<T>& b, const Options& options) noexcept {
   if (const detail::Scale scale = detail::scale_of(a, b); scale.range == detail::Range::scaled)
     return intersection_over_union(detail::scaled(a, -scale.exponent), detail::scaled(b, -scale.exponent), options);
-  using R = detail::Work<T>;
-  const R common = R(overlap_area(a, b, options).area);
-  return T(common / (area_of(a) + area_of(b) - common));
+  return iou_of(overlap_area(a, b, options), a, b);
 }
 
 template <class T>
@@ -504,7 +530,7 @@ IouGradient<T> intersection_over_union_gradient(const Ellipse2<T>& a, const Elli
   using R = detail::Work<T>;
   const OverlapAreaGradient<T> i = overlap_area_gradient(a, b, options);
   const R common = R(i.value.area), union_area = area_of(a) + area_of(b) - common;
-  IouGradient<T> out{T(common / union_area), i.value.relation, {}, {}};
+  IouGradient<T> out{iou_of(i.value, a, b), i.value.relation, {}, {}};
   // d IoU = (d I (U + I) - I d area(X)) / U^2, for X = a, b.
   auto quotient = [&](const BodyGradient<T, 2>& di, const Ellipse2<T>& x) {
     const BodyGradient<R, 2> da = area_gradient<R>(x);

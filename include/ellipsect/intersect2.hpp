@@ -80,8 +80,12 @@ BoundaryIntersection<T> intersect_boundaries(const Ellipse2<T>& a, const Ellipse
 template <class T>
 struct OverlapArea {
   // Area of the intersection of the two closed ellipses, in world units squared: 0 when
-  // separated or touching, the smaller ellipse's area under containment (the rounder
-  // one's when equal).
+  // separated or touching, the smaller ellipse's area under containment and when equal (in
+  // the tolerance band the contained body may be the larger by a hair; the intersection is
+  // never larger than either). An overlapping pair whose boundaries cross by less than the
+  // reduced frame resolves (bodies within about eps of their radii of equal, as with
+  // Options::tolerance = 0) has no transverse crossing: the smaller one's area where its
+  // center lies inside the other, 0 where it does not.
   T area;
   // classify(a, b), which selects the configuration.
   Relation relation;
@@ -93,7 +97,8 @@ template <class T>
 OverlapArea<T> overlap_area(const Ellipse2<T>& a, const Ellipse2<T>& b, const Options& options = {}) noexcept;
 
 // Intersection over union, overlap_area / (area(a) + area(b) - overlap_area), in [0, 1]:
-// 0 when separated or touching, the ratio of the areas under containment, 1 when equal.
+// 0 when separated or touching, the ratio of the areas under containment (at most 1), exactly
+// 1 when equal.
 // Scale-free: computed on the pair rescaled by a power of two where overlap_area rescales,
 // so it is finite at every scale the factories accept. Accuracy: that of the area.
 template <class T>

@@ -196,3 +196,30 @@ TEST(Intersect2, IntersectionOverUnion) {
   EXPECT_NEAR(intersection_over_union(make_ellipse<float>({0, 0}, 0, {2, 1}), make_ellipse<float>({0, 0}, 1.5707964f, {2, 1})),
               common / (4 * M_PI - common), 1e-6);
 }
+
+// Bodies within a hair of equal. With tolerance 0 they are overlapping, but offsets below eps
+// of the radii leave no crossing to resolve: the intersection is the smaller body to rounding
+// (its area was 0, the IoU 0 for an ellipse offset by 1e-14 of its size). With the default
+// tolerance they are equal or contained, and the IoU is exactly 1, or the ratio of the areas,
+// never above 1 where the "contained" body is the larger by a hair.
+TEST(Intersect2, NearlyEqualBodies) {
+  const Options exact{.tolerance = 0};
+  const auto b = ellipse(0, 0, 0.3, 2, 1);
+  for (const double offset : {1e-13, 3e-14, 1e-14, 1e-15, 1e-16, 1e-300}) {
+    const auto a = ellipse(offset, 0, 0.3, 2, 1);
+    const OverlapArea<double> i = overlap_area(a, b, exact);
+    EXPECT_EQ(i.relation, Relation::overlapping) << offset;
+    // The lens misses two slivers of width offset along the boundary: 4 offset sizes at most.
+    EXPECT_NEAR(i.area, 2 * M_PI, 4 * 2 * offset + 1e-14) << offset;
+    EXPECT_NEAR(intersection_over_union(a, b, exact), 1.0, 4 * offset + 1e-14) << offset;
+  }
+  EXPECT_EQ(intersection_over_union(ellipse(1e-14, 0, 0.3, 2, 1), b), 1.0);  // equal in the band
+  for (int k = -8; k <= 8; ++k) {
+    const double grow = 1 + k * 2.5e-13;
+    const auto a = ellipse(k * 1e-13, 0, 0.3, 2 * grow, 1 / std::sqrt(grow));
+    const double iou = intersection_over_union(a, b);
+    EXPECT_GE(iou, 0.0) << k;
+    EXPECT_LE(iou, 1.0) << k;
+    EXPECT_LE(overlap_area(a, b).area, std::min(2 * M_PI * grow / std::sqrt(grow), 2 * M_PI)) << k;
+  }
+}
