@@ -679,7 +679,7 @@ void def_gradient_queries(py::module_& m) {
   // signed_distance_gradient and perram_wertheim_gradient: the scalar function on every pair.
   // query(a, b, options) -> g with gradients g.a, g.b; read(g) -> {status, value}.
   auto static_query = [&m](const char* name, auto query, auto read, const std::string& summary,
-                           const std::string& value) {
+                           const std::string& value, const std::string& pair = docs::batch_pair) {
     m.def(name,
           [query, read](const B& a, const B& b, const Options& o, int threads) {
             const std::size_t n = paired(a, b);
@@ -706,7 +706,7 @@ void def_gradient_queries(py::module_& m) {
                     .release());
           },
           py::arg("a"), py::arg("b"), options_arg(), py::arg("threads") = 0,
-          docs::doc(summary, docs::batch_pair,
+          docs::doc(summary, pair,
                     "GradientArrays(status int8 (n,), value (n,): " + value + ", " + gradient_fields + ").",
                     docs::batch_raises)
               .c_str());
@@ -736,7 +736,8 @@ void def_gradient_queries(py::module_& m) {
         [](const OverlapAreaGradient<double>& g) { return std::pair{g.value.relation, g.value.area}; },
         "The overlap area of each pair of ellipses and its derivatives by both bodies' parameters "
         "(intersect2.hpp).",
-        "the area, status the Relation");
+        "the area, status the Relation",
+        "a, b: two Ellipses of equal length; pair i is (a[i], b[i]).\n" + docs::options + "\n" + docs::threads);
     static_query(
         "iou_gradient",
         [](const Ellipse2<double>& a, const Ellipse2<double>& b, const Options& o) {
@@ -745,7 +746,8 @@ void def_gradient_queries(py::module_& m) {
         [](const IouGradient<double>& g) { return std::pair{g.relation, g.value}; },
         "The intersection over union of each pair of ellipses and its derivatives by both bodies' parameters "
         "(intersect2.hpp).",
-        "the IoU, status the Relation");
+        "the IoU, status the Relation",
+        "a, b: two Ellipses of equal length; pair i is (a[i], b[i]).\n" + docs::options + "\n" + docs::threads);
   }
   m.def("first_contact_gradient",
         [](const B& a, const ArrayLike& velocity_a, const B& b, const ArrayLike& velocity_b, const ArrayLike& t_max,
