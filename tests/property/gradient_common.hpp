@@ -62,15 +62,21 @@ RBody<N> moved(RBody<N> b, int k, const Real& h) {
   return b;
 }
 
+// Component j of a rotation vector (2D: the angle).
+template <int N>
+double angular_component(const RotationVector<double, N>& w, int j) {
+  if constexpr (N == 2) {
+    return w;
+  } else {
+    return w[j];
+  }
+}
+
 template <int N>
 double component(const BodyGradient<double, N>& g, int k) {
   if (kind_of<N>(k) == 0) return g.center[k];
   if (kind_of<N>(k) == 2) return g.radii[k - N - turns<N>];
-  if constexpr (N == 2) {
-    return g.orientation;
-  } else {
-    return g.orientation[k - N];
-  }
+  return angular_component<N>(g.orientation, k - N);
 }
 
 // The derivatives to compare: the library's and the central differences, by kind (center,

@@ -202,15 +202,6 @@ Real contact_time(const RBody<N>& a, const RMotion<N>& ma, const RBody<N>& b, co
   return t;
 }
 
-template <int N>
-double angular_component(const RotationVector<double, N>& w, int i) {
-  if constexpr (N == 2) {
-    return w;
-  } else {
-    return w[i];
-  }
-}
-
 // The contact time's gradient of a pair that the library reports hit, against central
 // differences of contact_time over every parameter of the bodies and their motions.
 template <int N>

@@ -107,6 +107,10 @@ struct Model {
     kinds.push_back(kind);
     library.push_back(derivative);
   }
+  // A turn (world rotation vector) at 0, one parameter per component.
+  void add_turns(const RotationVector<double, N>& derivative) {
+    for (int j = 0; j < turns<N>; ++j) add(0, 1, angular_component<N>(derivative, j));
+  }
 };
 
 // The polytope's vertices less the body's center.
@@ -220,13 +224,7 @@ void half_spaces() {
     const RVec<N> normal = ref::to_real<N>(Vec<double, N>(b.normal()));
     Model<N> m;
     for (int k = 0; k < N; ++k) m.add(Real(b.point()[k]), 0, g.b.point[k]);
-    for (int j = 0; j < turns<N>; ++j) {
-      if constexpr (N == 2) {
-        m.add(0, 1, g.b.normal);
-      } else {
-        m.add(0, 1, g.b.normal[j]);
-      }
-    }
+    m.add_turns(g.b.normal);
     m.value = [&](const RBody<N>& body, const std::vector<Real>& p) {
       RVec<N> point, n = normal;
       for (int k = 0; k < N; ++k) point[k] = p[k];
@@ -262,13 +260,7 @@ void boxes() {
     const RMat<N> axes = to_real_mat<N>(b.axes());
     Model<N> m;
     for (int k = 0; k < N; ++k) m.add(Real(b.center()[k]), 0, g.b.center[k]);
-    for (int j = 0; j < turns<N>; ++j) {
-      if constexpr (N == 2) {
-        m.add(0, 1, g.b.orientation);
-      } else {
-        m.add(0, 1, g.b.orientation[j]);
-      }
-    }
+    m.add_turns(g.b.orientation);
     for (int k = 0; k < N; ++k) m.add(Real(b.half_extents()[k]), 2, g.b.half_extents[k]);
     const auto corners = [axes](const std::vector<Real>& p) {
       const RMat<N> turned_axes = turned<N>(axes, p, N);
