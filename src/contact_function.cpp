@@ -332,7 +332,31 @@ ClosestApproach<T, N> closest_approach(const Ellipsoid<T, N>& a, const Ellipsoid
   return out;
 }
 
+template <class T, int N>
+ClosestApproachGradient<T, N> closest_approach_gradient(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b,
+                                                        const VecArg<T, N>& direction, const Options& options) {
+  using R = detail::Work<T>;
+  const T nan = std::numeric_limits<T>::quiet_NaN();
+  const BodyGradient<T, N> unknown = detail::constant_gradient<T, N>(nan);
+  ClosestApproachGradient<T, N> out{closest_approach(a, b, direction, options), unknown, unknown,
+                                    Vec<T, N>::Constant(nan)};
+  if (out.value.status != ContactFunctionStatus::ok) return out;
+  const Vec<R, N> n = out.value.normal.template cast<R>();
+  const Vec<R, N> d = direction.template cast<R>();
+  const Vec<R, N> u = detail::unit_vector<R, N>(d);
+  const R along = n.dot(u);
+  if (!(along > R(0))) return out;
+  // sigma grows with either support radius along n, at 1 / (n . u).
+  out.a = detail::gradient_in<T>(detail::support_radius_gradient<R>(a, n), R(1) / along);
+  out.b = detail::gradient_in<T>(detail::support_radius_gradient<R>(b, n), R(1) / along);
+  const R largest = d.cwiseAbs().maxCoeff(), length = largest * (d / largest).norm();  // |d|, without overflow
+  out.direction = (Vec<R, N>(n - along * u) * (-R(out.value.distance) / (along * length))).template cast<T>();
+  return out;
+}
+
 #define ELLIPSECT_INSTANTIATE(T, N)                                                                                   \
+  template ClosestApproachGradient<T, N> closest_approach_gradient<T, N>(const Ellipsoid<T, N>&, const Ellipsoid<T, N>&, \
+                                                                         const VecArg<T, N>&, const Options&);        \
   template ContactFunction<T> perram_wertheim<T, N>(const Ellipsoid<T, N>&, const Ellipsoid<T, N>&,                   \
                                                     const Options&) noexcept;                                         \
   template ContactFunctionGradient<T, N> perram_wertheim_gradient<T, N>(const Ellipsoid<T, N>&, const Ellipsoid<T, N>&, \

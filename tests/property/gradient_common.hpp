@@ -85,6 +85,7 @@ struct Comparison {
   std::array<std::vector<std::pair<double, Real>>, 5> kinds;
   Real scale = 1;  // the pair's length scale: an orientation's derivative is a length times a center's
   Real per_length_floor = 0;  // the least unit of the derivatives by lengths
+  Real per_speed_floor = 0;   // the least unit of the derivatives by velocities (kind 3)
 
   void add(int kind, double library, const Real& reference) { kinds[kind].push_back({library, reference}); }
   Real largest(int kind) const {
@@ -97,7 +98,7 @@ struct Comparison {
   // velocities, and angular velocities as the velocities' times the scale (a kind that is 0
   // by symmetry, a disk's turn, is measured in the units of the others).
   double worst() const {
-    const Real per_length = std::max({largest(0), largest(2), per_length_floor}), per_speed = largest(3);
+    const Real per_length = std::max({largest(0), largest(2), per_length_floor}), per_speed = std::max(largest(3), per_speed_floor);
     const std::array<Real, 5> unit = {per_length, std::max(largest(1), per_length * scale), per_length, per_speed,
                                       std::max(largest(4), per_speed * scale)};
     double worst = 0;

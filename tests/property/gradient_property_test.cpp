@@ -1,7 +1,7 @@
 // Gradients (gradient.hpp) against 50-digit central differences of the values, each value
 // computed by a route of its own in the world frame: the maximum of the support gap polished
 // by Newton on the sphere (signed distance), golden-section search on lambda (the
-// Perram-Wertheim F), the secant root in time of that maximum (the contact time), and
+// Perram-Wertheim F, and sigma = 1 / sqrt(F) of closest approach), the secant root in time of that maximum (the contact time), and
 // Gauss-Kronrod quadrature of the chord lengths (the overlap area).
 // Bodies are moved in Real: centers, radii and velocities by h, orientations by the world
 // rotation exp(h [e_j]x), so the differences see no rounding of the perturbed bodies.
@@ -68,6 +68,9 @@ std::string scientific(double x) {
 // the static gradients are exact up to rounding at the returned normal; the contact time's
 // carry the rounding of the hit's time and normal (contact.hpp).
 constexpr double static_tolerance = 1e-12;
+// closest_approach's normal is known to 1e-12 of the pair's size over a radius of curvature
+// (contact_function.hpp), and moves the support points.
+constexpr double approach_tolerance = 1e-11;
 constexpr double contact_tolerance = 1e-9;
 // Linear motion's, at closing angle alpha (|n . (v_a - v_b)| / |v_a - v_b|): the derivatives
 // grow as 1 / alpha towards a graze, and the rounding of the hit's time and normal reaches them
@@ -137,6 +140,49 @@ void perram_wertheim_matches_differences() {
     tally.add(scenarios::name(category), "ok");
   }
   tally.print("perram_wertheim_gradient, worst relative error " + scientific(worst));
+}
+
+// sigma = 1 / sqrt(F(a, b at center(a) + u)), u = direction / |direction|, in Real.
+template <int N>
+Real approach_distance(const RBody<N>& a, RBody<N> b, const RVec<N>& direction) {
+  b.c = a.c + direction / sqrt(direction.dot(direction));
+  return 1 / sqrt(ref::contact_function<N>(a, b).f);
+}
+
+template <int N>
+void closest_approach_matches_differences() {
+  Tally tally;
+  double worst = 0;
+  const int n = static_cast<int>(distance_categories.size());
+  for (int i = 0; i < cases(160); ++i) {
+    const auto category = distance_categories[i % n];
+    const int far = i / n % 2;
+    const scenarios::Case<N> c = scenarios::make_case<N>(category, 7400 + i);
+    scenarios::detail::Rng rng(static_cast<std::uint64_t>(7400 + i));
+    const Vec<double, N> direction =
+        scenarios::detail::unit_vector<N>(rng) * scenarios::detail::log_uniform(rng, 1e-3, 1e3);
+    const double size = c.a.radii().maxCoeff() + c.b.radii().maxCoeff();
+    const auto [a, b] = placed<N>(c, Vec<double, N>::Constant(far ? 1e6 * size : 0.0));
+    const ClosestApproachGradient<double, N> g = closest_approach_gradient(a, b, direction);
+    ASSERT_EQ(g.value.status, ContactFunctionStatus::ok) << describe(c);
+    const RBody<N> ra = ref::detail::make_rbody<N>(to_ref(a)), rb = ref::detail::make_rbody<N>(to_ref(b));
+    const RVec<N> d = ref::to_real<N>(direction);
+    Comparison cmp;
+    cmp.per_speed_floor = g.value.distance / direction.norm();  // a ball's direction derivative is 0
+    differentiate<N>(ra, rb, g.a, g.b,
+                     [&](const RBody<N>& x, const RBody<N>& y) { return approach_distance<N>(x, y, d); }, cmp);
+    for (int k = 0; k < N; ++k) {
+      const Real h = Real("1e-15") * sqrt(d.dot(d));
+      const RVec<N> step = h * RVec<N>::Unit(k);
+      cmp.add(3, g.direction[k],
+              (approach_distance<N>(ra, rb, RVec<N>(d + step)) - approach_distance<N>(ra, rb, RVec<N>(d - step))) / (2 * h));
+    }
+    const double e = cmp.worst();
+    worst = std::max(worst, e);
+    EXPECT_LE(e, approach_tolerance) << describe(c) << "\n far " << far << "\n" << cmp.show();
+    tally.add(scenarios::name(category), "ok");
+  }
+  tally.print("closest_approach_gradient, worst relative error " + scientific(worst));
 }
 
 // A motion in Real: velocity and angular velocity (one component in 2D).
@@ -392,6 +438,8 @@ TEST(GradientProperty, SignedDistance2D) { signed_distance_matches_differences<2
 TEST(GradientProperty, SignedDistance3D) { signed_distance_matches_differences<3>(); }
 TEST(GradientProperty, PerramWertheim2D) { perram_wertheim_matches_differences<2>(); }
 TEST(GradientProperty, PerramWertheim3D) { perram_wertheim_matches_differences<3>(); }
+TEST(GradientProperty, ClosestApproach2D) { closest_approach_matches_differences<2>(); }
+TEST(GradientProperty, ClosestApproach3D) { closest_approach_matches_differences<3>(); }
 TEST(GradientProperty, LinearContactTime2D) { linear_contact_time_matches_differences<2>(); }
 TEST(GradientProperty, LinearContactTime3D) { linear_contact_time_matches_differences<3>(); }
 TEST(GradientProperty, RigidContactTime2D) { rigid_contact_time_matches_differences<2>(); }
