@@ -7,16 +7,30 @@
 //                                          pairs that touch at a known time
 //   overlap_area/2/{value,gradient}/*      overlap_area, overlap_area_gradient
 //   iou/2/{value,gradient}/*               intersection_over_union, intersection_over_union_gradient
+//   closest_approach/N/{value,gradient}/*  closest_approach, closest_approach_gradient, along the
+//                                          line of centers
+//   {half_space,box,triangle,capsule}/N/{value,gradient}/mix
+//                                          signed_distance against the shape and its gradient,
+//                                          on the shapes' test cases (scenarios/half_space.hpp,
+//                                          box.hpp, triangle.hpp; capsules on the triangles'
+//                                          first edges)
 //
 // Counter: median_ns, the median over pairs of the time of one query (bench_support.hpp).
 // The last name component is the category ("mix": the pairs of every category together).
+#include <ellipsect/box.hpp>
+#include <ellipsect/capsule.hpp>
 #include <ellipsect/contact.hpp>
 #include <ellipsect/contact_function.hpp>
 #include <ellipsect/distance.hpp>
+#include <ellipsect/half_space.hpp>
 #include <ellipsect/intersect2.hpp>
+#include <ellipsect/triangle.hpp>
 
 #include "bench/bench_support.hpp"
+#include "scenarios/box.hpp"
+#include "scenarios/half_space.hpp"
 #include "scenarios/scenarios.hpp"
+#include "scenarios/triangle.hpp"
 
 #include <benchmark/benchmark.h>
 
@@ -78,6 +92,91 @@ void first_contact_query(benchmark::State& state, int category) {
   });
 }
 
+template <int N, bool gradient>
+void closest_approach_query(benchmark::State& state, int category) {
+  bench::time_cases(state, cases<N>(category, false), [](const scenarios::Case<N>& c) {
+    const Vec<double, N> u = c.b.center() == c.a.center() ? Vec<double, N>::Unit(0) : Vec<double, N>(c.b.center() - c.a.center());
+    if constexpr (gradient) {
+      return closest_approach_gradient(c.a, c.b, u).a.radii[0];
+    } else {
+      return closest_approach(c.a, c.b, u).distance;
+    }
+  });
+}
+
+// A body and a shape.
+template <int N, class Shape>
+struct ShapeCase {
+  Ellipsoid<double, N> a;
+  Shape b;
+};
+
+template <int N>
+std::vector<ShapeCase<N, HalfSpace<double, N>>> half_space_cases() {
+  std::vector<ShapeCase<N, HalfSpace<double, N>>> out;
+  for (int i = 0; i < 1024; ++i) {
+    const auto c = scenarios::make_plane_case<N>(scenarios::planes[i % scenarios::planes.size()], 800000 + i);
+    out.push_back({c.a, c.b});
+  }
+  return out;
+}
+
+template <int N>
+std::vector<ShapeCase<N, Box<double, N>>> box_cases() {
+  std::vector<ShapeCase<N, Box<double, N>>> out;
+  for (int i = 0; i < 1024; ++i) {
+    const auto [a, b] = scenarios::make_box_pair<N>(i % scenarios::box_kinds, 800000 + i);
+    out.push_back({a, b});
+  }
+  return out;
+}
+
+template <int N>
+std::vector<ShapeCase<N, Triangle<double, N>>> triangle_cases() {
+  std::vector<ShapeCase<N, Triangle<double, N>>> out;
+  for (int i = 0; i < 1024; ++i) {
+    const auto c = scenarios::make_triangle_case<N>(scenarios::triangle_kinds[i % scenarios::triangle_kinds.size()],
+                                                    800000 + i);
+    out.push_back({c.a, c.b});
+  }
+  return out;
+}
+
+template <int N>
+std::vector<ShapeCase<N, Capsule<double, N>>> capsule_cases() {
+  std::vector<ShapeCase<N, Capsule<double, N>>> out;
+  for (const auto& c : triangle_cases<N>())
+    out.push_back({c.a, make_capsule<double, N>(c.b.vertex(0), c.b.vertex(1), 0.3 * c.a.radii().minCoeff())});
+  return out;
+}
+
+template <int N, bool gradient, class Shape>
+void shape_query(benchmark::State& state, const std::vector<ShapeCase<N, Shape>>& cases) {
+  bench::time_cases(state, cases, [](const ShapeCase<N, Shape>& c) {
+    if constexpr (gradient) {
+      return signed_distance_gradient(c.a, c.b).a.center[0];
+    } else {
+      return signed_distance(c.a, c.b).distance;
+    }
+  });
+}
+
+template <int N>
+void register_shapes() {
+  const std::string n = "/" + std::to_string(N);
+  const auto both = [&](const std::string& name, const auto& cases) {
+    using Shape = decltype(cases.front().b);
+    benchmark::RegisterBenchmark((name + n + "/value/mix").c_str(),
+                                 [cases](benchmark::State& state) { shape_query<N, false, Shape>(state, cases); });
+    benchmark::RegisterBenchmark((name + n + "/gradient/mix").c_str(),
+                                 [cases](benchmark::State& state) { shape_query<N, true, Shape>(state, cases); });
+  };
+  both("half_space", half_space_cases<N>());
+  both("box", box_cases<N>());
+  both("triangle", triangle_cases<N>());
+  both("capsule", capsule_cases<N>());
+}
+
 // 2D: overlap_area and intersection_over_union with their gradients.
 template <bool gradient>
 void overlap_area_query(benchmark::State& state, int category) {
@@ -111,6 +210,10 @@ void register_dimension(const std::string& cat, int category) {
                                category);
   benchmark::RegisterBenchmark(("first_contact" + n + "/value" + cat).c_str(), first_contact_query<N, false>, category);
   benchmark::RegisterBenchmark(("first_contact" + n + "/gradient" + cat).c_str(), first_contact_query<N, true>, category);
+  benchmark::RegisterBenchmark(("closest_approach" + n + "/value" + cat).c_str(), closest_approach_query<N, false>,
+                               category);
+  benchmark::RegisterBenchmark(("closest_approach" + n + "/gradient" + cat).c_str(), closest_approach_query<N, true>,
+                               category);
   if constexpr (N == 2) {
     benchmark::RegisterBenchmark(("overlap_area/2/value" + cat).c_str(), overlap_area_query<false>, category);
     benchmark::RegisterBenchmark(("overlap_area/2/gradient" + cat).c_str(), overlap_area_query<true>, category);
@@ -125,6 +228,8 @@ void register_all() {
     register_dimension<3>(cat, category);
     register_dimension<2>(cat, category);
   }
+  register_shapes<3>();
+  register_shapes<2>();
 }
 
 }  // namespace

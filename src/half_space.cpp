@@ -196,15 +196,19 @@ DistanceGradient<T, N, HalfSpaceGradient<T, N>> signed_distance_gradient(const E
   return detail::shape_distance_gradient<T, N, HalfSpaceGradient<T, N>>(
       a, signed_distance(a, b, options), [&](const auto& n, const auto& support, auto d) {
         using R = decltype(d);
-        // (y - p) x n for the touching point y = c + support + d n, = (support + c - p) x n, with
-        // c - p split exactly and the products compensated: the plane's point may lie far from
-        // the body, and the lever's part along n cancels.
-        std::array<Vec<R, N>, 3> lever{support, support, support};
-        for (int i = 0; i < N; ++i) {
-          const Double<R> d = detail::two_sum(R(a.center()[i]), -R(b.point()[i]));
-          lever[1][i] = d.hi;
-          lever[2][i] = d.lo;
+        // (y - p) x n for the touching point y = c + support + d n, = (support + c - p) x n. Where
+        // c - p is long against the body (the plane's point far away, and the lever's part along
+        // n cancels), c - p is split exactly and the products compensated; otherwise the plain
+        // products' rounding stays below 1e-13 of the body's size.
+        HalfSpaceGradient<T, N> out;
+        out.point = n.template cast<T>();
+        const Vec<R, N> offset = a.center().template cast<R>() - b.point().template cast<R>();
+        if (!(offset.cwiseAbs().maxCoeff() > R(1024) * R(a.radii().maxCoeff()))) {
+          out.normal = detail::rotation_in<T, R, N>(detail::turn_rate<R, N>(Vec<R, N>(support + offset), n));
+          return out;
         }
+        std::array<Vec<R, N>, 3> lever{support, offset, support};
+        for (int i = 0; i < N; ++i) lever[2][i] = detail::two_sum(R(a.center()[i]), -R(b.point()[i])).lo;
         const auto turn = [&](int j, int k) {  // (lever x n) . e with e_j x e_k = e
           CompensatedDot<R> dot;
           for (const auto& x : lever) {
@@ -213,8 +217,6 @@ DistanceGradient<T, N, HalfSpaceGradient<T, N>> signed_distance_gradient(const E
           }
           return dot.value().hi;
         };
-        HalfSpaceGradient<T, N> out;
-        out.point = n.template cast<T>();
         if constexpr (N == 2) {
           out.normal = T(turn(0, 1));
         } else {
