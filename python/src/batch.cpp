@@ -648,9 +648,11 @@ struct GradientColumns {
   Rows rows() { return {center.mutable_data(), orientation.mutable_data(), radii.mutable_data()}; }
 };
 
-// Angular velocities of n bodies ((n,) in 2D, (n, 3) in 3D); None: not turning.
+// Angular velocities of n bodies ((n,) in 2D, (n, 3) in 3D), their row count checked against
+// the argument rows_from; None: not turning.
 template <int N>
-std::vector<RotationVector<double, N>> angular_velocities(py::handle given, std::size_t n, const std::string& name) {
+std::vector<RotationVector<double, N>> angular_velocities(py::handle given, std::size_t n, const std::string& name,
+                                                          const std::string& rows_from = "a") {
   RotationVector<double, N> still;
   if constexpr (N == 2)
     still = 0.0;
@@ -659,7 +661,7 @@ std::vector<RotationVector<double, N>> angular_velocities(py::handle given, std:
   std::vector<RotationVector<double, N>> out(n, still);
   if (given.is_none()) return out;
   py::ssize_t rows = static_cast<py::ssize_t>(n);
-  const auto w = checked(given, name, N == 2 ? std::vector<py::ssize_t>{} : std::vector<py::ssize_t>{3}, rows, "a");
+  const auto w = checked(given, name, N == 2 ? std::vector<py::ssize_t>{} : std::vector<py::ssize_t>{3}, rows, rows_from);
   for (std::size_t i = 0; i < n; ++i) {
     if constexpr (N == 2)
       out[i] = w.data()[i];
@@ -820,19 +822,13 @@ void def_earliest_contact(py::module_& m) {
            const Options& o) {
           py::ssize_t rows = static_cast<py::ssize_t>(bodies.items.size());
           const auto v_array = checked(velocities, "velocities", {N}, rows, "bodies");
-          const auto w_array = checked_if(or_none(angular_velocities), "angular_velocities",
-                                          N == 2 ? std::vector<py::ssize_t>{} : std::vector<py::ssize_t>{3}, rows,
-                                          "bodies");
+          const auto w = python::angular_velocities<N>(or_none(angular_velocities), bodies.items.size(),
+                                                       "angular_velocities", "bodies");
           const double* v = v_array.data();
-          const double* w = w_array ? w_array->data() : nullptr;
           std::vector<RigidMotion<double, N>> motions(bodies.items.size());
           for (std::size_t i = 0; i < motions.size(); ++i) {
             motions[i].velocity = row_vec<N>(v + i * N);
-            if (w == nullptr) continue;
-            if constexpr (N == 2)
-              motions[i].angular_velocity = w[i];
-            else
-              motions[i].angular_velocity = row_vec<3>(w + 3 * i);
+            motions[i].angular_velocity = w[i];
           }
           PairContact<double, N> e;
           {
