@@ -9,6 +9,7 @@
 #include <pybind11/stl.h>
 
 #include <array>
+#include <cmath>
 #include <optional>
 
 namespace ellipsect::python {
@@ -93,6 +94,11 @@ void def_body(py::class_<Ellipsoid<double, N>>& c) {
                                             vec<N>(t[2].cast<Row<N>>()));
                       }));
   def_equality(c, [](const E& e) { return numbers_of(e.center(), e.axes(), e.radii()); });
+  if constexpr (N == 2)
+    c.def_property_readonly(
+        "angle", [](const E& e) { return std::atan2(e.axes()(1, 0), e.axes()(0, 0)); },
+        "float: The first axis's counterclockwise angle from the x axis, in (-pi, pi] (the angle the constructor "
+        "takes, up to a multiple of pi: an ellipse is symmetric about its center).");
 }
 
 // HalfPlane (N = 2) and HalfSpace (N = 3): { x : normal . (x - point) <= 0 } (half_space.hpp).
@@ -642,7 +648,11 @@ void def_two_d(py::module_& m) {
   result_class<A>(m, "OverlapArea", "overlap_area's answer (see intersect2.hpp).")
       .def_property_readonly("area", [](const A& a) { return a.area; }, "float: The shared area.")
       .def_property_readonly("relation", [](const A& a) { return a.relation; },
-                             "Relation: The relation of the ellipses.");
+                             "Relation: The relation of the ellipses.")
+      .def("__repr__", [](const A& a) {
+        return "OverlapArea(relation=" + std::string(to_string(a.relation)) +
+               ", area=" + py::repr(py::float_(a.area)).cast<std::string>() + ")";
+      });
   using C = Circle<double>;
   py::class_<C> circle(m, "Circle", "The closed disk of Niemitalo's tests; radius 0 is a point.");
   circle.def(py::init([](const Row<2>& center, double radius) { return make_circle<double>(vec<2>(center), radius); }),

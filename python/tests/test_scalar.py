@@ -19,6 +19,11 @@ def test_bodies_and_their_fields():
     assert ellipsect.classify(same, e) == ellipsect.Relation.equal
     r = ellipsect.Ellipse([0, 0], [2, 1], rotation=[[0, -1], [1, 0]])
     assert np.allclose(r.axes, [[0, -1], [1, 0]])
+    # The angle read back: the constructor's, in (-pi, pi].
+    assert abs(e.angle - 0.5) <= 1e-15 and abs(r.angle - np.pi / 2) <= 1e-15
+    assert abs(ellipsect.Ellipse([0, 0], [2, 1], angle=3.0 + 2 * np.pi).angle - 3.0) <= 1e-14
+    area = ellipsect.overlap_area(e, e)
+    assert repr(area) == f"OverlapArea(relation=equal, area={area.area!r})"
     s = ellipsect.Ellipsoid([0, 0, 0], [3, 2, 1], quaternion=[np.cos(0.3), 0, 0, np.sin(0.3)])
     assert np.allclose(s.axes[:, 0], [np.cos(0.6), np.sin(0.6), 0])
     assert "Ellipsoid(center=[0, 0, 0]" in repr(s)
