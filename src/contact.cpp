@@ -325,7 +325,8 @@ ContactGradient<T, N> first_contact_gradient(const Ellipsoid<T, N>& a, const Vec
   if (out.value.status != ContactStatus::hit) return out;
   // The bodies only translate: their support radii at the hit are those at time 0.
   const RotationVector<R, N> still = detail::constant_gradient<R, N>(R(0)).orientation;
-  detail::contact_time_gradient<T, N, R>(out, a, b, velocity_a.template cast<R>(), velocity_b.template cast<R>(), still,
+  detail::contact_time_gradient<T, N, R>(out, a, b, Vec<R, N>(b.center().template cast<R>() - a.center().template cast<R>()),
+                                         velocity_a.template cast<R>(), velocity_b.template cast<R>(), still,
                                          still);
   return out;
 }

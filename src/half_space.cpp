@@ -9,6 +9,7 @@
 #include "detail/scale.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -33,7 +34,10 @@ template <class F, int N>
 struct Gaps {
   using Scalar = F;
   F lower, upper, rho, error, size;
-  Vec<F, N> lowest, normal;
+  // The lowest point c - support, support = A diag(r) w the support offset along n, with
+  // w = diag(r) q / rho and q = A^T n.
+  Vec<F, N> lowest, normal, support, w, q;
+  Vec<F, N> offset;  // c - p, rounded
   int exponent;
 };
 
@@ -55,15 +59,17 @@ Gaps<F, N> gaps_in(const Ellipsoid<T, N>& a, const HalfSpace<T, N>& b, int expon
     n[i] = F(b.normal()[i]);
   }
   Gaps<F, N> g;
+  g.offset = c - p;
   Vec<F, N> t;  // t_k = r_k (A^T n)_k, rho = |t|
   if (!compensated) {
     F s = 0, spread = 0;
     for (int i = 0; i < N; ++i) {
-      const F term = n[i] * (c[i] - p[i]);
+      const F term = n[i] * g.offset[i];
       s += term;
       spread += std::abs(term);
     }
-    t = r.cwiseProduct(axes.transpose() * n);
+    g.q = axes.transpose() * n;
+    t = r.cwiseProduct(g.q);
     g.rho = t.norm();
     g.lower = s - g.rho;
     g.upper = -s - g.rho;
@@ -80,6 +86,7 @@ Gaps<F, N> gaps_in(const Ellipsoid<T, N>& a, const HalfSpace<T, N>& b, int expon
     for (int k = 0; k < N; ++k) {
       CompensatedDot<F> ud;
       for (int i = 0; i < N; ++i) ud.add(axes(i, k), n[i]);
+      g.q[k] = ud.value().hi;
       const Double<F> tk = detail::times(ud.value(), r[k]);
       t[k] = tk.hi;
       rho2 = detail::add(rho2, detail::square(tk));
@@ -92,8 +99,9 @@ Gaps<F, N> gaps_in(const Ellipsoid<T, N>& a, const HalfSpace<T, N>& b, int expon
     g.error = 0;
   }
   g.size = r.maxCoeff();
-  // Lowest point: c - A diag(r) t / rho.
-  g.lowest = c - axes * (r.cwiseProduct(t) / g.rho);
+  g.w = t / g.rho;
+  g.support = axes * r.cwiseProduct(g.w);
+  g.lowest = c - g.support;
   g.normal = n;
   g.exponent = exponent;
   return g;
@@ -143,27 +151,76 @@ Vec<T, N> world(const Vec<F, N>& v, int exponent) noexcept {
   return out;
 }
 
+template <class T, class F, int N>
+Distance<T, N> distance_from(const Gaps<F, N>& g, const HalfSpace<T, N>& b, const Options& options,
+                             bool penetration) noexcept {
+  Distance<T, N> d;
+  const Relation rel = relation_of(g, options);
+  d.status = rel == Relation::separated  ? DistanceStatus::separated
+             : rel == Relation::touching ? DistanceStatus::touching
+                                         : DistanceStatus::overlapping;
+  if (d.status == DistanceStatus::overlapping && !penetration) {
+    d.distance = T(0);
+    d.point_a = d.point_b = d.normal = detail::nan_vec<T, N>();
+    return d;
+  }
+  d.distance = T(pow2(g.lower, g.exponent));
+  d.point_a = world<T>(g.lowest, g.exponent);
+  d.point_b = world<T>(Vec<F, N>(g.lowest - g.lower * g.normal), g.exponent);
+  d.normal = -b.normal();
+  return d;
+}
+
+// The gaps that distance and signed_distance accept.
+auto distance_accepts(const Options& options) noexcept {
+  return [&options](const auto& g) { return decided(g, options) && accurate(g, g.lower); };
+}
+
 template <class T, int N>
 Distance<T, N> distance_of(const Ellipsoid<T, N>& a, const HalfSpace<T, N>& b, const Options& options,
                            bool penetration) noexcept {
-  const auto accept = [&](const auto& g) { return decided(g, options) && accurate(g, g.lower); };
-  return with_gaps(a, b, accept, [&](const auto& g) {
-    Distance<T, N> d;
-    const Relation rel = relation_of(g, options);
-    d.status = rel == Relation::separated  ? DistanceStatus::separated
-               : rel == Relation::touching ? DistanceStatus::touching
-                                           : DistanceStatus::overlapping;
-    if (d.status == DistanceStatus::overlapping && !penetration) {
-      d.distance = T(0);
-      d.point_a = d.point_b = d.normal = detail::nan_vec<T, N>();
-      return d;
+  return with_gaps(a, b, distance_accepts(options),
+                   [&](const auto& g) { return distance_from<T>(g, b, options, penetration); });
+}
+
+// signed_distance_gradient from the gaps (half_space.hpp; n_H = g.normal, s = g.support):
+//   dL/dc = n_H,   dL/dr_i = -w_i q_i,   dL/dphi = -(s x n_H),
+//   dL/dp = -n_H,  the plane's turn (x - p) x n = -(lever x n_H) with lever = c - p - s.
+// Where the plane's point lies beyond 1024 radii of the center, the lever's part along n_H
+// cancels in the cross product: c - p is split exactly and the products compensated;
+// otherwise the plain products' rounding stays below 1e-13 of the body's size.
+template <class T, class F, int N>
+DistanceGradient<T, N, HalfSpaceGradient<T, N>> gradient_from(const Gaps<F, N>& g, const Ellipsoid<T, N>& a,
+                                                               const HalfSpace<T, N>& b, const Options& options) noexcept {
+  DistanceGradient<T, N, HalfSpaceGradient<T, N>> out;
+  out.value = distance_from<T>(g, b, options, true);
+  const Vec<F, N>& n = g.normal;
+  const F length = pow2(F(1), g.exponent);
+  out.a.center = n.template cast<T>();
+  out.a.radii = (-g.w.cwiseProduct(g.q)).template cast<T>();
+  out.a.orientation = detail::rotation_in<T, F, N>(detail::turn_rate<F, N>(Vec<F, N>(-length * g.support), n));
+  out.b.point = (-n).template cast<T>();
+  if (!(g.offset.cwiseAbs().maxCoeff() > F(1024) * g.size)) {
+    out.b.normal = detail::rotation_in<T, F, N>(detail::turn_rate<F, N>(Vec<F, N>(length * (g.support - g.offset)), n));
+    return out;
+  }
+  std::array<Vec<F, N>, 3> lever{g.offset, g.offset, Vec<F, N>(-g.support)};
+  for (int i = 0; i < N; ++i)
+    lever[1][i] = detail::two_sum(pow2(F(a.center()[i]), -g.exponent), -pow2(F(b.point()[i]), -g.exponent)).lo;
+  const auto turn = [&](int j, int k) {  // -(lever x n_H) . e with e_j x e_k = e
+    CompensatedDot<F> dot;
+    for (const auto& x : lever) {
+      dot.add(-x[j], n[k]);
+      dot.add(x[k], n[j]);
     }
-    d.distance = T(pow2(g.lower, g.exponent));
-    d.point_a = world<T>(g.lowest, g.exponent);
-    d.point_b = world<T>(decltype(g.lowest)(g.lowest - g.lower * g.normal), g.exponent);
-    d.normal = -b.normal();
-    return d;
-  });
+    return T(pow2(dot.value().hi, g.exponent));
+  };
+  if constexpr (N == 2) {
+    out.b.normal = turn(0, 1);
+  } else {
+    out.b.normal = Vec<T, 3>(turn(1, 2), turn(2, 0), turn(0, 1));
+  }
+  return out;
 }
 
 }  // namespace
@@ -193,37 +250,8 @@ template <class T, int N>
 DistanceGradient<T, N, HalfSpaceGradient<T, N>> signed_distance_gradient(const Ellipsoid<T, N>& a,
                                                                          const HalfSpace<T, N>& b,
                                                                          const Options& options) noexcept {
-  return detail::shape_distance_gradient<T, N, HalfSpaceGradient<T, N>>(
-      a, signed_distance(a, b, options), [&](const auto& n, const auto& support, auto d) {
-        using R = decltype(d);
-        // (y - p) x n for the touching point y = c + support + d n, = (support + c - p) x n. Where
-        // c - p is long against the body (the plane's point far away, and the lever's part along
-        // n cancels), c - p is split exactly and the products compensated; otherwise the plain
-        // products' rounding stays below 1e-13 of the body's size.
-        HalfSpaceGradient<T, N> out;
-        out.point = n.template cast<T>();
-        const Vec<R, N> offset = a.center().template cast<R>() - b.point().template cast<R>();
-        if (!(offset.cwiseAbs().maxCoeff() > R(1024) * R(a.radii().maxCoeff()))) {
-          out.normal = detail::rotation_in<T, R, N>(detail::turn_rate<R, N>(Vec<R, N>(support + offset), n));
-          return out;
-        }
-        std::array<Vec<R, N>, 3> lever{support, offset, support};
-        for (int i = 0; i < N; ++i) lever[2][i] = detail::two_sum(R(a.center()[i]), -R(b.point()[i])).lo;
-        const auto turn = [&](int j, int k) {  // (lever x n) . e with e_j x e_k = e
-          CompensatedDot<R> dot;
-          for (const auto& x : lever) {
-            dot.add(x[j], n[k]);
-            dot.add(-x[k], n[j]);
-          }
-          return dot.value().hi;
-        };
-        if constexpr (N == 2) {
-          out.normal = T(turn(0, 1));
-        } else {
-          out.normal = Vec<R, 3>(turn(1, 2), turn(2, 0), turn(0, 1)).template cast<T>();
-        }
-        return out;
-      });
+  return with_gaps(a, b, distance_accepts(options),
+                   [&](const auto& g) { return gradient_from<T>(g, a, b, options); });
 }
 
 // L(t) = L(0) - t sigma: the hit at L(0) / sigma. The velocities are rescaled by 2^-v (v the

@@ -317,6 +317,7 @@ ContactGradient<T, N> first_contact_gradient(const Ellipsoid<T, N>& a, const Rig
   try {
     const T t = out.value.time;
     detail::contact_time_gradient<T, N, W>(out, body_at(a, motion_a, t), body_at(b, motion_b, t),
+                                           Vec<W, N>(b.center().template cast<W>() - a.center().template cast<W>()),
                                            motion_a.velocity.template cast<W>(), motion_b.velocity.template cast<W>(),
                                            omega(motion_a), omega(motion_b));
   } catch (const InputError&) {  // the bodies at the hit's time leave the range of T: no derivatives

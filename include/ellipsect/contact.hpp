@@ -74,8 +74,8 @@ Contact<T, N> first_contact(const Ellipsoid<T, N>& a, const VecArg<T, N>& veloci
 
 // ---- Gradient (gradient.hpp's parameters) ---------------------------------------------
 //
-// first_contact(a, velocity_a, b, velocity_b, t_max) and the derivatives of its time t; the
-// rigid form below has the same fields. Implicit differentiation of g(t) = 0, g the signed
+// first_contact(a, velocity_a, b, velocity_b, t_max) and the derivatives of its time t and
+// point x; the rigid form below has the same fields. Implicit differentiation of g(t) = 0, g the signed
 // distance of the moved bodies (its derivatives as in distance.hpp's
 // signed_distance_gradient, at the contact normal n and the bodies' poses at t):
 // dt/dtheta = (dg/dtheta) / s with the closing speed
@@ -92,29 +92,57 @@ Contact<T, N> first_contact(const Ellipsoid<T, N>& a, const VecArg<T, N>& veloci
 // no derivative). overlapping_at_start: t = 0 for every nearby input, the derivatives are 0.
 // Every other status, and hit with s <= 0 in rounding: NaN (touching_at_start and a graze
 // have one-sided derivatives only; no_contact_in_window has no time).
+// The point's derivatives (field `point`, a Jacobian per parameter group) by implicit
+// differentiation of the touching itself: at the hit, c_b - c_a = p_a(n) + p_b(n), with
+// p_X(n) = M_X n / rho_X(n) the support offset of X along n (M_X its shape matrix), whose
+// derivative by n is H_X = (M_X - p_X p_X^T) / rho_X. A change of the parameters moves the
+// offset as dp_X = (the parameters' own change of p_X at fixed n) + H_X dn, so the normal moves
+// by (H_a + H_b) dn = the tangential part of d(c_b - c_a) - (the parameters' change of p_a and
+// p_b) (its normal part is the time's equation above), and the point c_a(t) + p_a(n) by
+//     dx = d c_a + t d v_a + v_a dt + (a's own change of p_a) + H_a dn
+// (a turn u moves p_X at fixed n by u x p_X - H_X (u x n); the time moves it as the turn
+// dt omega_X). Where the time's derivatives are 0 or NaN, so is every entry.
+// Both are formed at the contact normal polished by one Newton step on the support gap's
+// maximum at t (value.normal is left as first_contact returns it).
 // Accuracy (tests/property/gradient_property_test.cpp, against 50-digit central differences of
-// the time at which the support gap's maximum in the world frame vanishes, the bodies turned
-// in Real), of each component relative to its unit (the largest derivative by a center or a
-// radius, times the pair's largest radius for the orientations; the largest by a velocity,
-// times that radius for the angular velocities):
+// the time at which the support gap's maximum in the world frame vanishes and of a's support
+// point there, the bodies turned in Real), of each component relative to its unit (the largest
+// derivative by a center or a radius, times the pair's largest radius for the orientations;
+// the largest by a velocity, times that radius for the angular velocities; the point's entries
+// likewise over the whole Jacobian):
 //   linear motion  within 2e-12 + 1e-13 / alpha^2, alpha the closing angle
 //                  |n . (v_a - v_b)| / |v_a - v_b|: the derivatives grow as 1 / alpha towards a
-//                  graze, and the rounding of the hit's time and normal reaches them divided by
-//                  alpha^2 (1e-9 at alpha >= 0.01); measured, on random pairs, aspect ratios to
-//                  1e4, scale 1e-6 and 1e6, far apart and far from the origin with alpha from
-//                  1e-3 to 1, the error times alpha^2 up to 7e-14 (1.1e-9 at alpha = 1e-3);
-//   rigid motion   within 1e-9; measured up to 4e-11 (spins to 10 turns).
+//                  graze, and the rounding of the hit's time reaches them divided by alpha^2
+//                  (1e-9 at alpha >= 0.01); measured, on random pairs, aspect ratios to 1e4,
+//                  scale 1e-6 and 1e6, far apart and far from the origin with alpha from 1e-3
+//                  to 1, the error times alpha^2 up to 8e-14 for the time and 4e-13 for the
+//                  point (1.1e-9 at alpha = 1e-3);
+//   rigid motion   within 1e-11; measured up to 3e-13 (spins to 10 turns).
+template <class T, int N>
+struct ContactPointJacobian {
+  BodyJacobian<T, N> a, b;                                       // by the bodies at time 0
+  Mat<T, N> velocity_a, velocity_b;                              // column j by velocity_j
+  TurnJacobian<T, N> angular_velocity_a, angular_velocity_b;     // column j by omega_j
+};
+static_assert(detail::has_plain_layout<ContactPointJacobian<float, 2>, BodyJacobian<float, 2>, BodyJacobian<float, 2>,
+                                        float[4], float[4], float[2], float[2]> &&
+              detail::has_plain_layout<ContactPointJacobian<double, 3>, BodyJacobian<double, 3>,
+                                        BodyJacobian<double, 3>, double[9], double[9], double[9], double[9]>);
+
 template <class T, int N>
 struct ContactGradient {
   Contact<T, N> value;                                     // first_contact(...)
   BodyGradient<T, N> a, b;                                 // of value.time, by the bodies at time 0
   Vec<T, N> velocity_a, velocity_b;                        // of value.time
   RotationVector<T, N> angular_velocity_a, angular_velocity_b;  // of value.time
+  ContactPointJacobian<T, N> point;                        // of value.point
 };
 static_assert(detail::has_plain_layout<ContactGradient<float, 2>, Contact<float, 2>, BodyGradient<float, 2>,
-                                        BodyGradient<float, 2>, float[2], float[2], float, float> &&
+                                        BodyGradient<float, 2>, float[2], float[2], float, float,
+                                        ContactPointJacobian<float, 2>> &&
               detail::has_plain_layout<ContactGradient<double, 3>, Contact<double, 3>, BodyGradient<double, 3>,
-                                        BodyGradient<double, 3>, double[3], double[3], double[3], double[3]>);
+                                        BodyGradient<double, 3>, double[3], double[3], double[3], double[3],
+                                        ContactPointJacobian<double, 3>>);
 
 template <class T, int N>
 ContactGradient<T, N> first_contact_gradient(const Ellipsoid<T, N>& a, const VecArg<T, N>& velocity_a,

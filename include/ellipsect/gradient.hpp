@@ -36,6 +36,19 @@ struct BodyGradient {
 static_assert(detail::has_plain_layout<BodyGradient<float, 2>, float[2], float, float[2]> &&
               detail::has_plain_layout<BodyGradient<double, 3>, double[3], double[3], double[3]>);
 
+// The derivatives of a point (a vector quantity) by one body's parameters: column j by
+// parameter j, so center(i, j) = d point_i / d center_j.
+template <class T, int N>
+using TurnJacobian = Eigen::Matrix<T, N, (N == 2 ? 1 : 3), Eigen::DontAlign>;
+template <class T, int N>
+struct BodyJacobian {
+  Mat<T, N> center;
+  TurnJacobian<T, N> orientation;
+  Mat<T, N> radii;
+};
+static_assert(detail::has_plain_layout<BodyJacobian<float, 2>, float[4], float[2], float[4]> &&
+              detail::has_plain_layout<BodyJacobian<double, 3>, double[9], double[9], double[9]>);
+
 // The gradient by the components of a quaternion q = (w, x, y, z) of a quantity whose gradient
 // by the world rotation vector is g, for a body whose axes are those of q / |q| (any nonzero
 // norm). A world turn dphi takes q to (1, dphi / 2) q, so a change dq is the turn

@@ -13,8 +13,8 @@ a body through a list of half-spaces or a mesh. Among many bodies,
 overlapping_pairs and earliest_contact (open space or a periodic box). Every number comes
 from the library; batch answers equal the scalar ones bit for bit. Pictures: ellipsect.plot;
 Dask: ellipsect.dask. Derivatives: signed_distance_gradient, perram_wertheim_gradient,
-first_contact_gradient, and in 2D overlap_area_gradient and iou_gradient (batches;
-ellipsect.torch wraps them for PyTorch).
+closest_approach_gradient, first_contact_gradient (the time and the point), and in 2D
+overlap_area_gradient and iou_gradient (batches; ellipsect.torch wraps them for PyTorch).
 """
 
 from ._ellipsect import (  # noqa: F401
@@ -27,6 +27,7 @@ from ._ellipsect import (  # noqa: F401
     Circle,
     ClosestApproach2,
     ClosestApproach3,
+    ClosestApproachGradientArrays,
     ClosestPoint2,
     ClosestPoint3,
     Contact2,
@@ -35,6 +36,7 @@ from ._ellipsect import (  # noqa: F401
     ContactFunction,
     ContactFunctionStatus,
     ContactGradientArrays,
+    ContactPointJacobianArrays,
     ContactStatus,
     CrossingKind,
     Distance2,
@@ -79,6 +81,7 @@ from ._ellipsect import (  # noqa: F401
     classify,
     classify_on_gpu,
     closest_approach,
+    closest_approach_gradient,
     collide_and_slide,
     closest_point,
     closest_point_closed_form,
@@ -119,6 +122,7 @@ __all__ = [
     "Circle",
     "ClosestApproach2",
     "ClosestApproach3",
+    "ClosestApproachGradientArrays",
     "ClosestPoint2",
     "ClosestPoint3",
     "Contact2",
@@ -127,6 +131,7 @@ __all__ = [
     "ContactFunction",
     "ContactFunctionStatus",
     "ContactGradientArrays",
+    "ContactPointJacobianArrays",
     "ContactStatus",
     "CrossingKind",
     "Distance2",
@@ -171,6 +176,7 @@ __all__ = [
     "classify",
     "classify_on_gpu",
     "closest_approach",
+    "closest_approach_gradient",
     "closest_point",
     "closest_point_closed_form",
     "closest_point_quartic",

@@ -235,7 +235,9 @@ std::span<const Ellipsoid<double, N>> span_of(const Bodies<N>& b) {
   return b.items;
 }
 
-py::object contact_arrays, distance_arrays, gradient_arrays, contact_gradient_arrays;  // namedtuples, def_batch
+// namedtuples, def_batch
+py::object contact_arrays, distance_arrays, gradient_arrays, contact_gradient_arrays, contact_point_jacobian_arrays,
+    closest_approach_gradient_arrays;
 
 // Velocities and time windows of n moving pairs, checked.
 template <int N>
@@ -648,6 +650,40 @@ struct GradientColumns {
   Rows rows() { return {center.mutable_data(), orientation.mutable_data(), radii.mutable_data()}; }
 };
 
+// A point's Jacobians over n pairs, entry [i, j, k] = d point_j / d parameter_k of pair i: by
+// one body's center and radii (n, N, N), its orientation ((n, N) in 2D, (n, N, 3) in 3D);
+// velocity and angular_velocity by its motion, shaped the same.
+template <int N>
+struct JacobianColumns {
+  py::array_t<double> center, orientation, radii, velocity, angular_velocity;
+  static py::array_t<double> square(std::size_t n) { return py::array_t<double>({py::ssize_t(n), py::ssize_t(N), py::ssize_t(N)}); }
+  static py::array_t<double> turns(std::size_t n) {
+    return N == 2 ? py::array_t<double>({py::ssize_t(n), py::ssize_t(N)})
+                  : py::array_t<double>({py::ssize_t(n), py::ssize_t(N), py::ssize_t(3)});
+  }
+  explicit JacobianColumns(std::size_t n)
+      : center(square(n)), orientation(turns(n)), radii(square(n)), velocity(square(n)), angular_velocity(turns(n)) {}
+  struct Rows {
+    double *center, *orientation, *radii, *velocity, *angular_velocity;
+    template <class M>
+    static void put(double* rows, std::size_t i, const M& m) {
+      constexpr int r = M::RowsAtCompileTime, c = M::ColsAtCompileTime;
+      Eigen::Map<Eigen::Matrix<double, r, c, c == 1 ? Eigen::ColMajor : Eigen::RowMajor>>{rows + i * r * c} = m;
+    }
+    void put(std::size_t i, const BodyJacobian<double, N>& j, const Mat<double, N>& v, const TurnJacobian<double, N>& w) const {
+      put(center, i, j.center);
+      put(orientation, i, j.orientation);
+      put(radii, i, j.radii);
+      put(velocity, i, v);
+      put(angular_velocity, i, w);
+    }
+  };
+  Rows rows() {
+    return {center.mutable_data(), orientation.mutable_data(), radii.mutable_data(), velocity.mutable_data(),
+            angular_velocity.mutable_data()};
+  }
+};
+
 // Angular velocities of n bodies ((n,) in 2D, (n, 3) in 3D), their row count checked against
 // the argument rows_from; None: not turning.
 template <int N>
@@ -751,6 +787,49 @@ void def_gradient_queries(py::module_& m) {
         "the IoU, status the Relation",
         "a, b: two Ellipses of equal length; pair i is (a[i], b[i]).\n" + docs::options + "\n" + docs::threads);
   }
+  m.def("closest_approach_gradient",
+        [](const B& a, const B& b, const ArrayLike& direction, const Options& o, int threads) {
+          const std::size_t n = paired(a, b);
+          py::ssize_t rows = static_cast<py::ssize_t>(n);
+          const auto d = checked(direction, "direction", {N}, rows, "a");
+          std::vector<Vec<double, N>> directions(n);
+          for (std::size_t i = 0; i < n; ++i) {  // closest_approach's own checks, named by row
+            directions[i] = row_vec<N>(d.data() + i * N);
+            if (!directions[i].allFinite() || directions[i].isZero(0))
+              throw InputError("direction[" + std::to_string(i) + "]", "must be finite and nonzero");
+          }
+          py::array_t<std::int8_t> status(static_cast<py::ssize_t>(n));
+          py::array_t<double> sigma(static_cast<py::ssize_t>(n));
+          py::array_t<double> by_direction({py::ssize_t(n), py::ssize_t(N)});
+          GradientColumns<N> ga(n), gb(n);
+          std::int8_t* s = status.mutable_data();
+          double *v = sigma.mutable_data(), *du = by_direction.mutable_data();
+          const auto ra = ga.rows(), rb = gb.rows();
+          {
+            py::gil_scoped_release release;
+            parallel_for(n, threads, [&](std::size_t i) {
+              const ClosestApproachGradient<double, N> g = closest_approach_gradient(a.items[i], b.items[i], directions[i], o);
+              s[i] = static_cast<std::int8_t>(g.value.status);
+              v[i] = g.value.distance;
+              ra.put(i, g.a);
+              rb.put(i, g.b);
+              Eigen::Map<Vec<double, N>>{du + i * N} = g.direction;
+            });
+          }
+          return py::reinterpret_steal<ClosestApproachGradientArraysObject>(
+              closest_approach_gradient_arrays(status, sigma, ga.center, ga.orientation, ga.radii, gb.center,
+                                               gb.orientation, gb.radii, by_direction)
+                  .release());
+        },
+        py::arg("a"), py::arg("b"), py::arg("direction"), options_arg(), py::arg("threads") = 0,
+        docs::doc("How far each b may move along its direction until it touches a, and the derivatives of that "
+                  "distance by both bodies' parameters and by the direction (contact_function.hpp).",
+                  docs::batch_pair + "\ndirection: (n, N), finite and nonzero, any length.",
+                  "ClosestApproachGradientArrays(status int8 (n,) of ContactFunctionStatus, value (n,): sigma, " +
+                      gradient_fields + " (0 by the centers: b is placed relative to a), direction (n, N)).",
+                  docs::batch_raises + "\nInputError: a row of direction that is not finite or is zero, named by "
+                                       "its row.")
+            .c_str());
   m.def("first_contact_gradient",
         [](const B& a, const ArrayLike& velocity_a, const B& b, const ArrayLike& velocity_b, const ArrayLike& t_max,
            const std::optional<ArrayLike>& angular_velocity_a, const std::optional<ArrayLike>& angular_velocity_b,
@@ -765,10 +844,13 @@ void def_gradient_queries(py::module_& m) {
           GradientColumns<N> ga(n), gb(n);
           py::array_t<double> dva({py::ssize_t(n), py::ssize_t(N)}), dvb({py::ssize_t(n), py::ssize_t(N)});
           py::array_t<double> dwa = rotation_array<N>(n), dwb = rotation_array<N>(n);
+          py::array_t<double> point({py::ssize_t(n), py::ssize_t(N)});
+          JacobianColumns<N> ja(n), jb(n);
           std::int8_t* s = status.mutable_data();
           double *t = time.mutable_data(), *va = dva.mutable_data(), *vb = dvb.mutable_data(),
-                 *wa_out = dwa.mutable_data(), *wb_out = dwb.mutable_data();
+                 *wa_out = dwa.mutable_data(), *wb_out = dwb.mutable_data(), *x = point.mutable_data();
           const auto ra = ga.rows(), rb = gb.rows();
+          const auto pa = ja.rows(), pb = jb.rows();
           {
             py::gil_scoped_release release;
             parallel_for(n, threads, [&](std::size_t i) {
@@ -789,11 +871,17 @@ void def_gradient_queries(py::module_& m) {
               Eigen::Map<Vec<double, N>>{vb + i * N} = g.velocity_b;
               put_rotation<N>(wa_out, i, g.angular_velocity_a);
               put_rotation<N>(wb_out, i, g.angular_velocity_b);
+              Eigen::Map<Vec<double, N>>{x + i * N} = g.value.point;
+              pa.put(i, g.point.a, g.point.velocity_a, g.point.angular_velocity_a);
+              pb.put(i, g.point.b, g.point.velocity_b, g.point.angular_velocity_b);
             });
           }
+          const py::object jacobian = contact_point_jacobian_arrays(
+              ja.center, ja.orientation, ja.radii, jb.center, jb.orientation, jb.radii, ja.velocity, jb.velocity,
+              ja.angular_velocity, jb.angular_velocity);
           return py::reinterpret_steal<ContactGradientArraysObject>(
               contact_gradient_arrays(status, time, ga.center, ga.orientation, ga.radii, gb.center, gb.orientation,
-                                      gb.radii, dva, dvb, dwa, dwb)
+                                      gb.radii, dva, dvb, dwa, dwb, point, jacobian)
                   .release());
         },
         py::arg("a"), py::arg("velocity_a"), py::arg("b"), py::arg("velocity_b"), py::arg("t_max"),
@@ -806,7 +894,11 @@ void def_gradient_queries(py::module_& m) {
                   "t_max: a number or (n,).\nangular_velocity_a, angular_velocity_b: None (not turning), (n,) "
                   "rates in 2D, (n, 3) in 3D.\n" + docs::options + "\n" + docs::threads,
                   "ContactGradientArrays(status int8 (n,) of ContactStatus, time (n,), " + gradient_fields +
-                      ", velocity_a, velocity_b (n, N), angular_velocity_a, angular_velocity_b ((n,) or (n, 3))); "
+                      ", velocity_a, velocity_b (n, N), angular_velocity_a, angular_velocity_b ((n,) or (n, 3)): of "
+                      "the time; point (n, N); point_jacobian: ContactPointJacobianArrays(center_a, orientation_a, "
+                      "radii_a, center_b, orientation_b, radii_b, velocity_a, velocity_b, angular_velocity_a, "
+                      "angular_velocity_b), entry [i, j, k] the derivative of point j of pair i by parameter k: "
+                      "(n, N, N), the orientations and angular velocities (n, 2) in 2D, (n, 3, 3) in 3D); "
                       "the derivatives are 0 for overlapping_at_start and NaN where the time has none.",
                   "TypeError: arrays not of numbers.\nValueError: lengths or shapes that differ.")
             .c_str());
@@ -898,12 +990,25 @@ void def_batch(py::module_& m) {
   contact_gradient_arrays =
       namedtuple("ContactGradientArrays",
                  py::make_tuple("status", "time", "center_a", "orientation_a", "radii_a", "center_b", "orientation_b",
-                                "radii_b", "velocity_a", "velocity_b", "angular_velocity_a", "angular_velocity_b"),
+                                "radii_b", "velocity_a", "velocity_b", "angular_velocity_a", "angular_velocity_b",
+                                "point", "point_jacobian"),
+                 py::arg("module") = "ellipsect");
+  closest_approach_gradient_arrays =
+      namedtuple("ClosestApproachGradientArrays",
+                 py::make_tuple("status", "value", "center_a", "orientation_a", "radii_a", "center_b",
+                                "orientation_b", "radii_b", "direction"),
+                 py::arg("module") = "ellipsect");
+  contact_point_jacobian_arrays =
+      namedtuple("ContactPointJacobianArrays",
+                 py::make_tuple("center_a", "orientation_a", "radii_a", "center_b", "orientation_b", "radii_b",
+                                "velocity_a", "velocity_b", "angular_velocity_a", "angular_velocity_b"),
                  py::arg("module") = "ellipsect");
   m.attr("ContactArrays") = contact_arrays;
   m.attr("DistanceArrays") = distance_arrays;
   m.attr("GradientArrays") = gradient_arrays;
   m.attr("ContactGradientArrays") = contact_gradient_arrays;
+  m.attr("ContactPointJacobianArrays") = contact_point_jacobian_arrays;
+  m.attr("ClosestApproachGradientArrays") = closest_approach_gradient_arrays;
 
   def_bodies<2>(m, "Ellipses", "Ellipse")
       .def(py::init([](const ArrayLike& centers, const ArrayLike& radii, const std::optional<ArrayLike>& angles,

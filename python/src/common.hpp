@@ -204,7 +204,8 @@ public:
   PYBIND11_OBJECT_DEFAULT(ArrayLike, py::object, any_object)
 };
 // Results that are Python objects, named in signatures and type stubs by what they are:
-// the namedtuples ContactArrays, DistanceArrays, GradientArrays and ContactGradientArrays, and
+// the namedtuples ContactArrays, DistanceArrays, GradientArrays, ContactGradientArrays and
+// ClosestApproachGradientArrays, and
 // the prepared pairs of either dtype.
 class ContactArraysObject : public py::object {
 public:
@@ -221,6 +222,10 @@ public:
 class ContactGradientArraysObject : public py::object {
 public:
   PYBIND11_OBJECT_DEFAULT(ContactGradientArraysObject, py::object, any_object)
+};
+class ClosestApproachGradientArraysObject : public py::object {
+public:
+  PYBIND11_OBJECT_DEFAULT(ClosestApproachGradientArraysObject, py::object, any_object)
 };
 template <int N>
 class PairsObject : public py::object {
@@ -335,6 +340,10 @@ struct handle_type_name<ellipsect::python::GradientArraysObject> {
 template <>
 struct handle_type_name<ellipsect::python::ContactGradientArraysObject> {
   static constexpr auto name = const_name("ContactGradientArrays");
+};
+template <>
+struct handle_type_name<ellipsect::python::ClosestApproachGradientArraysObject> {
+  static constexpr auto name = const_name("ClosestApproachGradientArrays");
 };
 template <int N>
 struct handle_type_name<ellipsect::python::PairsObject<N>> {

@@ -55,6 +55,9 @@ def test_balls_contact_time_by_closed_form(dim):
     # Centers r(t) = r + t w apart reach r_a + r_b at the smaller root t of
     # |w|^2 t^2 + 2 (r.w) t + |r|^2 - s^2; with the closing rate r(t).w (negative):
     # dt/dc_a = r(t) / (r(t).w), dt/dv_b = -t r(t) / (r(t).w), dt/dr_a = s / (r(t).w).
+    # The point x = c_a + t v_a + (r_a / s) r(t) moves with m = v_a + (r_a / s) w along the
+    # time: dx/dc_a = (1 - r_a / s) I + m dt/dc_a^T, dx/dv_b = (r_a / s) t I + m dt/dv_b^T,
+    # and by a's common radius r_b / s^2 r(t) + m dt/dr_a.
     rng = np.random.default_rng(2)
     a, ca, ra = balls(rng, 80, dim)
     b, cb, rb = balls(rng, 80, dim)
@@ -78,6 +81,16 @@ def test_balls_contact_time_by_closed_form(dim):
             assert close(g.center_a[i, k], rt[k] / closing, 1e-9)
             assert close(g.velocity_b[i, k], -t * rt[k] / closing, 1e-9)
         assert close(g.radii_a[i].sum(), s / closing, 1e-9)
+        share = mpmath.mpf(float(ra[i])) / s
+        m = [mpmath.mpf(float(x)) + share * y for x, y in zip(va[i], w)]
+        jac = g.point_jacobian
+        for j in range(dim):
+            assert close(g.point[i, j], float(ca[i, j]) + t * float(va[i, j]) + share * rt[j], 1e-12)
+            assert close(jac.radii_a[i, j].sum(), (1 - share) / s * rt[j] + m[j] * s / closing, 1e-9)
+            for k in range(dim):
+                eye = 1 if j == k else 0
+                assert close(jac.center_a[i, j, k], (1 - share) * eye + m[j] * rt[k] / closing, 1e-9)
+                assert close(jac.velocity_b[i, j, k], share * t * eye - m[j] * t * rt[k] / closing, 1e-9)
     assert hits > 40
 
 
@@ -109,9 +122,11 @@ def test_contact_statuses_without_a_derivative(dim):
     g = ellipsect.first_contact_gradient(a, np.zeros((2, dim)), b, np.zeros((2, dim)), 1.0)
     assert g.status[0] == ellipsect.ContactStatus.overlapping_at_start
     assert g.status[1] == ellipsect.ContactStatus.no_contact_in_window
-    for field in g._fields[2:]:
-        assert np.all(getattr(g, field)[0] == 0), field
-        assert np.all(np.isnan(getattr(g, field)[1])), field
+    derivatives = [getattr(g, f) for f in g._fields[2:12]] + list(g.point_jacobian)
+    assert len(derivatives) == 20
+    for field in derivatives:
+        assert np.all(field[0] == 0) and np.all(np.isnan(field[1]))
+    assert np.all(np.isnan(g.point))
 
 
 def test_rigid_motion_and_shapes_of_the_answer():
@@ -121,6 +136,7 @@ def test_rigid_motion_and_shapes_of_the_answer():
     va, vb, wa = rng.normal(size=(40, 3)), rng.normal(size=(40, 3)), rng.normal(size=(40, 3))
     g = ellipsect.first_contact_gradient(a, va, b, vb, 5.0, angular_velocity_a=wa)
     assert g.center_a.shape == (40, 3) and g.orientation_b.shape == (40, 3) and g.angular_velocity_a.shape == (40, 3)
+    assert g.point.shape == (40, 3) and all(x.shape == (40, 3, 3) for x in g.point_jacobian)
     spun = [ellipsect.first_contact(a[i], va[i], b[i], vb[i], 5.0, angular_velocity_a=wa[i]) for i in range(40)]
     assert same_bits(g.time, [c.time for c in spun])
     e, _ = random_ellipses(30, seed=9)
@@ -128,6 +144,8 @@ def test_rigid_motion_and_shapes_of_the_answer():
     g2 = ellipsect.first_contact_gradient(e, np.ones((30, 2)), f, np.zeros((30, 2)), 5.0,
                                           angular_velocity_b=np.full(30, 0.3))
     assert g2.orientation_a.shape == (30,) and g2.angular_velocity_b.shape == (30,) and g2.velocity_a.shape == (30, 2)
+    jac = g2.point_jacobian
+    assert jac.orientation_a.shape == (30, 2) and jac.angular_velocity_b.shape == (30, 2) and jac.radii_b.shape == (30, 2, 2)
 
 
 def test_quaternion_gradient():
@@ -167,3 +185,40 @@ def test_bad_input_names_the_argument():
                                          angular_velocity_a=np.zeros((5, 3)))
     with pytest.raises(ValueError, match="velocity_b"):
         ellipsect.first_contact_gradient(a, np.zeros((5, 2)), c, np.zeros((4, 2)), 1.0)
+
+
+@pytest.mark.parametrize("dim", [2, 3])
+def test_closest_approach_gradient(dim):
+    # Balls: sigma = r_a + r_b along any direction, 1 by each common radius and 0 by the rest.
+    rng = np.random.default_rng(15)
+    a, _, ra = balls(rng, 30, dim)
+    b, _, rb = balls(rng, 30, dim)
+    u = rng.normal(size=(30, dim)) * rng.uniform(0.1, 10, (30, 1))
+    g = ellipsect.closest_approach_gradient(a, b, u)
+    assert np.all(g.status == ellipsect.ContactFunctionStatus.ok)
+    for i in range(30):
+        assert close(g.value[i], mpmath.mpf(float(ra[i])) + mpmath.mpf(float(rb[i])), 1e-14)
+        assert close(g.radii_a[i].sum(), 1, 1e-12) and close(g.radii_b[i].sum(), 1, 1e-12)
+        assert np.all(np.abs(g.direction[i]) <= 1e-12) and np.all(np.abs(g.orientation_a[i]) <= 1e-12)
+        assert np.all(g.center_a[i] == 0) and np.all(g.center_b[i] == 0)
+    # Random bodies: one pair at a time bit for bit, and the direction's derivative against
+    # central differences of the value.
+    e, _ = MAKERS[dim](40, seed=16)
+    f, _ = MAKERS[dim](40, seed=17)
+    d = rng.normal(size=(40, dim))
+    whole = ellipsect.closest_approach_gradient(e, f, d, threads=2)
+    for i in range(0, 40, 3):
+        one = ellipsect.closest_approach(e[i], f[i], d[i])
+        assert same_bits(whole.value[i], one.distance)
+        for k in range(dim):
+            h = 1e-6 * np.linalg.norm(d[i])
+            step = np.eye(dim)[k] * h
+            diff = (ellipsect.closest_approach(e[i], f[i], d[i] + step).distance
+                    - ellipsect.closest_approach(e[i], f[i], d[i] - step).distance) / (2 * h)
+            assert abs(whole.direction[i, k] - diff) <= 1e-6 * whole.value[i] / np.linalg.norm(d[i])
+    with pytest.raises(ellipsect.InputError, match=r"direction\[2\]"):
+        bad = d.copy()
+        bad[2] = 0
+        ellipsect.closest_approach_gradient(e, f, bad)
+    with pytest.raises(ValueError, match="direction"):
+        ellipsect.closest_approach_gradient(e, f, d[:5])

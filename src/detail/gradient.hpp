@@ -9,6 +9,7 @@
 #include "detail/axes.hpp"
 #include "detail/secular.hpp"
 
+
 #include <cmath>
 #include <limits>
 
@@ -117,7 +118,17 @@ template <class T, int N>
 ContactGradient<T, N> unanswered_gradient(const Contact<T, N>& value) noexcept {
   const T x = value.status == ContactStatus::overlapping_at_start ? T(0) : std::numeric_limits<T>::quiet_NaN();
   const BodyGradient<T, N> g = constant_gradient<T, N>(x);
-  return {value, g, g, Vec<T, N>::Constant(x), Vec<T, N>::Constant(x), g.orientation, g.orientation};
+  ContactPointJacobian<T, N> point;
+  for (BodyJacobian<T, N>* j : {&point.a, &point.b}) {
+    j->center.setConstant(x);
+    j->orientation.setConstant(x);
+    j->radii.setConstant(x);
+  }
+  point.velocity_a.setConstant(x);
+  point.velocity_b.setConstant(x);
+  point.angular_velocity_a.setConstant(x);
+  point.angular_velocity_b.setConstant(x);
+  return {value, g, g, Vec<T, N>::Constant(x), Vec<T, N>::Constant(x), g.orientation, g.orientation, point};
 }
 
 // exp(-theta [u]x) v for the rotation vector theta = theta u: v turned back by theta.
@@ -156,39 +167,188 @@ RotationVector<R, N> jacobian_transposed(const RotationVector<R, N>& theta, cons
   }
 }
 
-// The derivatives of a hit's time t (contact.hpp's first_contact_gradient) from the bodies at
-// t (a_t, b_t), the normal n there and the motions; NaN where the closing speed is not > 0.
+// A body at the hit for the point's derivatives: its support offset p along n, the
+// derivative H = (M - p p^T) / rho of p by n (formed as B (I - w w^T) B^T / rho with
+// B = A diag(r), w = B^T n / rho, so no length is squared and cancelled), and
+// C = dp / du at fixed n for a world turn u: u x p - H (u x n), columns by u's components.
+template <class R, int N>
+struct HitSide {
+  Vec<R, N> p;
+  Mat<R, N> h;
+  TurnJacobian<R, N> turn;
+  Mat<R, N> axes;
+  Vec<R, N> w, q;
+  R rho;
+
+  template <class T>
+  HitSide(const Ellipsoid<T, N>& body, const Vec<R, N>& n) {
+    axes = work_axes<R>(body);
+    const Vec<R, N> r = body.radii().template cast<R>();
+    q = axes.transpose() * n;
+    w = r.cwiseProduct(q);
+    rho = stable_norm<R, N>(w);
+    w /= rho;
+    const Mat<R, N> b = axes * r.asDiagonal();
+    p = b * w;
+    h = b * (Mat<R, N>::Identity() - w * w.transpose()) * b.transpose() / rho;
+    if constexpr (N == 2) {
+      const Vec<R, 2> pp(-p[1], p[0]), np(-n[1], n[0]);
+      turn = pp - h * np;
+    } else {
+      Mat<R, 3> cn, cp;  // [n]x, [p]x
+      cn << 0, -n[2], n[1], n[2], 0, -n[0], -n[1], n[0], 0;
+      cp << 0, -p[2], p[1], p[2], 0, -p[0], -p[1], p[0], 0;
+      turn = h * cn - cp;
+    }
+  }
+  // dp / d r_i at fixed n: 2 w_i a_i - (w_i q_i / rho) p.
+  Vec<R, N> by_radius(int i) const { return R(2) * w[i] * axes.col(i) - (w[i] * q[i] / rho) * p; }
+};
+
+// exp([theta]x) and the left Jacobian J(theta) of the rotation group as matrices (2D: 1).
+template <class R, int N>
+TurnJacobian<R, N> turn_columns(const RotationVector<R, N>& theta, bool jacobian) {
+  if constexpr (N == 2) {
+    return TurnJacobian<R, 2>::Zero();  // unused: a 2D turn is its own angle
+  } else {
+    Mat<R, 3> m;  // row j of the matrix is its transpose applied to e_j
+    for (int j = 0; j < 3; ++j) {
+      const Vec<R, 3> e = Vec<R, 3>::Unit(j);
+      m.row(j) = (jacobian ? jacobian_transposed<R, 3>(theta, e) : turned_back<R, 3>(theta, e)).transpose();
+    }
+    return m;
+  }
+}
+
+// S = L L^T for a symmetric positive definite S (N <= 3; backward stable without pivoting),
+// and S^-1 b by substitution. A matrix that is not positive definite in rounding gives NaN.
+template <class R, int N>
+struct Cholesky {
+  Eigen::Matrix<R, N, N> l = Eigen::Matrix<R, N, N>::Zero();
+  explicit Cholesky(const Eigen::Matrix<R, N, N>& s) noexcept {
+    for (int j = 0; j < N; ++j) {
+      R d = s(j, j);
+      for (int k = 0; k < j; ++k) d -= l(j, k) * l(j, k);
+      l(j, j) = std::sqrt(d);
+      for (int i = j + 1; i < N; ++i) {
+        R x = s(i, j);
+        for (int k = 0; k < j; ++k) x -= l(i, k) * l(j, k);
+        l(i, j) = x / l(j, j);
+      }
+    }
+  }
+  Vec<R, N> solve(Vec<R, N> b) const noexcept {
+    for (int i = 0; i < N; ++i) {
+      for (int k = 0; k < i; ++k) b[i] -= l(i, k) * b[k];
+      b[i] /= l(i, i);
+    }
+    for (int i = N - 1; i >= 0; --i) {
+      for (int k = i + 1; k < N; ++k) b[i] -= l(k, i) * b[k];
+      b[i] /= l(i, i);
+    }
+    return b;
+  }
+};
+
+// The derivatives of a hit's time t and point x (contact.hpp's first_contact_gradient) from
+// the bodies' shapes at t (a_t, b_t; their centers are not read), the offset c_b - c_a at
+// time 0, the normal there and the motions; NaN where the closing speed is not > 0.
 template <class T, int N, class R>
 void contact_time_gradient(ContactGradient<T, N>& out, const Ellipsoid<T, N>& a_t, const Ellipsoid<T, N>& b_t,
-                           const Vec<R, N>& velocity_a, const Vec<R, N>& velocity_b,
+                           const Vec<R, N>& offset, const Vec<R, N>& velocity_a, const Vec<R, N>& velocity_b,
                            const RotationVector<R, N>& omega_a, const RotationVector<R, N>& omega_b) noexcept {
-  const Vec<R, N> n = out.value.normal.template cast<R>();
+  constexpr int K = N == 2 ? 1 : 3;
+  using Turn = Eigen::Matrix<R, K, 1>;
   const R t = R(out.value.time);
-  // dg/dtheta of the support radii at t: g = n . (c_b - c_a) - rho_a - rho_b.
-  const BodyGradient<R, N> ra = support_radius_gradient<R>(a_t, n), rb = support_radius_gradient<R>(b_t, n);
-  auto dot = [](const RotationVector<R, N>& x, const RotationVector<R, N>& y) {
+  // The normal polished by one Newton step on the support gap's maximum at t, whose gradient
+  // on the sphere is the tangential part of r - p_a - p_b and whose Hessian there is
+  // -(H_a + H_b) (the gap is 0): the point's derivatives see its rounding times H.
+  const Vec<R, N> r = offset + t * (velocity_b - velocity_a);
+  Vec<R, N> n = out.value.normal.template cast<R>();
+  {
+    const HitSide<R, N> sa(a_t, n), sb(b_t, n);
+    Vec<R, N> residual = r - sa.p - sb.p;
+    residual -= n * n.dot(residual);
+    n += Cholesky<R, N>(sa.h + sb.h + (sa.rho + sb.rho) * n * n.transpose()).solve(residual);
+    n /= stable_norm<R, N>(n);
+  }
+  const HitSide<R, N> sa(a_t, n), sb(b_t, n);
+  auto column_of = [](const RotationVector<R, N>& w) {
     if constexpr (N == 2) {
-      return x * y;
+      return Turn::Constant(w);
     } else {
-      return x.dot(y);
+      return Turn(w);
     }
   };
-  const R closing = n.dot(velocity_a - velocity_b) + dot(ra.orientation, omega_a) + dot(rb.orientation, omega_b);
+  const Turn wa = column_of(omega_a), wb = column_of(omega_b);
+  // g = n . (c_b - c_a) - rho_a - rho_b; d rho_X = n . dp_X at fixed n (a turn u changes
+  // rho_X by (p_X x n) . u = n . (C_X u)). The offsets' rates at fixed n as the bodies turn:
+  // C_X omega_X.
+  const Vec<R, N> rate_a = sa.turn * wa, rate_b = sb.turn * wb;
+  const R closing = n.dot(velocity_a - velocity_b) + n.dot(rate_a) + n.dot(rate_b);
   if (!(closing > R(0))) return;
-  const R k = R(-1) / closing;
-  // dt/dtheta = (dg/dtheta) / closing.
-  auto body = [&](const BodyGradient<R, N>& rho, const Vec<R, N>& center, const RotationVector<R, N>& omega,
-                  BodyGradient<T, N>& g, Vec<T, N>& velocity, RotationVector<T, N>& angular_velocity) {
-    BodyGradient<R, N> d = rho;  // times -1 / closing below
-    d.center = center;
-    d.orientation = turned_back<R, N>(RotationVector<R, N>(times<R, N>(omega, t)), rho.orientation);
-    g = gradient_in<T>(d, k);
-    velocity = (center * (t * k)).template cast<T>();
-    angular_velocity = rotation_in<T, R, N>(times<R, N>(
-        jacobian_transposed<R, N>(RotationVector<R, N>(times<R, N>(omega, t)), rho.orientation), t * k));
+  // The world turn at t of a turn of the orientation at time 0 (exp(t [omega]x)), and of the
+  // angular velocity (t J(t omega)).
+  auto turns = [&](const Turn& w, bool jacobian) -> Eigen::Matrix<R, K, K> {
+    if constexpr (N == 2) {
+      return Eigen::Matrix<R, 1, 1>::Constant(jacobian ? t : R(1));
+    } else {
+      if (w.isZero(0)) return Mat<R, 3>::Identity() * (jacobian ? t : R(1));
+      const TurnJacobian<R, 3> m = turn_columns<R, 3>(Vec<R, 3>(w * t), jacobian);
+      return jacobian ? Mat<R, 3>(m * t) : Mat<R, 3>(m);
+    }
   };
-  body(ra, n, omega_a, out.a, out.velocity_a, out.angular_velocity_a);
-  body(rb, Vec<R, N>(-n), omega_b, out.b, out.velocity_b, out.angular_velocity_b);
+  // (H_a + H_b) on the tangent plane.
+  const Cholesky<R, N> solve(sa.h + sb.h + (sa.rho + sb.rho) * n * n.transpose());
+  const Vec<R, N> dv = velocity_b - velocity_a;
+  // One parameter: its explicit changes of c_b - c_a, of p_a and p_b at fixed n, and of c_a.
+  // Returns dt and writes dx.
+  auto column = [&](const Vec<R, N>& dr, const Vec<R, N>& dpa, const Vec<R, N>& dpb, const Vec<R, N>& dca, R& dt,
+                    auto&& dx) {
+    dt = (n.dot(dr) - n.dot(dpa) - n.dot(dpb)) / closing;  // d g = 0 along the motion
+    Vec<R, N> rhs = dr + dv * dt - dpa - dpb - (rate_a + rate_b) * dt;
+    rhs -= n * n.dot(rhs);
+    const Vec<R, N> dn = solve.solve(rhs);
+    dx = (dca + velocity_a * dt + dpa + rate_a * dt + sa.h * dn).template cast<T>();
+  };
+  const Vec<R, N> zero = Vec<R, N>::Zero();
+  auto body = [&](int sign, const HitSide<R, N>& side, const Turn& w, BodyGradient<T, N>& g, Vec<T, N>& velocity,
+                  RotationVector<T, N>& angular_velocity, BodyJacobian<T, N>& jg, Mat<T, N>& jv,
+                  TurnJacobian<T, N>& jw) {
+    const bool is_a = sign < 0;
+    auto put = [&](const Vec<R, N>& dp, const Vec<R, N>& dr, const Vec<R, N>& dca, R& dt, auto&& dx) {
+      column(dr, is_a ? dp : zero, is_a ? zero : dp, dca, dt, dx);
+    };
+    R dt;
+    for (int j = 0; j < N; ++j) {
+      const Vec<R, N> e = Vec<R, N>::Unit(j);
+      put(zero, R(sign) * e, is_a ? e : zero, dt, jg.center.col(j));
+      g.center[j] = T(dt);
+      put(zero, R(sign) * t * e, is_a ? Vec<R, N>(t * e) : zero, dt, jv.col(j));
+      velocity[j] = T(dt);
+      put(side.by_radius(j), zero, zero, dt, jg.radii.col(j));
+      g.radii[j] = T(dt);
+    }
+    const Eigen::Matrix<R, K, K> orient = turns(w, false), spin = turns(w, true);
+    Turn go, gw;
+    for (int j = 0; j < K; ++j) {
+      put(side.turn * orient.col(j), zero, zero, dt, jg.orientation.col(j));
+      go[j] = dt;
+      put(side.turn * spin.col(j), zero, zero, dt, jw.col(j));
+      gw[j] = dt;
+    }
+    if constexpr (N == 2) {
+      g.orientation = T(go[0]);
+      angular_velocity = T(gw[0]);
+    } else {
+      g.orientation = go.template cast<T>();
+      angular_velocity = gw.template cast<T>();
+    }
+  };
+  body(-1, sa, wa, out.a, out.velocity_a, out.angular_velocity_a, out.point.a, out.point.velocity_a,
+       out.point.angular_velocity_a);
+  body(+1, sb, wb, out.b, out.velocity_b, out.angular_velocity_b, out.point.b, out.point.velocity_b,
+       out.point.angular_velocity_b);
 }
 
 }  // namespace ellipsect::detail

@@ -1,7 +1,8 @@
 // Gradients (gradient.hpp) against 50-digit central differences of the values, each value
 // computed by a route of its own in the world frame: the maximum of the support gap polished
 // by Newton on the sphere (signed distance), golden-section search on lambda (the
-// Perram-Wertheim F, and sigma = 1 / sqrt(F) of closest approach), the secant root in time of that maximum (the contact time), and
+// Perram-Wertheim F, and sigma = 1 / sqrt(F) of closest approach), the secant root in time of
+// that maximum and a's support point there (the contact time and point), and
 // Gauss-Kronrod quadrature of the chord lengths (the overlap area).
 // Bodies are moved in Real: centers, radii and velocities by h, orientations by the world
 // rotation exp(h [e_j]x), so the differences see no rounding of the perturbed bodies.
@@ -71,7 +72,7 @@ constexpr double static_tolerance = 1e-12;
 // closest_approach's normal is known to 1e-12 of the pair's size over a radius of curvature
 // (contact_function.hpp), and moves the support points.
 constexpr double approach_tolerance = 1e-11;
-constexpr double contact_tolerance = 1e-9;
+constexpr double rigid_contact_tolerance = 1e-11;
 // Linear motion's, at closing angle alpha (|n . (v_a - v_b)| / |v_a - v_b|): the derivatives
 // grow as 1 / alpha towards a graze, and the rounding of the hit's time and normal reaches them
 // divided by alpha^2.
@@ -228,14 +229,25 @@ RBody<N> at_time(RBody<N> b, const RMotion<N>& m, const Real& t) {
   return b;
 }
 
-// The root in time of the gap's maximum for a and b in their motions, by the secant method
-// from t0 (the root near it), the direction carried from step to step.
+// The hit: its time and the point where the bodies touch then.
 template <int N>
-Real contact_time(const RBody<N>& a, const RMotion<N>& ma, const RBody<N>& b, const RMotion<N>& mb, const Real& t0,
-                  RVec<N> n) {
-  auto gap_at = [&](const Real& t) {
+struct RHit {
+  Real time;
+  RVec<N> point;
+};
+
+// The root in time of the gap's maximum for a and b in their motions, by the secant method
+// from t0 (the root near it), the direction carried from step to step; the point is a's
+// support point along the maximizing direction there, c_a + P_a n / sqrt(n . P_a n).
+template <int N>
+RHit<N> contact_hit(const RBody<N>& a, const RMotion<N>& ma, const RBody<N>& b, const RMotion<N>& mb, const Real& t0,
+                    RVec<N> n) {
+  auto data_at = [&](const Real& t) {
     const RBody<N> x = at_time<N>(a, ma, t), y = at_time<N>(b, mb, t);
-    const ref::detail::GapData<Real, N> d{x.P, y.P, RVec<N>(y.c - x.c)};
+    return std::pair{x, ref::detail::GapData<Real, N>{x.P, y.P, RVec<N>(y.c - x.c)}};
+  };
+  auto gap_at = [&](const Real& t) {
+    const auto d = data_at(t).second;
     n = ref::detail::ascend<Real, N>(d, n, 24, Real("1e-44"));
     return ref::detail::gap<Real, N>(d, n);
   };
@@ -249,30 +261,73 @@ Real contact_time(const RBody<N>& a, const RMotion<N>& ma, const RBody<N>& b, co
     g = gap_at(t);
     if (abs(t - t_prev) <= Real("1e-45") * abs(t)) break;
   }
-  return t;
+  // n is ascend's at t. Its line search compares values, which settle once the direction is
+  // within the square root of the precision: the point needs Newton steps on the gradient
+  // alone.
+  const auto [x, d] = data_at(t);
+  for (int step = 0; step < 3; ++step) {
+    const Eigen::Matrix<Real, N, N - 1> q = ref::detail::tangent_basis<Real, N>(n);
+    Eigen::Matrix<Real, N - 1, 1> grad;
+    Eigen::Matrix<Real, N - 1, N - 1> hess;
+    ref::detail::gap_derivatives<Real, N>(d, n, q, grad, hess);
+    n -= q * (hess.inverse() * grad);
+    n /= sqrt(n.dot(n));
+  }
+  const RVec<N> pn = x.P * n;
+  return {t, RVec<N>(x.c + pn / sqrt(n.dot(pn)))};
 }
 
-// The contact time's gradient of a pair that the library reports hit, against central
-// differences of contact_time over every parameter of the bodies and their motions.
+// Entry (i, k) of a point's Jacobian by a body's parameter k (gradient.hpp's order).
 template <int N>
-double compare_contact_time(const Ellipsoid<double, N>& a, const RigidMotion<double, N>& ma,
+double entry(const BodyJacobian<double, N>& j, int i, int k) {
+  if (kind_of<N>(k) == 0) return j.center(i, k);
+  if (kind_of<N>(k) == 2) return j.radii(i, k - N - turns<N>);
+  return j.orientation(i, k - N);
+}
+
+// The contact time's gradient and the point's Jacobian of a pair that the library reports
+// hit, against central differences of contact_hit over every parameter of the bodies and their
+// motions. Returns the two errors, each relative to its units (Comparison).
+template <int N>
+std::pair<double, double> compare_contact_time(const Ellipsoid<double, N>& a, const RigidMotion<double, N>& ma,
                             const Ellipsoid<double, N>& b, const RigidMotion<double, N>& mb,
                             const ContactGradient<double, N>& g, std::string& shown) {
   const RBody<N> ra = ref::detail::make_rbody<N>(to_ref(a)), rb = ref::detail::make_rbody<N>(to_ref(b));
   const RMotion<N> rma = to_real_motion<N>(ma), rmb = to_real_motion<N>(mb);
   const RVec<N> n0 = ref::to_real<N>(Vec<double, N>(g.value.normal));
   const Real t0 = g.value.time;
-  Comparison cmp;
-  differentiate<N>(ra, rb, g.a, g.b,
-                   [&](const RBody<N>& x, const RBody<N>& y) { return contact_time<N>(x, rma, y, rmb, t0, n0); }, cmp);
-  // Steps that move the bodies at the contact time by 1e-15 of their scale, or turn them by
-  // 1e-15 rad.
   const Real scale = std::max(ra.rmax, rb.rmax);
-  for (int body = 0; body < 2; ++body)
+  Comparison time, point;
+  time.scale = point.scale = scale;
+  // One parameter, moved by +-h: its time derivative and the point's column.
+  auto add = [&](int kind, double dt, const std::function<double(int)>& dx, const Real& h,
+                 const std::function<RHit<N>(const Real&)>& hit) {
+    const RHit<N> plus = hit(h), minus = hit(-h);
+    time.add(kind, dt, (plus.time - minus.time) / (2 * h));
+    for (int i = 0; i < N; ++i) point.add(kind, dx(i), (plus.point(i) - minus.point(i)) / (2 * h));
+  };
+  for (int body = 0; body < 2; ++body) {
+    const BodyGradient<double, N>& gt = body == 0 ? g.a : g.b;
+    const BodyJacobian<double, N>& gx = body == 0 ? g.point.a : g.point.b;
+    for (int k = 0; k < params<N>; ++k) {
+      const Real h = kind_of<N>(k) == 1 ? Real("1e-15") : Real("1e-15") * scale;
+      add(kind_of<N>(k), component<N>(gt, k), [&](int i) { return entry<N>(gx, i, k); }, h, [&](const Real& dh) {
+        return body == 0 ? contact_hit<N>(moved<N>(ra, k, dh), rma, rb, rmb, t0, n0)
+                         : contact_hit<N>(ra, rma, moved<N>(rb, k, dh), rmb, t0, n0);
+      });
+    }
+    // Steps that move the bodies at the contact time by 1e-15 of their scale, or turn them by
+    // 1e-15 rad.
     for (int k = 0; k < N + turns<N>; ++k) {
       const bool linear = k < N;
       const Real h = (linear ? Real("1e-15") * scale : Real("1e-15")) / t0;
-      auto with = [&](const Real& dh) {
+      const double dt = linear ? (body == 0 ? g.velocity_a : g.velocity_b)[k]
+                               : angular_component<N>(body == 0 ? g.angular_velocity_a : g.angular_velocity_b, k - N);
+      auto dx = [&](int i) {
+        return linear ? (body == 0 ? g.point.velocity_a : g.point.velocity_b)(i, k)
+                      : (body == 0 ? g.point.angular_velocity_a : g.point.angular_velocity_b)(i, k - N);
+      };
+      add(linear ? 3 : 4, dt, dx, h, [&](const Real& dh) {
         RMotion<N> x = rma, y = rmb;
         RMotion<N>& m = body == 0 ? x : y;
         if (linear) {
@@ -280,20 +335,18 @@ double compare_contact_time(const Ellipsoid<double, N>& a, const RigidMotion<dou
         } else {
           m.omega(k - N) += dh;
         }
-        return contact_time<N>(ra, x, rb, y, t0, n0);
-      };
-      const double library = linear ? (body == 0 ? g.velocity_a : g.velocity_b)[k]
-                                    : angular_component<N>(body == 0 ? g.angular_velocity_a : g.angular_velocity_b, k - N);
-      cmp.add(linear ? 3 : 4, library, (with(h) - with(-h)) / (2 * h));
+        return contact_hit<N>(ra, x, rb, y, t0, n0);
+      });
     }
-  shown = cmp.show();
-  return cmp.worst();
+  }
+  shown = "time:\n" + time.show() + "point:\n" + point.show();
+  return {time.worst(), point.worst()};
 }
 
 template <int N>
 void linear_contact_time_matches_differences() {
   Tally tally;
-  double worst = 0, worst_scaled = 0;
+  double worst = 0, worst_scaled = 0, worst_point = 0, worst_point_scaled = 0;
   constexpr std::array<scenarios::Category, 5> categories = {
       scenarios::Category::random, scenarios::Category::high_aspect, scenarios::Category::scaled_small,
       scenarios::Category::scaled_large, scenarios::Category::far_apart};
@@ -316,21 +369,25 @@ void linear_contact_time_matches_differences() {
     ma.velocity = c.va;
     mb.velocity = c.vb;
     std::string shown;
-    const double e = compare_contact_time<N>(a, ma, b, mb, g, shown);
+    const auto [e, ex] = compare_contact_time<N>(a, ma, b, mb, g, shown);
     worst = std::max(worst, e);
+    worst_point = std::max(worst_point, ex);
     const Vec<double, N> dv = c.va - c.vb;
     const double angle = std::abs(g.value.normal.dot(dv)) / dv.norm();
     worst_scaled = std::max(worst_scaled, e * angle * angle);
+    worst_point_scaled = std::max(worst_point_scaled, ex * angle * angle);
     EXPECT_LE(e, linear_contact_tolerance(angle)) << describe(c) << "\n far " << far << "\n angle " << angle << "\n" << shown;
+    EXPECT_LE(ex, linear_contact_tolerance(angle)) << describe(c) << "\n far " << far << "\n angle " << angle << "\n" << shown;
   }
-  tally.print("first_contact_gradient (linear), worst relative error " + scientific(worst) +
-              ", worst times the closing angle squared " + scientific(worst_scaled));
+  tally.print("first_contact_gradient (linear), worst relative error of the time " + scientific(worst) +
+              " (times the closing angle squared " + scientific(worst_scaled) + "), of the point " +
+              scientific(worst_point) + " (" + scientific(worst_point_scaled) + ")");
 }
 
 template <int N>
 void rigid_contact_time_matches_differences() {
   Tally tally;
-  double worst = 0;
+  double worst = 0, worst_point = 0;
   constexpr std::array<scenarios::Spin, 6> spins = {scenarios::Spin::random, scenarios::Spin::slow,
                                                     scenarios::Spin::fast,   scenarios::Spin::needles,
                                                     scenarios::Spin::scaled_small, scenarios::Spin::scaled_large};
@@ -341,11 +398,14 @@ void rigid_contact_time_matches_differences() {
     tally.add(scenarios::name(spin), to_string(g.value.status));
     if (g.value.status != ContactStatus::hit) continue;
     std::string shown;
-    const double e = compare_contact_time<N>(m.a, m.ma, m.b, m.mb, g, shown);
+    const auto [e, ex] = compare_contact_time<N>(m.a, m.ma, m.b, m.mb, g, shown);
     worst = std::max(worst, e);
-    EXPECT_LE(e, contact_tolerance) << scenarios::describe_moving<N>(spin, 7300 + i, m) << "\n" << shown;
+    worst_point = std::max(worst_point, ex);
+    EXPECT_LE(e, rigid_contact_tolerance) << scenarios::describe_moving<N>(spin, 7300 + i, m) << "\n" << shown;
+    EXPECT_LE(ex, rigid_contact_tolerance) << scenarios::describe_moving<N>(spin, 7300 + i, m) << "\n" << shown;
   }
-  tally.print("first_contact_gradient (rigid), worst relative error " + scientific(worst));
+  tally.print("first_contact_gradient (rigid), worst relative error of the time " + scientific(worst) +
+              ", of the point " + scientific(worst_point));
 }
 
 // overlap_area_gradient and intersection_over_union_gradient against central differences of
