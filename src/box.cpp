@@ -328,15 +328,57 @@ Distance<T, N> distance(const Ellipsoid<T, N>& a, const Box<T, N>& b, const Opti
 template <class T, int N>
 DistanceGradient<T, N, BoxGradient<T, N>> signed_distance_gradient(const Ellipsoid<T, N>& a, const Box<T, N>& b,
                                                                    const Options& options) noexcept {
+  // The touching point y = p + d n (less a's center) less the box's center, in the box's
+  // frame, on the box.
+  const auto local = [&](const auto& n, const auto& p, auto d) {
+    using R = decltype(d);
+    const Vec<R, N> y = p + d * n;
+    const Vec<R, N> e = b.half_extents().template cast<R>();
+    return Vec<R, N>((b.axes().template cast<R>().transpose() *
+                      (y + (a.center().template cast<R>() - b.center().template cast<R>())))
+                         .cwiseMax(-e)
+                         .cwiseMin(e));
+  };
+  // The faces the touching point lies on (within 1e-9 of the extent; their inward normals, the
+  // directions from the body to the box there), and the edge where it lies
+  // inside the box's range along one axis only (`free`), in double length from the box's
+  // center, half extents and axes: the first end center - c + sum over the others of
+  // +-e_i a_i - e_free a_free, the edge 2 e_free a_free (polish_normal keeps n where the
+  // maximum is not inside that edge's stratum).
+  const auto stratum = [&](const auto& n, const auto& p, auto d, auto& out) {
+    if constexpr (N == 3) {
+      using R = decltype(d);
+      const Vec<R, 3> u = local(n, p, d);
+      int free = -1;
+      for (int i = 0; i < 3; ++i) {
+        if (std::abs(u[i]) < R(b.half_extents()[i]) * R(1 - 1e-9)) {
+          free = free == -1 ? i : 3;
+          continue;
+        }
+        out.faces[out.face_count++] = (u[i] > 0 ? R(-1) : R(1)) * b.axes().col(i).template cast<R>();
+      }
+      if (free < 0 || free > 2) return;
+      out.edge = true;
+      out.sides[0] = out.faces[0];
+      out.sides[1] = out.faces[1];
+      out.side_count = 2;
+      for (int j = 0; j < 3; ++j) {
+        detail::Double<R> q = detail::two_sum(R(b.center()[j]), -R(a.center()[j]));
+        for (int i = 0; i < 3; ++i) {
+          const R side = i == free ? R(-1) : u[i] > 0 ? R(1) : R(-1);
+          q = q + detail::two_product(side * R(b.half_extents()[i]), R(b.axes()(j, i)));
+        }
+        out.q[j] = q;
+        out.e[j] = detail::two_product(R(2) * R(b.half_extents()[free]), R(b.axes()(j, free)));
+      }
+    }
+  };
   return detail::shape_distance_gradient<T, N, BoxGradient<T, N>>(
-      a, signed_distance(a, b, options), [&](const auto& n, const auto& p, auto d) {
+      a, signed_distance(a, b, options), stratum, [&](const auto& n, const auto& p, auto d) {
         using R = decltype(d);
-        const Vec<R, N> y = p + d * n;
         const Mat<R, N> axes = b.axes().template cast<R>();
         const Vec<R, N> e = b.half_extents().template cast<R>();
-        // y less the box's center, in the box's frame, on the box.
-        const Vec<R, N> u =
-            (axes.transpose() * (y + (a.center().template cast<R>() - b.center().template cast<R>()))).cwiseMax(-e).cwiseMin(e);
+        const Vec<R, N> u = local(n, p, d);
         BoxGradient<T, N> out;
         out.center = n.template cast<T>();
         out.orientation = detail::rotation_in<T, R, N>(detail::turn_rate<R, N>(Vec<R, N>(axes * u), n));

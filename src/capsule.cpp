@@ -173,15 +173,26 @@ template <class T, int N>
 DistanceGradient<T, N, CapsuleGradient<T, N>> signed_distance_gradient(const Ellipsoid<T, N>& a,
                                                                        const Capsule<T, N>& b,
                                                                        const Options& options) noexcept {
+  // The segment's point touching a moved by -d n, y + R n with y = p + d n (less a's
+  // center), as (1 - l) p0 + l p1.
+  const auto along = [&](const auto& n, const auto& p, auto d) {
+    using R = decltype(d);
+    const Vec<R, N> y = p + d * n;
+    const Vec<R, N> c = a.center().template cast<R>();
+    const Vec<R, N> p0 = b.point(0).template cast<R>() - c, e = b.point(1).template cast<R>() - c - p0;
+    const R ee = e.squaredNorm();
+    return ee > R(0) ? std::clamp((y + R(b.radius()) * n - p0).dot(e) / ee, R(0), R(1)) : R(0.5);
+  };
+  const auto stratum = [&](const auto& n, const auto& p, auto d, auto& out) {
+    const auto l = along(n, p, d);
+    if constexpr (N == 3)
+      if (l > 0 && l < 1 && b.point(0) != b.point(1))
+        detail::set_edge<decltype(d)>(out, a, Vec<T, 3>(b.point(0)), Vec<T, 3>(b.point(1)));
+  };
   return detail::shape_distance_gradient<T, N, CapsuleGradient<T, N>>(
-      a, signed_distance(a, b, options), [&](const auto& n, const auto& p, auto d) {
+      a, signed_distance(a, b, options), stratum, [&](const auto& n, const auto& p, auto d) {
         using R = decltype(d);
-        const Vec<R, N> y = p + d * n;
-        // The segment's point y + R n (less a's center) as (1 - l) p0 + l p1.
-        const Vec<R, N> c = a.center().template cast<R>();
-        const Vec<R, N> p0 = b.point(0).template cast<R>() - c, e = b.point(1).template cast<R>() - c - p0;
-        const R ee = e.squaredNorm();
-        const R l = ee > R(0) ? std::clamp((y + R(b.radius()) * n - p0).dot(e) / ee, R(0), R(1)) : R(0.5);
+        const R l = along(n, p, d);
         return CapsuleGradient<T, N>{((R(1) - l) * n).template cast<T>(), (l * n).template cast<T>(),
                                      n.allFinite() ? T(-1) : std::numeric_limits<T>::quiet_NaN()};
       });

@@ -580,16 +580,38 @@ template <class T, int N>
 DistanceGradient<T, N, TriangleGradient<T, N>> signed_distance_gradient(const Ellipsoid<T, N>& a,
                                                                         const Triangle<T, N>& b,
                                                                         const Options& options) noexcept {
+  // The barycentric weights of the touching point y = p + d n (less a's center): the vertices
+  // less y, whose point nearest the origin is y's nearest.
+  const auto weights = [&](const auto& n, const auto& p, auto d) {
+    using R = decltype(d);
+    const Vec<R, N> y = p + d * n;
+    Vertices<R, N> u;
+    for (int k = 0; k < 3; ++k)
+      for (int i = 0; i < N; ++i) u[k][i] = (R(b.vertex(k)[i]) - R(a.center()[i])) - y[i];
+    return nearest_weights<R, N>(u, face_of<R, N>(u));
+  };
+  // The face's normal toward the body's side, and the edge of a touching point on an edge or
+  // nearly (polish_normal keeps n where the maximum is not inside that edge's stratum).
+  const auto stratum = [&](const auto& n, const auto& p, auto d, auto& out) {
+    if constexpr (N == 3) {
+      using R = decltype(d);
+      const Vec<R, 3> v0 = b.vertex(0).template cast<R>();
+      Vec<R, 3> face = (b.vertex(1).template cast<R>() - v0).cross(b.vertex(2).template cast<R>() - v0);
+      if (face.norm() > R(0)) {
+        face.normalize();
+        out.faces[out.face_count++] = face.dot(n) < 0 ? Vec<R, 3>(-face) : face;
+      }
+      const auto w = weights(n, p, d);
+      for (int k = 0; k < 3; ++k)
+        if (w[k] <= 1e-9 && w[(k + 1) % 3] > 0 && w[(k + 2) % 3] > 0) {
+          detail::set_edge<R>(out, a, Vec<T, 3>(b.vertex((k + 1) % 3)), Vec<T, 3>(b.vertex((k + 2) % 3)));
+          out.sides[out.side_count++] = b.vertex(k).template cast<R>() - b.vertex((k + 1) % 3).template cast<R>();
+        }
+    }
+  };
   return detail::shape_distance_gradient<T, N, TriangleGradient<T, N>>(
-      a, signed_distance(a, b, options), [&](const auto& n, const auto& p, auto d) {
-        using R = decltype(d);
-        const Vec<R, N> y = p + d * n;
-        // The vertices less the touching point y (both less a's center): the triangle's point
-        // nearest the origin is y's nearest.
-        Vertices<R, N> u;
-        for (int k = 0; k < 3; ++k)
-          for (int i = 0; i < N; ++i) u[k][i] = (R(b.vertex(k)[i]) - R(a.center()[i])) - y[i];
-        const std::array<R, 3> w = nearest_weights<R, N>(u, face_of<R, N>(u));
+      a, signed_distance(a, b, options), stratum, [&](const auto& n, const auto& p, auto d) {
+        const auto w = weights(n, p, d);
         TriangleGradient<T, N> out;
         for (int k = 0; k < 3; ++k) out.vertices[k] = (w[k] * n).template cast<T>();
         return out;

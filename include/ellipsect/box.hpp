@@ -103,17 +103,18 @@ Distance<T, N> distance(const Ellipsoid<T, N>& a, const Box<T, N>& b, const Opti
 // (-|a_i . n| where y lies on a face across axis i, 0 along an axis the normal is orthogonal to).
 // Differentiable where the maximizing n is unique (distance.hpp: always when apart; deep
 // overlaps with several deepest directions are not); there the fields are the gradient at the
-// returned n, an element of the generalized gradient. Accuracy
-// (tests/property/shape_gradient_property_test.cpp, against 50-digit central differences of
-// the support gap's maximum on the stratum of the box's features that attain it, on the cases
-// of signed_distance's test, 1e6 sizes from the origin on every other one): each component
-// within 1e-8 + 1e-14 E / R of its unit (the largest derivative by a center or a length, times
-// the pair's scale for the orientations; R the body's largest radius, E the farthest the box
-// reaches from the body's center). The derivatives carry the returned normal's error, which
-// signed_distance bounds only through the gap (of second order in it): measured up to 8e-9
-// (near tangency at an edge, aspect ratio 1e4), 1e-10 elsewhere; and the rounding of the
-// coordinates relative to the body's center, which E / R scales (triangles 1e3 to 1e12 radii
-// across: up to 2e-6).
+// returned n, an element of the generalized gradient. In 3D the returned normal is first
+// polished on its stratum: on an edge (a triangle's, a box's, a capsule's segment) by Newton
+// on the circle of directions orthogonal to it, the edge's line taken relative to the body's
+// center in double length; at a face, the face's own normal (the solve's normal carries its
+// rounding, of first order in the derivatives though of second order in the distance).
+// Accuracy (tests/property/shape_gradient_property_test.cpp, against 50-digit central
+// differences of the support gap's maximum on the stratum of the box's features that attain it
+// (near where strata meet, the one with the larger maximum), on the cases of signed_distance's
+// test, 1e6 sizes from the origin on every other one; triangles to 1e12 radii across): each
+// component within 1e-9 of its unit (the largest derivative by a center or a length, times
+// the pair's scale for the orientations); measured up to 2.6e-10 (boxes, a corner at aspect
+// ratio 1e4), 1.4e-13 (triangles), 4e-14 (capsules).
 template <class T, int N>
 struct BoxGradient {
   Vec<T, N> center;

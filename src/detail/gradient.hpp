@@ -7,9 +7,11 @@
 #include <ellipsect/gradient.hpp>
 
 #include "detail/axes.hpp"
+#include "detail/compensated.hpp"
 #include "detail/secular.hpp"
 
 
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -93,21 +95,161 @@ BodyGradient<T, N> constant_gradient(T x) noexcept {
   return out;
 }
 
+// A body at the hit for the point's derivatives: its support offset p along n, the
+// derivative H = (M - p p^T) / rho of p by n (formed as B (I - w w^T) B^T / rho with
+// B = A diag(r), w = B^T n / rho, so no length is squared and cancelled), and
+// C = dp / du at fixed n for a world turn u: u x p - H (u x n), columns by u's components.
+template <class R, int N>
+struct HitSide {
+  Vec<R, N> p;
+  Mat<R, N> h;
+  TurnJacobian<R, N> turn;
+  Mat<R, N> axes;
+  Vec<R, N> w, q;
+  R rho;
+
+  template <class T>
+  HitSide(const Ellipsoid<T, N>& body, const Vec<R, N>& n) {
+    axes = work_axes<R>(body);
+    const Vec<R, N> r = body.radii().template cast<R>();
+    q = axes.transpose() * n;
+    w = r.cwiseProduct(q);
+    rho = stable_norm<R, N>(w);
+    w /= rho;
+    const Mat<R, N> b = axes * r.asDiagonal();
+    p = b * w;
+    h = b * (Mat<R, N>::Identity() - w * w.transpose()) * b.transpose() / rho;
+    if constexpr (N == 2) {
+      const Vec<R, 2> pp(-p[1], p[0]), np(-n[1], n[0]);
+      turn = pp - h * np;
+    } else {
+      Mat<R, 3> cn, cp;  // [n]x, [p]x
+      cn << 0, -n[2], n[1], n[2], 0, -n[0], -n[1], n[0], 0;
+      cp << 0, -p[2], p[1], p[2], 0, -p[0], -p[1], p[0], 0;
+      turn = h * cn - cp;
+    }
+  }
+  // dp / d r_i at fixed n: 2 w_i a_i - (w_i q_i / rho) p.
+  Vec<R, N> by_radius(int i) const { return R(2) * w[i] * axes.col(i) - (w[i] * q[i] / rho) * p; }
+};
+
+// Where a shape's signed distance to a body may have its maximum (3D): an edge (`edge`) in
+// double length, q its first end less the body's center, e its second end less its first, its
+// stratum's directions n those orthogonal to e with n . s > 0 for each of the `sides` given (a
+// triangle's third vertex less the edge, a box's adjacent faces' inward normals); and the unit
+// normals, pointing from the body to the shape, of the faces at the touching point (`faces`).
+template <class R>
+struct EdgeOffsets {
+  bool edge = false;
+  std::array<Double<R>, 3> q, e;
+  std::array<Vec<R, 3>, 3> sides, faces;
+  int side_count = 0, face_count = 0;
+};
+
+// The edge q0 q1 (world points) less the body's center, split exactly.
+template <class R, class T>
+void set_edge(EdgeOffsets<R>& out, const Ellipsoid<T, 3>& a, const Vec<T, 3>& q0, const Vec<T, 3>& q1) noexcept {
+  out.edge = true;
+  for (int i = 0; i < 3; ++i) {
+    out.q[i] = two_sum(R(q0[i]), -R(a.center()[i]));
+    out.e[i] = two_sum(R(q1[i]), -R(q0[i]));
+  }
+}
+
+// The normal of a signed distance whose maximum lies inside the stratum of an edge (3D): the
+// directions n orthogonal to the edge's e, where the gap is n . q - rho(n), q the edge line's
+// point nearest the body's center, less that center. q is formed in double length from the
+// edge's offsets: an edge 1e10 radii long puts the rounding of its end less the center at 1e-6
+// radii otherwise. Newton on that circle from n: the step along t = u x n (u = e / |e|) is
+// t . (q - p(n)) / (g + t^T H t), with p(n) and H as HitSide's and g = n . q - rho(n). The
+// polished n replaces n only where it is that stratum's maximum: every denominator positive,
+// the steps together below 1e-4 rad, the sides' conditions held, and the body's support point
+// p(n) + g n on the edge strictly between its ends (else the maximum lies on a neighbouring
+// stratum, a face or a vertex, where n stays as given).
+template <class R, class T>
+bool polish_on_edge(const Ellipsoid<T, 3>& a, const EdgeOffsets<R>& edge, Vec<R, 3>& normal) noexcept {
+  using D = Double<R>;
+  const std::array<D, 3>&q = edge.q, &e = edge.e;
+  D eq{}, ee{};
+  for (int i = 0; i < 3; ++i) {
+    eq = eq + e[i] * q[i];
+    ee = ee + e[i] * e[i];
+  }
+  if (!(ee.hi > R(0))) return false;
+  const D f = eq / ee;
+  Vec<R, 3> qp, u;
+  for (int i = 0; i < 3; ++i) {
+    qp[i] = (q[i] - e[i] * f).hi;
+    u[i] = e[i].hi;
+  }
+  const R length = u.norm();
+  u /= length;
+  Vec<R, 3> n = normal - u * u.dot(normal);
+  n /= n.norm();
+  R turned = std::abs(std::asin(std::min(R(1), std::abs(u.dot(normal)))));
+  for (int step = 0; step < 3; ++step) {
+    const HitSide<R, 3> side(a, n);
+    const Vec<R, 3> t = u.cross(n);
+    const R den = n.dot(qp) - side.rho + t.dot(side.h * t);
+    if (!(den > R(0))) return false;
+    const R theta = t.dot(qp - side.p) / den;
+    n += theta * t;
+    n /= n.norm();
+    turned += std::abs(theta);
+    if (!(std::abs(theta) > R(4) * std::numeric_limits<R>::epsilon())) break;
+  }
+  if (!(turned < R(1e-4))) return false;
+  for (int k = 0; k < edge.side_count; ++k)
+    if (!(n.dot(edge.sides[k]) > R(0))) return false;
+  // The support point's place along the edge from its first end, in units of |e|: it lies at
+  // q + s e with p . u = (q + s e) . u (n is orthogonal to u).
+  Vec<R, 3> p;
+  support_radius_gradient<R>(a, n, &p);
+  const R s = p.dot(u) / length - f.hi;
+  if (!(s > R(0) && s < R(1))) return false;
+  normal = n;
+  return true;
+}
+
+// The stratum's normal for a signed distance whose maximum lies on an edge (polish_on_edge)
+// or, failing that, at a face's normal within 1e-6 rad of n: the face's exact normal (the
+// maximum at a face, or at a face's rim, is the face's normal; the solve's own carries its
+// rounding, 1e-10 on a box of aspect ratio 1e4).
+template <class R, class T>
+void polish_normal(const Ellipsoid<T, 3>& a, const EdgeOffsets<R>& stratum, Vec<R, 3>& n) noexcept {
+  if (stratum.edge && polish_on_edge<R>(a, stratum, n)) return;
+  for (int k = 0; k < stratum.face_count; ++k)
+    if ((stratum.faces[k] - n).norm() < R(1e-6)) {
+      n = stratum.faces[k];
+      return;
+    }
+}
+
 // signed_distance_gradient of the body a and a shape (shapes' headers), from the signed
 // distance d = max over unit n of (min over the shape of n . y) - n . center(a) - rho_a(n)
 // (value, its normal n the maximizer). a's part as against a body (envelope theorem);
 // the shape's from shape(n, p, d) (in R): the point of the shape where it touches a moved by
 // -d n is p + d n less a's center, p a's support point along n less its center (a material
-// point of the shape moved at velocity u changes d at the rate n . u). A value with no normal
+// point of the shape moved at velocity u changes d at the rate n . u). In 3D, n is first
+// polished on its stratum (polish_normal), whose edge and faces stratum_of(n, p, d, stratum)
+// sets from that point (an EdgeOffsets). A value with no normal
 // (did_not_converge) gets NaN for a's part and shape(NaN, NaN, d) for the shape's.
-template <class T, int N, class G, class Shape>
+template <class T, int N, class G, class Stratum, class Shape>
 DistanceGradient<T, N, G> shape_distance_gradient(const Ellipsoid<T, N>& a, const Distance<T, N>& value,
-                                                  Shape&& shape) noexcept {
+                                                  Stratum&& stratum_of, Shape&& shape) noexcept {
   using R = std::conditional_t<(sizeof(T) < sizeof(double)), double, T>;
   const bool known = value.status != DistanceStatus::did_not_converge && value.normal.allFinite();
-  const Vec<R, N> n = known ? Vec<R, N>(value.normal.template cast<R>()) : Vec<R, N>::Constant(std::numeric_limits<R>::quiet_NaN());
+  Vec<R, N> n = known ? Vec<R, N>(value.normal.template cast<R>()) : Vec<R, N>::Constant(std::numeric_limits<R>::quiet_NaN());
   Vec<R, N> p;
   BodyGradient<R, N> ga = support_radius_gradient<R>(a, n, &p);
+  if constexpr (N == 3) {
+    EdgeOffsets<R> stratum;
+    if (known) {
+      stratum_of(n, p, R(value.distance), stratum);
+      polish_normal<R>(a, stratum, n);
+      ga = support_radius_gradient<R>(a, n, &p);
+    }
+  }
   ga.center = n;
   return {value, gradient_in<T>(ga, R(-1)), shape(n, p, R(value.distance))};
 }
@@ -166,44 +308,6 @@ RotationVector<R, N> jacobian_transposed(const RotationVector<R, N>& theta, cons
     return Vec<R, 3>(v - c1 * tv + c2 * theta.cross(tv));
   }
 }
-
-// A body at the hit for the point's derivatives: its support offset p along n, the
-// derivative H = (M - p p^T) / rho of p by n (formed as B (I - w w^T) B^T / rho with
-// B = A diag(r), w = B^T n / rho, so no length is squared and cancelled), and
-// C = dp / du at fixed n for a world turn u: u x p - H (u x n), columns by u's components.
-template <class R, int N>
-struct HitSide {
-  Vec<R, N> p;
-  Mat<R, N> h;
-  TurnJacobian<R, N> turn;
-  Mat<R, N> axes;
-  Vec<R, N> w, q;
-  R rho;
-
-  template <class T>
-  HitSide(const Ellipsoid<T, N>& body, const Vec<R, N>& n) {
-    axes = work_axes<R>(body);
-    const Vec<R, N> r = body.radii().template cast<R>();
-    q = axes.transpose() * n;
-    w = r.cwiseProduct(q);
-    rho = stable_norm<R, N>(w);
-    w /= rho;
-    const Mat<R, N> b = axes * r.asDiagonal();
-    p = b * w;
-    h = b * (Mat<R, N>::Identity() - w * w.transpose()) * b.transpose() / rho;
-    if constexpr (N == 2) {
-      const Vec<R, 2> pp(-p[1], p[0]), np(-n[1], n[0]);
-      turn = pp - h * np;
-    } else {
-      Mat<R, 3> cn, cp;  // [n]x, [p]x
-      cn << 0, -n[2], n[1], n[2], 0, -n[0], -n[1], n[0], 0;
-      cp << 0, -p[2], p[1], p[2], 0, -p[0], -p[1], p[0], 0;
-      turn = h * cn - cp;
-    }
-  }
-  // dp / d r_i at fixed n: 2 w_i a_i - (w_i q_i / rho) p.
-  Vec<R, N> by_radius(int i) const { return R(2) * w[i] * axes.col(i) - (w[i] * q[i] / rho) * p; }
-};
 
 // exp([theta]x) and the left Jacobian J(theta) of the rotation group as matrices (2D: 1).
 template <class R, int N>
