@@ -405,8 +405,8 @@ void contact_time_gradient(ContactGradient<T, N>& out, const Ellipsoid<T, N>& a_
   // (H_a + H_b) on the tangent plane.
   const Cholesky<R, N> solve(sa.h + sb.h + (sa.rho + sb.rho) * n * n.transpose());
   const Vec<R, N> dv = velocity_b - velocity_a;
-  // One parameter: its explicit changes of c_b - c_a, of p_a and p_b at fixed n, and of c_a.
-  // Returns dt and writes dx.
+  // One parameter: its explicit changes of c_b - c_a, of p_a and p_b at fixed n, and of c_a;
+  // sets its dt and dx.
   auto column = [&](const Vec<R, N>& dr, const Vec<R, N>& dpa, const Vec<R, N>& dpb, const Vec<R, N>& dca, R& dt,
                     auto&& dx) {
     dt = (n.dot(dr) - n.dot(dpa) - n.dot(dpb)) / closing;  // d g = 0 along the motion
