@@ -8,6 +8,7 @@
 
 #include "scenarios/scenarios.hpp"
 
+#include <limits>
 #include <sstream>
 #include <string>
 
@@ -49,6 +50,15 @@ Omega<N> spin_of(scenarios::detail::Rng& rng, double rate) {
     return scenarios::detail::uniform(rng, 0, 1) < 0.5 ? -rate : rate;
   } else {
     return scenarios::detail::unit_vector<3>(rng) * rate;
+  }
+}
+
+template <int N>
+double magnitude_of(const Omega<N>& w) {
+  if constexpr (N == 2) {
+    return std::abs(w);
+  } else {
+    return w.norm();
   }
 }
 
@@ -124,6 +134,36 @@ Moving<N> make_moving(Spin kind, std::uint64_t seed) {
   return m;
 }
 
+// make_moving's pair with its bodies growing (RigidMotion::growth): rates from 0.05 to 2 times
+// the pair's own rate speed / size, one body at rest in size in a third of the cases. `still`:
+// the centers at rest (the spins kept), so that growth alone closes the gap, at rates that
+// bring the bodies together at about t = 0.1 to 10 (an unbounded window).
+template <int N>
+Moving<N> make_growing(Spin kind, std::uint64_t seed, bool still) {
+  namespace sd = scenarios::detail;
+  Moving<N> m = make_moving<N>(kind, seed);
+  sd::Rng rng(seed * 0x9E3779B97F4A7C15ull + static_cast<std::uint64_t>(kind) + (still ? 101 : 0));
+  double base = m.speed / m.size;
+  if (still) {
+    m.ma.velocity.setZero();
+    m.mb.velocity.setZero();
+    m.t_max = std::numeric_limits<double>::infinity();
+    const double gap = std::max((m.b.center() - m.a.center()).norm() - m.size, 1e-3 * m.size);
+    base = gap / m.size;
+  }
+  const double lo = still ? 0.1 : 0.05, hi = still ? 10 : 2;
+  m.ma.growth = base * sd::log_uniform(rng, lo, hi);
+  m.mb.growth = base * sd::log_uniform(rng, lo, hi);
+  const double one = sd::uniform(rng, 0, 1);
+  if (one < 1.0 / 6) m.ma.growth = 0;
+  else if (one < 1.0 / 3) m.mb.growth = 0;
+  const double v = (m.mb.velocity - m.ma.velocity).norm();
+  m.speed = v + magnitude_of<N>(m.ma.angular_velocity) * m.a.radii().maxCoeff() +
+            magnitude_of<N>(m.mb.angular_velocity) * m.b.radii().maxCoeff() + m.ma.growth * m.a.radii().maxCoeff() +
+            m.mb.growth * m.b.radii().maxCoeff();
+  return m;
+}
+
 template <int N>
 std::string describe_moving(Spin kind, std::uint64_t seed, const Moving<N>& m) {
   std::ostringstream s;
@@ -133,7 +173,8 @@ std::string describe_moving(Spin kind, std::uint64_t seed, const Moving<N>& m) {
     << "\n  axes a=" << m.a.axes().reshaped().transpose() << "\n  axes b=" << m.b.axes().reshaped().transpose()
     << "\n  va=" << m.ma.velocity.transpose() << " vb=" << m.mb.velocity.transpose() << " t_max=" << m.t_max
     << "\n  wa=" << Vec<double, N == 2 ? 1 : 3>(m.ma.angular_velocity).transpose()
-    << " wb=" << Vec<double, N == 2 ? 1 : 3>(m.mb.angular_velocity).transpose();
+    << " wb=" << Vec<double, N == 2 ? 1 : 3>(m.mb.angular_velocity).transpose() << "\n  ga=" << m.ma.growth
+    << " gb=" << m.mb.growth;
   return s.str();
 }
 

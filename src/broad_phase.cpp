@@ -42,22 +42,27 @@ bool spins(const RigidMotion<T, N>& m) {
     return !m.angular_velocity.isZero(0);
 }
 
-// The box of `body` moving with `velocity` over [t0, t1]: exact for a body that does not
-// turn (with the axes the queries compute with: float axes orthonormalized), the box of its
-// bounding ball for one that does.
+// The largest factor (1 + g t) of a body's radii over [t0, t1] (t0, t1 >= 0): infinite for
+// a growing body over an unbounded window.
+double grown_by(double growth, double t1) { return growth == 0.0 ? 1.0 : 1.0 + growth * t1; }
+
+// The box of `body` moving with `velocity` over [t0, t1], its radii times `scale` at most:
+// exact for a body that does not turn or grow (with the axes the queries compute with: float
+// axes orthonormalized), the box of its bounding ball for one that turns.
 template <class T, int N>
-Box<N> box_of(const Ellipsoid<T, N>& body, const Vec<T, N>& velocity, bool turning, double t0, double t1) {
+Box<N> box_of(const Ellipsoid<T, N>& body, const Vec<T, N>& velocity, bool turning, double t0, double t1,
+              double scale = 1.0) {
   const Mat<double, N> A = detail::work_axes<double>(body);
   const auto r = body.radii();
   const auto c = body.center();
-  const double r_max = double(r.maxCoeff());
+  const double r_max = double(r.maxCoeff()) * scale;
   Box<N> box;
   for (int k = 0; k < N; ++k) {
     double h = r_max;
     if (!turning) {  // r_max |row k of A diag(r / r_max)|: no underflow or overflow
       double h2 = 0.0;
       for (int j = 0; j < N; ++j) {
-        const double e = A(k, j) * (double(r[j]) / r_max);
+        const double e = A(k, j) * (double(r[j]) * scale / r_max);
         h2 += e * e;
       }
       h = std::min(r_max, r_max * std::sqrt(h2));
@@ -83,7 +88,12 @@ std::vector<Box<N>> boxes_of(std::span<const Ellipsoid<T, N>> bodies, std::span<
   std::vector<Box<N>> boxes;
   boxes.reserve(bodies.size());
   for (std::size_t i = 0; i < bodies.size(); ++i)
-    boxes.push_back(box_of(bodies[i], motions[i].velocity, spins(motions[i]), t0, t1));
+    if (!(motions[i].growth >= T(0)) || !std::isfinite(motions[i].growth) || (motions[i].growth > T(0) && !(t0 >= 0.0)))
+      throw InputError("motions[" + std::to_string(i) + "].growth",
+                       "must be finite and >= 0, and the window must start at t0 >= 0 where it is not 0");
+  for (std::size_t i = 0; i < bodies.size(); ++i)
+    boxes.push_back(
+        box_of(bodies[i], motions[i].velocity, spins(motions[i]), t0, t1, grown_by(double(motions[i].growth), t1)));
   return boxes;
 }
 
@@ -324,6 +334,8 @@ void check_motions(std::span<const Ellipsoid<T, N>> bodies, std::span<const Rigi
     else
       finite = motions[i].angular_velocity.allFinite();
     if (!finite) throw InputError("motions[" + std::to_string(i) + "].angular_velocity", "must be finite");
+    if (!(motions[i].growth >= T(0)) || !std::isfinite(motions[i].growth))
+      throw InputError("motions[" + std::to_string(i) + "].growth", "must be finite and >= 0");
   }
 }
 
@@ -351,22 +363,28 @@ PairContact<T, N> earliest(std::span<const Ellipsoid<T, N>> bodies, std::span<co
   if (!(t_max >= T(0))) best.contact.status = ContactStatus::invalid_input;
   if (best.contact.status == ContactStatus::invalid_input || bodies.size() < 2) return best;
 
-  // Slab length: each body's swept box stays under 0.45 of a side (periodic box only).
-  double slab = std::numeric_limits<double>::infinity();
-  if (box != nullptr) {
-    check_box(*box);
+  // Slab length from t0: each body's swept box stays under 0.45 of a side (periodic box
+  // only); a growing body's box widens at the rate of its box at radii times 1 per unit growth.
+  if (box != nullptr) check_box(*box);
+  auto slab_from = [&](double t0) {
+    double slab = std::numeric_limits<double>::infinity();
+    if (box == nullptr) return slab;
     for (std::size_t i = 0; i < bodies.size(); ++i) {
+      const double growth = double(motions[i].growth), scale = grown_by(growth, t0);
       const Box<N> still = box_of<T, N>(bodies[i], Vec<T, N>::Zero(), spins(motions[i]), 0.0, 0.0);
       for (int k = 0; k < N; ++k) {
-        const double room = 0.45 * box->size[k] - (still.hi[k] - still.lo[k]);
-        if (!(still.hi[k] - still.lo[k] < 0.25 * box->size[k]))
+        const double extent = (still.hi[k] - still.lo[k]) * scale;
+        if (!(extent < 0.25 * box->size[k]))
           throw InputError("box", "body " + std::to_string(i) +
-                                      " must be smaller than a quarter of the box side on every axis");
-        const double speed = std::abs(double(motions[i].velocity[k]));
-        if (speed > 0.0) slab = std::min(slab, room / speed);
+                                      (t0 > 0.0 ? " grows beyond a quarter of the box side by time " + std::to_string(t0)
+                                                : std::string(" must be smaller than a quarter of the box side")) +
+                                      " on some axis");
+        const double rate = std::abs(double(motions[i].velocity[k])) + (still.hi[k] - still.lo[k]) * growth;
+        if (rate > 0.0) slab = std::min(slab, (0.45 * box->size[k] - extent) / rate);
       }
     }
-  }
+    return slab;
+  };
 
   T stopped = std::numeric_limits<T>::infinity();  // least lower bound of a stopped pair
   ImagePair<N> stopped_pair;
@@ -377,7 +395,7 @@ PairContact<T, N> earliest(std::span<const Ellipsoid<T, N>> bodies, std::span<co
       best.contact.time = T(t0);
       return best;
     }
-    const double t1 = std::min(double(t_max), t0 + slab);
+    const double t1 = std::min(double(t_max), t0 + slab_from(t0));
     std::vector<ImagePair<N>> candidates;
     if (box != nullptr) {
       candidates = periodic_pairs<N>(boxes_of(bodies, motions, t0, t1), anchors_at(bodies, motions, t0), *box);

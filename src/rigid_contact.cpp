@@ -37,7 +37,7 @@ namespace {
 // The other body as the second party of the advancement (detail/rigid_motion.hpp).
 template <class T, int N>
 struct BodyParty {
-  R big_a;
+  Turning<T, N> turning_a;  // a's bounding ball and growth
   Vec<R, N> velocity_a;
   const Ellipsoid<T, N>& b;
   const RigidMotion<T, N>& motion_b;
@@ -49,19 +49,20 @@ struct BodyParty {
 
   BodyParty(const Ellipsoid<T, N>& a, const RigidMotion<T, N>& motion_a, const Ellipsoid<T, N>& b_,
             const RigidMotion<T, N>& m, const Options& o) noexcept
-      : big_a(R(a.radii().maxCoeff())), velocity_a(motion_a.velocity.template cast<R>()), b(b_), motion_b(m),
-        options(o), turning(b_, m), velocity(m.velocity.template cast<R>()) {}
+      : turning_a(a, motion_a), velocity_a(motion_a.velocity.template cast<R>()), b(b_), motion_b(m), options(o),
+        turning(b_, m), velocity(m.velocity.template cast<R>()) {}
 
   bool at(R time) noexcept {
     t = time;
     body_b = moved(b, motion_b, T(t));
-    return body_b.center().allFinite() && body_b.axes().allFinite();
+    return finite(body_b);
   }
-  // Bounding balls (radius R) apart by more than their radii: the direction between the
+  // Bounding balls (radius R at t) apart by more than their radii: the direction between the
   // centers gives a gap of at least R_a + R_b, and distance() is left for the near phase.
   Distance<T, N> near(const Ellipsoid<T, N>& body_a, bool touched) const noexcept {
     const Vec<R, N> between = body_b.center().template cast<R>() - body_a.center().template cast<R>();
-    if (touched || !(between.stableNorm() > 2 * (big_a + turning.big))) return distance(body_a, body_b, options);
+    if (touched || !(between.stableNorm() > 2 * (turning_a.big * turning_a.scale(t) + turning.big * turning.scale(t))))
+      return distance(body_a, body_b, options);
     Distance<T, N> d;
     d.status = DistanceStatus::separated;
     d.distance = std::numeric_limits<T>::quiet_NaN();
@@ -74,24 +75,36 @@ struct BodyParty {
     Vec<R, N> offset;
     const R rho = support(body_b, n, offset);
     const R center = n.dot(body_b.center().template cast<R>());
-    const R across = turning.across(n);
+    const R across = turning.across(n), turned = turning.turn(n, offset);
     return {center - rho,
-            n.dot(velocity) - turning.rate(n, offset),
-            -n.dot(velocity) + turning.sweep * across,
-            turning.curvature(across),
+            n.dot(velocity) - turning.rate(t, rho, turned),
+            -n.dot(velocity) + turning.rising(t, across),
+            turning.curvature(t, across, turned),
             turning.configuration(t),
             std::abs(center) + rho,
-            turning.speed + turning.spin * turning.big,
-            turning.small};
+            turning.rates(t),
+            turning.small * turning.scale(t),
+            turning.reach(t)};
   }
-  // The bounding balls (radius R about the centers) never meet from t on.
+  // The bounding balls (radius R about the centers, growing at g_a R_a + g_b R_b) never meet
+  // from t on: |p + s u| > rad + G s for every s >= 0 (p, u the centers' offset and relative
+  // velocity), that is q(s) = (|u|^2 - G^2) s^2 + 2 (p . u - rad G) s + |p|^2 - rad^2 > 0,
+  // decided with a margin far above its rounding.
   bool never(const Vec<R, N>&, const Ellipsoid<T, N>& body_a, R margin) const noexcept {
     constexpr R ulp = R(std::numeric_limits<T>::epsilon());
     const Vec<R, N> rel_v = velocity - velocity_a;
     const Vec<R, N> apart = body_b.center().template cast<R>() - body_a.center().template cast<R>();
-    const R ahead = rel_v.squaredNorm() > R(0) ? std::max(R(0), -apart.dot(rel_v) / rel_v.squaredNorm()) : R(0);
-    const R closest = (apart + ahead * rel_v).norm();  // of the centers, from t on
-    return closest > (big_a + turning.big) * (1 + 64 * ulp) + margin;
+    const R radius = (turning_a.big * turning_a.scale(t) + turning.big * turning.scale(t)) * (1 + 64 * ulp) + margin;
+    const R grow = (turning_a.growth * turning_a.big + turning.growth * turning.big) * (1 + 64 * ulp);
+    if (grow == R(0)) {
+      const R ahead = rel_v.squaredNorm() > R(0) ? std::max(R(0), -apart.dot(rel_v) / rel_v.squaredNorm()) : R(0);
+      return (apart + ahead * rel_v).norm() > radius;  // the centers' closest approach from t on
+    }
+    const R speed2 = rel_v.squaredNorm(), a2 = speed2 - grow * grow, b1 = apart.dot(rel_v) - radius * grow;
+    const R c0 = apart.squaredNorm() - radius * radius;
+    const R slack = 64 * ulp * (apart.squaredNorm() + radius * radius);
+    if (!(c0 > slack) || !(a2 > 64 * ulp * (speed2 + grow * grow))) return false;  // touching, or the balls catch up
+    return b1 >= R(0) || c0 - b1 / a2 * b1 > slack + 64 * ulp * (b1 / a2 * std::abs(b1));
   }
 };
 
@@ -104,6 +117,8 @@ Contact<T, N> rescaled_first_contact(const Ellipsoid<T, N>& a, const RigidMotion
   RigidMotion<T, N> ma = motion_a, mb = motion_b;
   ma.velocity = detail::times_pow2(motion_a.velocity, -e - f);
   mb.velocity = detail::times_pow2(motion_b.velocity, -e - f);
+  ma.growth = std::ldexp(motion_a.growth, -f);
+  mb.growth = std::ldexp(motion_b.growth, -f);
   if constexpr (N == 2) {
     ma.angular_velocity = std::ldexp(motion_a.angular_velocity, -f);
     mb.angular_velocity = std::ldexp(motion_b.angular_velocity, -f);
@@ -153,14 +168,17 @@ T refined(T time, const Vec<T, N>& normal, const Ellipsoid<T, N>& a, const Rigid
     wa.angular_velocity = motion_a.angular_velocity.template cast<L>();
     wb.angular_velocity = motion_b.angular_velocity.template cast<L>();
   }
-  // Support radius along n at time t and its rate (omega x s) . n, s the support offset.
-  auto support_at = [&](const Ellipsoid<T, N>& x, const RigidMotion<L, N>& m, L t, L& rate) {
+  const L ga = L(motion_a.growth), gb = L(motion_b.growth);
+  // Support radius along n at time t, its rate (1 + g t) (omega x s) . n + g rho_0 (s the
+  // support offset, rho_0 the radius at the radii at 0) and the turn's part of it (`turned`).
+  auto support_at = [&](const Ellipsoid<T, N>& x, const RigidMotion<L, N>& m, L g, L t, L& rate, L& turned) {
     const Mat<L, N> axes = rotation<L, N>(m.angular_velocity, t) * x.axes().template cast<L>();
     const Vec<L, N> radii = x.radii().template cast<L>();
     const Vec<L, N> w = radii.cwiseProduct(axes.transpose() * n);
-    const L rho = w.norm();
-    rate = n.dot(cross<N>(m.angular_velocity, Vec<L, N>(axes * radii.cwiseProduct(w) / rho)));
-    return rho;
+    const L rho = w.norm(), scale = 1 + g * t;
+    turned = scale * n.dot(cross<N>(m.angular_velocity, Vec<L, N>(axes * radii.cwiseProduct(w) / rho)));
+    rate = turned + g * rho;
+    return scale * rho;
   };
   // The readings of a body whose axes are orthonormal only to T's rounding lie within
   // |A^T A - I| R of each other (contact.cpp): that much of each body's largest radius.
@@ -168,30 +186,35 @@ T refined(T time, const Vec<T, N>& normal, const Ellipsoid<T, N>& a, const Rigid
     const Mat<L, N> axes = x.axes().template cast<L>();
     return 2 * (axes.transpose() * axes - Mat<L, N>::Identity()).norm() * L(x.radii().maxCoeff());
   };
-  const L ambiguity = data(a) + data(b);
   const L speed = u.norm(), apart = r0.norm();
-  const L rate_margin = 32 * eps * (speed + L(ta.spin * ta.big + tb.spin * tb.big));
-  // The bounds of advance, with |omega x n| in L and the factors computed in double (sweep,
-  // spin) widened by far more than their rounding.
+  // The bounds of advance (detail/rigid_motion.hpp, Turning) at t, with |omega x n| in L and
+  // the factors computed in double (sweep, spin) widened by far more than their rounding.
   const L across_a = cross<N>(wa.angular_velocity, n).norm(), across_b = cross<N>(wb.angular_velocity, n).norm();
   auto bend = [](const Turning<T, N>& x, L across) {
     return L(x.big) * L(x.big) * across * across / L(x.small) + L(x.big) * L(x.spin) * across;
   };
-  const L fastest = -n.dot(u) + (L(ta.sweep) * across_a + L(tb.sweep) * across_b) * (1 + 1e-12L) + rate_margin;
-  const L curvature = (bend(ta, across_a) + bend(tb, across_b)) * (1 + 1e-12L);
+  auto curving = [&](const Turning<T, N>& x, L across, L g, L scale, L turned) {
+    return g == 0 ? bend(x, across) * scale : L(1.125) * bend(x, across) * scale + 2 * g / scale * std::abs(turned);
+  };
+  constexpr L inf = std::numeric_limits<L>::infinity();
   const bool still = ta.spin == 0 && tb.spin == 0;
   L t = time;
   for (int step = 0; step < 8; ++step) {
-    L rate_a, rate_b;
-    const L rho_a = support_at(a, wa, t, rate_a), rho_b = support_at(b, wb, t, rate_b);
+    L rate_a, rate_b, turned_a, turned_b;
+    const L rho_a = support_at(a, wa, ga, t, rate_a, turned_a), rho_b = support_at(b, wb, gb, t, rate_b, turned_b);
+    const L sa = 1 + ga * t, sb = 1 + gb * t;
+    const L ambiguity = data(a) * sa + data(b) * sb;
+    const L rate_margin =
+        32 * eps * (speed + L(ta.spin * ta.big + tb.spin * tb.big) * std::max(sa, sb) + L(ga * ta.big + gb * tb.big));
     const Vec<L, N> c = r0 + t * u;
     const L along = n.dot(c);
     const L configuration =
-        4 * (apart + t * speed + L(ta.big) * (8 + L(ta.spin) * t) + L(tb.big) * (8 + L(tb.spin) * t));
+        4 * (apart + t * speed + L(ta.big) * sa * (8 + L(ta.spin) * t) + L(tb.big) * sb * (8 + L(tb.spin) * t));
     const L gap = along - rho_a - rho_b - eps * (configuration + 8 * (std::abs(along) + rho_a + rho_b)) - ambiguity;
     if (still) {
-      // The closing speed's rounding taken so that the step, forward or back, falls short.
-      const L closing = -n.dot(u) + (gap > 0 ? rate_margin : -rate_margin);
+      // g_n is linear in time (the radii grow linearly); the closing speed's rounding taken so
+      // that the step, forward or back, falls short.
+      const L closing = -n.dot(u) + rate_a + rate_b + (gap > 0 ? rate_margin : -rate_margin);
       if (!(closing > 0)) return std::numeric_limits<T>::quiet_NaN();
       const L step_to_root = gap / closing, root = t + step_to_root;
       const L early = root - 64 * eps * (std::abs(root) + std::abs(step_to_root));
@@ -200,13 +223,19 @@ T refined(T time, const Vec<T, N>& normal, const Ellipsoid<T, N>& a, const Rigid
       return std::min(out, time);
     }
     if (!(gap > 0)) break;
+    const L fastest = -n.dot(u) +
+                      (L(ta.sweep) * across_a * sa + L(tb.sweep) * across_b * sb + ga * L(ta.big) + gb * L(tb.big)) *
+                          (1 + 1e-12L) +
+                      rate_margin;
+    const L curvature = (curving(ta, across_a, ga, sa, turned_a) + curving(tb, across_b, gb, sb, turned_b)) * (1 + 1e-12L);
+    const L reach = std::min(ga > 0 ? sa / (8 * ga) : inf, gb > 0 ? sb / (8 * gb) : inf);
     const L slope = n.dot(u) - rate_a - rate_b - rate_margin;
-    const L first_order = fastest > 0 ? gap / fastest : std::numeric_limits<L>::infinity();
+    const L first_order = fastest > 0 ? gap / fastest : inf;
     const L root = std::sqrt(slope * slope + 2 * curvature * gap);
     const L second_order = curvature > 0 ? (slope <= 0 ? 2 * gap / (root - slope) : (slope + root) / curvature)
                            : slope < 0   ? gap / -slope
-                                         : std::numeric_limits<L>::infinity();
-    const L next = std::min(t + std::max(first_order, second_order) * (1 - 64 * eps), L(t_max));
+                                         : inf;
+    const L next = std::min(t + std::max(first_order, std::min(second_order, reach)) * (1 - 64 * eps), L(t_max));
     if (!(next > t)) break;
     t = next;
   }
@@ -221,10 +250,13 @@ template <class T, int N>
 Ellipsoid<T, N> body_at(const Ellipsoid<T, N>& body, const RigidMotion<T, N>& motion, T t) {
   if (!motion.velocity.allFinite()) throw InputError("velocity", "must be finite");
   if (!all_finite<N>(motion.angular_velocity)) throw InputError("angular_velocity", "must be finite");
+  if (!(motion.growth >= T(0)) || !std::isfinite(motion.growth)) throw InputError("growth", "must be finite and >= 0");
   if (!std::isfinite(t)) throw InputError("time", "must be finite");
   const Ellipsoid<T, N> out = moved(body, motion, t);
   if (!out.center().allFinite()) throw InputError("time", "moves the center beyond the range of the type");
   if (!out.axes().allFinite()) throw InputError("time", "turns the body by an angle beyond the range of the type");
+  if (!(out.radii().minCoeff() > T(0)) || !out.radii().allFinite())
+    throw InputError("time", "scales the radii to zero or beyond the range of the type");
   return out;
 }
 
@@ -242,12 +274,13 @@ Contact<T, N> first_contact(const Ellipsoid<T, N>& a, const RigidMotion<T, N>& m
   out.point.setConstant(nan);
   out.normal.setConstant(nan);
   if (!motion_a.velocity.allFinite() || !motion_b.velocity.allFinite() || !all_finite<N>(motion_a.angular_velocity) ||
-      !all_finite<N>(motion_b.angular_velocity) || std::isnan(t_max) || t_max < T(0))
+      !all_finite<N>(motion_b.angular_velocity) || !valid_growth(motion_a.growth) || !valid_growth(motion_b.growth) ||
+      std::isnan(t_max) || t_max < T(0))
     return out;
   const R spin_a = magnitude<N>(motion_a.angular_velocity), spin_b = magnitude<N>(motion_b.angular_velocity);
-  // Neither turns: the translational answer, its hit time certified early by refined (where
-  // that fails, the advancement below).
-  if (spin_a == R(0) && spin_b == R(0)) {
+  // Neither turns nor grows: the translational answer, its hit time certified early by
+  // refined (where that fails, the advancement below).
+  if (spin_a == R(0) && spin_b == R(0) && motion_a.growth == T(0) && motion_b.growth == T(0)) {
     Contact<T, N> c = first_contact(a, motion_a.velocity, b, motion_b.velocity, t_max, options);
     if (c.status != ContactStatus::hit) return c;
     const T t = refined<T, N>(c.time, c.normal, a, motion_a, b, motion_b, t_max);
@@ -306,7 +339,7 @@ ContactGradient<T, N> first_contact_gradient(const Ellipsoid<T, N>& a, const Rig
                                              const Options& options) noexcept {
   using W = detail::Work<T>;
   ContactGradient<T, N> out = detail::unanswered_gradient(first_contact(a, motion_a, b, motion_b, t_max, options));
-  if (out.value.status != ContactStatus::hit) return out;
+  if (out.value.status != ContactStatus::hit || motion_a.growth != T(0) || motion_b.growth != T(0)) return out;
   auto omega = [](const RigidMotion<T, N>& m) {
     if constexpr (N == 2) {
       return W(m.angular_velocity);

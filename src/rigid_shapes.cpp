@@ -75,7 +75,7 @@ struct ShapeParty {
   const Shape& shape;
   const Options& options;
   Vec<R, N> velocity;  // the body's, relative to the shape
-  R big;               // the body's largest radius
+  R growing;           // the rate g R_0 at which its largest radius grows
 
   bool at(R) const noexcept { return true; }
   Distance<T, N> near(const Ellipsoid<T, N>& body, bool) const noexcept { return distance(body, shape, options); }
@@ -85,23 +85,26 @@ struct ShapeParty {
     return {l.low, 0, 0, 0, 0, l.magnitude, 0, 0};
   }
   // The body's bounding ball (radius R about its center, whatever its turn) lies below the
-  // shape's slab and its center does not move towards it: they never meet.
+  // shape's slab and its top does not move towards it (the center's approach and the
+  // radius's growth): they never meet.
   bool never(const Vec<R, N>& n, const Ellipsoid<T, N>& body, R margin) const noexcept {
     constexpr R ulp = R(std::numeric_limits<T>::epsilon());
-    return n.dot(velocity) <= R(0) &&
+    const R big = R(body.radii().maxCoeff());
+    return (growing == R(0) ? n.dot(velocity) <= R(0) : n.dot(velocity) + growing * (1 + 64 * ulp) <= R(0)) &&
            lowest_of<T, N>(n, shape).low - n.dot(body.center().template cast<R>()) - big * (1 + 64 * ulp) - margin > R(0);
   }
 };
 
 template <class T, int N>
 bool valid_rigid(const RigidMotion<T, N>& motion, const VecArg<T, N>& velocity_b, T t_max) noexcept {
-  return detail::valid_motion<T, N>(motion.velocity, velocity_b, t_max) && all_finite<N>(motion.angular_velocity);
+  return detail::valid_motion<T, N>(motion.velocity, velocity_b, t_max) && all_finite<N>(motion.angular_velocity) &&
+         valid_growth(motion.growth);
 }
 
 // The body's motion relative to the shape.
 template <class T, int N>
 RigidMotion<T, N> relative(const RigidMotion<T, N>& motion, const VecArg<T, N>& velocity_b) noexcept {
-  return {Vec<T, N>(motion.velocity - velocity_b), motion.angular_velocity};
+  return {Vec<T, N>(motion.velocity - velocity_b), motion.angular_velocity, motion.growth};
 }
 
 // The advancement against a convex shape at rest, the contact point in the shape's frame.
@@ -115,7 +118,8 @@ Contact<T, N> advance_at_rest(const Ellipsoid<T, N>& a, const RigidMotion<T, N>&
   const bool out_of_range = !std::isfinite(magnitude<N>(motion.angular_velocity)) ||
                             (std::is_same_v<T, double> && scale.range != detail::Range::native);
   return advance<T, N>(a, motion, t_max, options, out_of_range,
-                       ShapeParty<T, N, Shape>{b, options, motion.velocity.template cast<R>(), R(a.radii().maxCoeff())});
+                       ShapeParty<T, N, Shape>{b, options, motion.velocity.template cast<R>(),
+                                               R(motion.growth) * R(a.radii().maxCoeff())});
 }
 
 // The answer in world coordinates: the contact point moved with the shape to the contact time.
@@ -129,7 +133,8 @@ template <class T, int N, class Shape>
 Contact<T, N> rigid_contact(const Ellipsoid<T, N>& a, const RigidMotion<T, N>& motion, const Shape& b,
                             const VecArg<T, N>& velocity_b, T coordinate, T t_max, const Options& options) noexcept {
   if (!valid_rigid<T, N>(motion, velocity_b, t_max)) return detail::unanswered_contact<T, N>();
-  if (magnitude<N>(motion.angular_velocity) == R(0)) return first_contact(a, motion.velocity, b, velocity_b, t_max, options);
+  if (magnitude<N>(motion.angular_velocity) == R(0) && motion.growth == T(0))
+    return first_contact(a, motion.velocity, b, velocity_b, t_max, options);
   return in_world<T, N>(advance_at_rest<T, N>(a, relative<T, N>(motion, velocity_b), b, coordinate, t_max, options),
                         velocity_b);
 }
@@ -176,12 +181,14 @@ MeshContact<T, N> first_contact(const Ellipsoid<T, N>& a, const RigidMotion<T, N
                                 const TriangleMesh<T, N>& b, const VecArg<T, N>& velocity_b, T t_max,
                                 const Options& options) noexcept {
   if (!valid_rigid<T, N>(motion_a, velocity_b, t_max)) return {detail::unanswered_contact<T, N>(), -1};
-  if (magnitude<N>(motion_a.angular_velocity) == R(0)) return first_contact(a, motion_a.velocity, b, velocity_b, t_max, options);
-  // The candidates: triangles whose boxes the body's bounding ball (radius R, grown by the
-  // tangency band and 1e-9) meets along its center's path relative to the mesh; each by its
-  // own advancement.
+  if (magnitude<N>(motion_a.angular_velocity) == R(0) && motion_a.growth == T(0))
+    return first_contact(a, motion_a.velocity, b, velocity_b, t_max, options);
+  // The candidates: triangles whose boxes the body's bounding ball (radius R at the window's
+  // end, grown by the tangency band and 1e-9) meets along its center's path relative to the
+  // mesh; each by its own advancement.
   using W = detail::Wide<T>;
-  const W reach = W(a.radii().maxCoeff()) * (1 + 2 * W(options.tolerance) + W(1e-9)) *
+  const W grown = motion_a.growth == T(0) ? W(1) : 1 + W(motion_a.growth) * W(t_max);
+  const W reach = W(a.radii().maxCoeff()) * grown * (1 + 2 * W(options.tolerance) + W(1e-9)) *
                   (sizeof(T) < sizeof(double) ? W(1 + 1e-6) : W(1));
   return detail::mesh_contact<T, N>(a, b, options, (motion_a.velocity - velocity_b).template cast<W>(),
                                     Vec<W, N>::Constant(reach), t_max, false, [&](std::uint32_t k, T t_end) {

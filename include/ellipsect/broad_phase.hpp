@@ -48,8 +48,11 @@ template <class T, int N>
 std::vector<IndexPair> overlapping_pairs(std::span<const Ellipsoid<T, N>> bodies, const BatchOptions& options = {});
 
 // Boxes swept by bodies in rigid motion (contact.hpp) over [t0, t1], as above; a turning
-// body's box is the box of its bounding ball (largest radius) about the moving center.
-// motions.size() must equal bodies.size() (std::invalid_argument otherwise).
+// body's box is the box of its bounding ball (largest radius) about the moving center; a
+// growing body's box is that of the body with its radii at t1 (unbounded where t1 is
+// infinite). motions.size() must equal bodies.size() (std::invalid_argument otherwise);
+// InputError "motions[k].growth" where a growth is negative or not finite, or a body grows
+// and t0 < 0.
 template <class T, int N>
 std::vector<IndexPair> candidate_pairs(std::span<const Ellipsoid<T, N>> bodies,
                                        std::span<const RigidMotion<T, N>> motions, double t0, double t1);
@@ -115,11 +118,13 @@ struct PairContact {
 //     the pair is the one that stopped;
 //   * no_contact_in_window: no pair touches in [0, t_max].
 // In a periodic box the window is cut into slabs short enough that each swept box stays
-// under half a side (bodies must be smaller than a quarter of the side: InputError "box");
+// under half a side (bodies must be smaller than a quarter of the side: InputError "box",
+// also where a growing body reaches a quarter of the side before the contact);
 // more than Options::max_motion_steps slabs without a contact gives did_not_converge with
 // the start of the next slab as the lower bound (pair (0, 0)).
 // Throws std::invalid_argument where the sizes of bodies and motions differ, InputError
-// naming "motions[k].velocity" or "motions[k].angular_velocity" where one is not finite;
+// naming "motions[k].velocity", "motions[k].angular_velocity" or "motions[k].growth" where
+// one is not finite (or a growth is negative);
 // invalid_input status where t_max is NaN or negative.
 template <class T, int N>
 PairContact<T, N> earliest_contact(std::span<const Ellipsoid<T, N>> bodies, std::span<const RigidMotion<T, N>> motions,

@@ -149,30 +149,36 @@ ContactGradient<T, N> first_contact_gradient(const Ellipsoid<T, N>& a, const Vec
                                              const Ellipsoid<T, N>& b, const VecArg<T, N>& velocity_b, T t_max,
                                              const Options& options = {}) noexcept;
 
-// ---- Rigid motion: constant linear and angular velocity --------------------------------
+// ---- Rigid motion: constant linear and angular velocity, and growth ------------------
 //
 // The center moves as center + t * velocity and the body turns about its center with a
 // constant angular velocity: its axes at time t are exp(t [omega]x) * axes (3D: omega is a
 // vector, axis times rate in radians per unit time; 2D: a scalar rate, counterclockwise).
+// Its radii scale as (1 + growth * t) about the center (growth >= 0, per unit time; 0: a
+// rigid body). The body at t grows on at the rate growth / (1 + growth * t) of its radii
+// then: restarting a motion from body_at(body, motion, t) takes that rate.
 template <class T, int N>
 struct RigidMotion;
 template <class T>
 struct RigidMotion<T, 2> {
   Vec<T, 2> velocity = Vec<T, 2>::Zero();
   T angular_velocity = T(0);
+  T growth = T(0);
 };
 template <class T>
 struct RigidMotion<T, 3> {
   Vec<T, 3> velocity = Vec<T, 3>::Zero();
   Vec<T, 3> angular_velocity = Vec<T, 3>::Zero();
+  T growth = T(0);
 };
-static_assert(detail::has_plain_layout<RigidMotion<float, 2>, float[2], float> &&
-              detail::has_plain_layout<RigidMotion<double, 3>, double[3], double[3]>);
+static_assert(detail::has_plain_layout<RigidMotion<float, 2>, float[2], float, float> &&
+              detail::has_plain_layout<RigidMotion<double, 3>, double[3], double[3], double>);
 
 // The body at time t of its motion: center + t * velocity, axes rotated by exp(t [omega]x)
 // (Rodrigues' formula, to a few ulps; the angle |omega| t is reduced by the sine and cosine
-// exactly). Throws InputError naming "velocity", "angular_velocity" or "time" where the
-// motion or t is not finite, or the moved center or the angle |omega| t overflows.
+// exactly), radii times (1 + growth * t) (rounded once). Throws InputError naming
+// "velocity", "angular_velocity", "growth" or "time" where the motion or t is not finite,
+// growth is negative, or the moved center, the angle |omega| t or the grown radii overflow.
 template <class T, int N>
 Ellipsoid<T, N> body_at(const Ellipsoid<T, N>& body, const RigidMotion<T, N>& motion, T t);
 
@@ -194,6 +200,12 @@ Ellipsoid<T, N> body_at(const Ellipsoid<T, N>& body, const RigidMotion<T, N>& mo
 // Newton-like near a transversal contact. Where V <= 0 the slab never closes, and where the
 // balls of radius R about the centers never meet from t on, neither do the bodies: no
 // contact, ever.
+// Growth: a body whose radii are (1 + g s) times those at 0 has support radius (1 + g s)
+// rho^0(n, s) (rho^0 that of the body turning without growth); at t, with gamma = g / (1 +
+// g t), it is (1 + gamma (s - t)) times that of the body at t turning on, so each body adds
+// g R_0 to V (R_0 its largest radius at 0), gamma rho to the gap's rate at t, and over steps
+// of at most 1 / (8 gamma) its K becomes 9/8 of the one at t plus 2 gamma |rho_turn'| (the
+// turn's part of the rate); the balls grow at g R_0.
 //
 // Guarantees (tested against a 50-digit reference by another route, tests/property/
 // rigid_contact_property_test.cpp):
@@ -212,13 +224,17 @@ Ellipsoid<T, N> body_at(const Ellipsoid<T, N>& body, const RigidMotion<T, N>& mo
 //     current time no longer resolve the bodies: far in the future of an unbounded window,
 //     or speeds near the range of the type): `time` is a certified lower bound on the first
 //     contact time, point and normal NaN;
-//   * both angular velocities exactly zero: the answer of the translational first_contact
+//   * growth: the same guarantees and accuracy (tested against a 50-digit reference whose
+//     bounds include the growth, tests/property/rigid_contact_property_test.cpp); bodies that
+//     neither turn nor move apart still get their time from the advancement, then one step
+//     to the root of the slab gap along the hit's normal (linear in time);
+//   * both angular velocities and growths exactly zero: the answer of the translational first_contact
 //     above (whose time is not certified early: it may lie a few ulps after the contact), its
 //     point and normal bit for bit, a hit's time certified early: the smaller of its time and
 //     the root, less its rounding, of the slab gap along its normal, which is linear in time
 //     when nothing turns (where that slab does not close, the advancement above).
-// invalid_input where a velocity or angular velocity is not finite or t_max is NaN or
-// negative. Range: radii and speeds at any scale (rescaled by powers of two); pairs that
+// invalid_input where a velocity or angular velocity is not finite, a growth is negative or
+// not finite, or t_max is NaN or negative. Range: radii and speeds at any scale (rescaled by powers of two); pairs that
 // need more than double (radius ratios beyond 2^160 or coordinates beyond 2^340 radii,
 // shapes.hpp) and angular velocities whose magnitude overflows (given, or in the time unit in
 // which bodies beyond 2^+-64 move about a radius where their speeds leave 2^+-960 radii) get
@@ -228,7 +244,8 @@ Contact<T, N> first_contact(const Ellipsoid<T, N>& a, const RigidMotion<T, N>& m
                             const RigidMotion<T, N>& motion_b, T t_max, const Options& options = {}) noexcept;
 
 // first_contact under rigid motion and the derivatives of its time (the linear form's
-// ContactGradient above).
+// ContactGradient above). Growing bodies (either growth nonzero) get the value only, their
+// derivatives NaN.
 template <class T, int N>
 ContactGradient<T, N> first_contact_gradient(const Ellipsoid<T, N>& a, const RigidMotion<T, N>& motion_a,
                                              const Ellipsoid<T, N>& b, const RigidMotion<T, N>& motion_b, T t_max,
@@ -239,7 +256,7 @@ ContactGradient<T, N> first_contact_gradient(const Ellipsoid<T, N>& a, const Rig
 // first_contact(body, RigidMotion, shape, velocity_b, t_max, options) for the half-spaces,
 // triangles, boxes, capsules and meshes of half_space.hpp, triangle.hpp, box.hpp,
 // capsule.hpp and mesh.hpp (declared there): the shape moves at a constant velocity and does
-// not turn. The same advancement as above in the shape's frame (the body moving at v_a - v_b),
+// not turn; the body may grow. The same advancement as above in the shape's frame (the body moving at v_a - v_b),
 // the slab gap along the normal n of the shape's distance at t taken as
 //     g_n(s) = min over the shape of n . x  -  n . c(s)  -  rho(n, s)
 // (the least over its vertices, its plane along its normal, its segment less the radius:

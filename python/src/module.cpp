@@ -425,13 +425,14 @@ void def_results(py::module_& m, const char* suffix) {
 }
 
 // Rigid motion (contact.hpp's RigidMotion): the angular velocity is a rate in 2D, a
-// 3-vector in 3D; None for a body that does not turn.
+// 3-vector in 3D; None for a body that does not turn; the growth rate of its radii.
 template <int N>
 using AngularVelocity = std::optional<std::conditional_t<N == 2, double, Row<3>>>;
 
 template <int N>
-RigidMotion<double, N> motion(const Row<N>& v, const AngularVelocity<N>& w) {
+RigidMotion<double, N> motion(const Row<N>& v, const AngularVelocity<N>& w, double growth = 0.0) {
   RigidMotion<double, N> out{vec<N>(v)};
+  out.growth = growth;
   if (w) {
     if constexpr (N == 2) out.angular_velocity = *w;
     else out.angular_velocity = vec<3>(*w);
@@ -447,15 +448,15 @@ void def_shape_contact(py::module_& m, const std::string& shape, const std::stri
   using E = Ellipsoid<double, N>;
   m.def("first_contact",
         [](const E& a, const Row<N>& va, const S& b, const Row<N>& vb, double t_max, const Options& o,
-           const AngularVelocity<N>& wa) {
-          if (!wa) return first_contact(a, vec<N>(va), b, vec<N>(vb), t_max, o);
-          return first_contact(a, motion<N>(va, wa), b, vec<N>(vb), t_max, o);
+           const AngularVelocity<N>& wa, double ga) {
+          if (!wa && ga == 0.0) return first_contact(a, vec<N>(va), b, vec<N>(vb), t_max, o);
+          return first_contact(a, motion<N>(va, wa, ga), b, vec<N>(vb), t_max, o);
         },
         py::arg("a"), py::arg("velocity_a"), py::arg("b"), py::arg("velocity_b"), py::arg("t_max"),
-        options_arg(), py::arg("angular_velocity_a") = py::none(),
+        options_arg(), py::arg("angular_velocity_a") = py::none(), py::arg("growth_a") = 0.0,
         docs::doc("First contact of a moving body and a moving " + shape + " in [0, t_max] (contact.hpp).",
                   "a: the body (Ellipse / Ellipsoid).\nb: the " + shape + " (it moves at velocity_b and does not turn).\n" +
-                      docs::motion,
+                      docs::motion + "\ngrowth_a: the body's radii scale as (1 + growth_a t) (>= 0).",
                   returns, docs::angular_raises)
             .c_str(),
         extra...);
@@ -517,28 +518,31 @@ void def_queries(py::module_& m) {
         docs::doc("Whether two bodies share a point (overlap.hpp).", two, "bool.", docs::no_overload).c_str());
   m.def("first_contact",
         [](const E& a, const Row<N>& va, const E& b, const Row<N>& vb, double t_max, const Options& o,
-           const AngularVelocity<N>& wa, const AngularVelocity<N>& wb) {
-          if (!wa && !wb) return first_contact(a, vec<N>(va), b, vec<N>(vb), t_max, o);
-          return first_contact(a, motion<N>(va, wa), b, motion<N>(vb, wb), t_max, o);
+           const AngularVelocity<N>& wa, const AngularVelocity<N>& wb, double ga, double gb) {
+          if (!wa && !wb && ga == 0.0 && gb == 0.0) return first_contact(a, vec<N>(va), b, vec<N>(vb), t_max, o);
+          return first_contact(a, motion<N>(va, wa, ga), b, motion<N>(vb, wb, gb), t_max, o);
         },
         py::arg("a"), py::arg("velocity_a"), py::arg("b"), py::arg("velocity_b"), py::arg("t_max"),
         options_arg(), py::arg("angular_velocity_a") = py::none(),
-        py::arg("angular_velocity_b") = py::none(),
-        docs::doc("First contact of two moving bodies in [0, t_max] (contact.hpp); with an angular velocity, under "
-                  "rigid motion.",
+        py::arg("angular_velocity_b") = py::none(), py::arg("growth_a") = 0.0, py::arg("growth_b") = 0.0,
+        docs::doc("First contact of two moving bodies in [0, t_max] (contact.hpp); with an angular velocity or a "
+                  "growth, under rigid motion with growth.",
                   "a, b: two Ellipse, or two Ellipsoid.\n" + docs::motion +
-                      "\nangular_velocity_b: as angular_velocity_a, for b.",
+                      "\nangular_velocity_b: as angular_velocity_a, for b.\ngrowth_a, growth_b: each body's radii "
+                      "scale as (1 + growth t) about its center (>= 0; 0: rigid).",
                   docs::contact_returns, docs::angular_raises)
             .c_str());
   m.def("body_at",
-        [](const E& body, const Row<N>& velocity, const AngularVelocity<N>& angular_velocity, double t) {
-          return body_at(body, motion<N>(velocity, angular_velocity), t);
-        },
-        py::arg("body"), py::arg("velocity"), py::arg("angular_velocity"), py::arg("t"),
+        [](const E& body, const Row<N>& velocity, const AngularVelocity<N>& angular_velocity, double t,
+           double growth) { return body_at(body, motion<N>(velocity, angular_velocity, growth), t); },
+        py::arg("body"), py::arg("velocity"), py::arg("angular_velocity"), py::arg("t"), py::arg("growth") = 0.0,
         docs::doc("The body at time t of its rigid motion (contact.hpp).",
                   "body: Ellipse / Ellipsoid at t = 0.\nvelocity: velocity of its center (N,).\n"
-                  "angular_velocity: None, a rate in 2D, a 3-vector in 3D.\nt: the time.",
-                  "Ellipse / Ellipsoid.", "InputError: a center that leaves the finite range.\n" + docs::no_overload)
+                  "angular_velocity: None, a rate in 2D, a 3-vector in 3D.\nt: the time.\ngrowth: its radii scale as "
+                  "(1 + growth t) (>= 0).",
+                  "Ellipse / Ellipsoid.",
+                  "InputError: a center that leaves the finite range, a negative growth, radii scaled to 0.\n" +
+                      docs::no_overload)
             .c_str());
   const std::string distance_returns = "Distance" + suffix +
                                        ": status (DistanceStatus), distance, point_a, point_b (witness points), "

@@ -196,3 +196,30 @@ def test_turning_needle_tip_first_contact():
     assert np.allclose(moved.center, [float(phi), 0.0], atol=1e-15)
     with pytest.raises(ValueError, match="time"):
         ellipsect.body_at(needle, [1.0, 0.0], w, float("inf"))
+
+
+@pytest.mark.parametrize("dim", [2, 3])
+def test_growing_balls_first_contact(dim):
+    # Balls at rest growing at g_a, g_b: r_a (1 + g_a t) + r_b (1 + g_b t) = d.
+    kind = ellipsect.Ellipse if dim == 2 else ellipsect.Ellipsoid
+    zero = [0.0] * dim
+    for _ in range(50):
+        ca, cb = rng.uniform(-5, 5, dim), rng.uniform(-5, 5, dim)
+        ra, rb = rng.uniform(0.1, 1, 2)
+        ga, gb = rng.uniform(0.1, 2, 2)
+        d = mpf_norm(cb - ca)
+        if d < ra + rb + 0.1:
+            continue
+        exact = (d - mp.mpf(float(ra)) - mp.mpf(float(rb))) / (mp.mpf(float(ga)) * float(ra) + mp.mpf(float(gb)) * float(rb))
+        got = ellipsect.first_contact(kind.ball(ca, ra), zero, kind.ball(cb, rb), zero, float("inf"),
+                                      growth_a=ga, growth_b=gb)
+        assert got.status == ellipsect.ContactStatus.hit
+        assert abs(got.time - float(exact)) <= 1e-12 * float(exact)
+        assert got.time <= float(exact) * (1 + 1e-15)
+    grown = ellipsect.body_at(kind.ball(zero, 2.0), zero, None, 1.5, growth=0.5)
+    assert np.allclose(grown.radii, 3.5, rtol=1e-15)
+    with pytest.raises(ValueError, match="growth"):
+        ellipsect.body_at(kind.ball(zero, 2.0), zero, None, 1.0, growth=-1.0)
+    bad = ellipsect.first_contact(kind.ball(zero, 1.0), zero, kind.ball([3.0] + zero[1:], 1.0), zero, 1.0,
+                                  growth_a=float("nan"))
+    assert bad.status == ellipsect.ContactStatus.invalid_input

@@ -46,6 +46,11 @@ bool all_finite(const W& omega) noexcept {
   }
 }
 
+template <class T>
+bool valid_growth(T growth) noexcept {
+  return growth >= T(0) && std::isfinite(growth);
+}
+
 // exp(t [omega]x) (Rodrigues' formula in 3D).
 template <class T, int N>
 Mat<T, N> rotation(const Omega<T, N>& omega, T t) noexcept {
@@ -65,12 +70,18 @@ Mat<T, N> rotation(const Omega<T, N>& omega, T t) noexcept {
   }
 }
 
-// The body at t, unchecked: the moved center may be infinite (callers test it).
+// The body at t, unchecked: the moved center or the grown radii may be infinite (callers
+// test them). Radii times exactly 1 where nothing grows.
 template <class T, int N>
 Ellipsoid<T, N> moved(const Ellipsoid<T, N>& body, const RigidMotion<T, N>& motion, T t) noexcept {
   const Vec<T, N> center = body.center() + t * motion.velocity;
   return detail::ShapeAccess::unchecked<T, N>(center, rotation<T, N>(motion.angular_velocity, t) * body.axes(),
-                                              body.radii());
+                                              body.radii() * (T(1) + motion.growth * t));
+}
+
+template <class T, int N>
+bool finite(const Ellipsoid<T, N>& body) noexcept {
+  return body.center().allFinite() && body.axes().allFinite() && body.radii().allFinite();
 }
 
 // Support radius of `body` along the unit n, and the support point's offset from the center.
@@ -84,15 +95,20 @@ R support(const Ellipsoid<T, N>& body, const Vec<R, N>& n, Vec<R, N>& offset) no
   return rho;
 }
 
-// One turning body's part in the bounds of conservative advancement (rigid_contact.cpp, top):
-// along a fixed unit n its support radius changes at rate (omega x s) . n (s the support
-// point's offset), at most sweep |omega x n| in magnitude (sweep = min(R, (R^2 - r^2) / (2 r)),
-// zero for a ball), with second derivative at most (R^2 / r) |omega x n|^2 + R |omega|
-// |omega x n| (R, r the largest and smallest radius).
+// One turning, growing body's part in the bounds of conservative advancement
+// (rigid_contact.cpp, top). All at time t, where its radii are scale = 1 + g t times those
+// at 0 (R, r the largest and smallest of those): along a fixed unit n its support radius
+// changes at rate (omega x s) . n + gamma rho (s the support point's offset, rho the support
+// radius, gamma = g / scale the growth relative to the radii at t); over [t, t + h] it
+// rises by at most (sweep |omega x n| + g R) h (sweep = scale min(R, (R^2 - r^2) / (2 r)),
+// zero for a ball); its second derivative is at most scale ((R^2 / r) |omega x n|^2 + R
+// |omega| |omega x n|) without growth, and with growth at most 9/8 of that plus 2 gamma
+// |(omega x s) . n| over steps h <= 1 / (8 gamma) (`reach`: rho(t + h) = (1 + gamma h)
+// rho_t(t + h), rho_t the support radius of the body at t turning on).
 template <class T, int N>
 struct Turning {
   const RigidMotion<T, N>& motion;
-  R big, small, sweep, spin, speed, center;
+  R big, small, sweep, spin, speed, center, growth;
 
   Turning(const Ellipsoid<T, N>& b, const RigidMotion<T, N>& m) noexcept
       : motion(m),
@@ -101,25 +117,44 @@ struct Turning {
         sweep(std::min(big, (big - small) * (big + small) / (2 * small))),
         spin(magnitude<N>(m.angular_velocity)),
         speed(m.velocity.template cast<R>().norm()),
-        center(b.center().template cast<R>().norm()) {}
+        center(b.center().template cast<R>().norm()),
+        growth(R(m.growth)) {}
 
+  R scale(R t) const noexcept { return growth == R(0) ? R(1) : 1 + growth * t; }
   // The rounding of the body formed at t (center c_0 + t v, the angle |omega| t, Rodrigues'
-  // products, t itself in T), in units of T's epsilon: none at t = 0, where it is the given one.
-  R configuration(R t) const noexcept { return t == R(0) ? R(0) : 4 * (center + t * speed + big * (8 + spin * t)); }
+  // products, the grown radii, t itself in T), in units of T's epsilon: none at t = 0, where
+  // it is the given one.
+  R configuration(R t) const noexcept {
+    return t == R(0) ? R(0) : 4 * (center + t * speed + big * scale(t) * (8 + spin * t));
+  }
   R across(const Vec<R, N>& n) const noexcept { return cross<N>(motion.angular_velocity, n).stableNorm(); }
-  R rate(const Vec<R, N>& n, const Vec<R, N>& offset) const noexcept {
+  // (omega x s) . n: the turn's part of the support radius's rate.
+  R turn(const Vec<R, N>& n, const Vec<R, N>& offset) const noexcept {
     return n.dot(cross<N>(motion.angular_velocity, offset));
   }
-  R curvature(R across) const noexcept { return big * big * across * across / small + big * spin * across; }
+  // The support radius's rate at t, its rise rate bound and its curvature bound (above).
+  R rate(R t, R rho, R turned) const noexcept { return growth == R(0) ? turned : turned + growth / scale(t) * rho; }
+  R rising(R t, R across) const noexcept { return sweep * scale(t) * across + growth * big; }
+  R curvature(R t, R across, R turned) const noexcept {
+    const R rigid = scale(t) * (big * big * across * across / small + big * spin * across);
+    return growth == R(0) ? rigid : R(1.125) * rigid + 2 * growth / scale(t) * std::abs(turned);
+  }
+  R reach(R t) const noexcept {
+    return growth == R(0) ? std::numeric_limits<R>::infinity() : scale(t) / (8 * growth);
+  }
+  // Bounds on the speeds the rates are formed from (for their rounding).
+  R rates(R t) const noexcept { return speed + (spin + growth) * big * scale(t); }
 };
 
 // The other party of a step along the unit n (from the body towards it), at time t: its least
 // n . x (`low`), that value's rate at fixed n, a bound on how fast it may fall (low(s) >= low -
-// falling (s - t)) and on its second derivative's fall, and its rounding: `configuration` in
-// units of T's epsilon, `magnitude` the size of what low is computed from (for the gap's own
-// rounding), `speed` for the rates' rounding, `small` its smallest radius (0 for a shape).
+// falling (s - t)) and on its second derivative's fall over steps up to `reach`, and its
+// rounding: `configuration` in units of T's epsilon, `magnitude` the size of what low is
+// computed from (for the gap's own rounding), `speed` for the rates' rounding, `small` its
+// smallest radius (0 for a shape).
 struct Side {
   R low, rate, falling, curvature, configuration, magnitude, speed, small;
+  R reach = std::numeric_limits<R>::infinity();
 };
 
 // First contact of `a` in rigid motion with another party, by conservative advancement
@@ -159,8 +194,7 @@ Contact<T, N> advance(const Ellipsoid<T, N>& a, const RigidMotion<T, N>& motion,
   for (int step = 0; step < options.max_motion_steps; ++step) {
     out.iterations = step;
     const Ellipsoid<T, N> body = moved(a, motion, T(t));
-    if (!body.center().allFinite() || !body.axes().allFinite() || !other.at(t))
-      break;  // moved or turned beyond the type's range
+    if (!finite(body) || !other.at(t)) break;  // moved, turned or grown beyond the type's range
     const Distance<T, N> d = other.near(body, touched);
     if (step == 0 && d.status == DistanceStatus::overlapping) {
       out.status = ContactStatus::overlapping_at_start;
@@ -182,13 +216,14 @@ Contact<T, N> advance(const Ellipsoid<T, N>& a, const RigidMotion<T, N>& motion,
     // The gap g_n = low - n . c - rho, less the rounding of this step's bodies and its own.
     const R margin = ulp * (turning.configuration(t) + b.configuration) + 8 * eps * (std::abs(along) + rho + b.magnitude);
     const R gap = b.low - along - rho - margin;
-    const R rate_margin = 32 * ulp * (turning.speed + turning.spin * turning.big + b.speed);
-    const R across = turning.across(n);
-    const R slope = b.rate - n.dot(v) - turning.rate(n, offset) - rate_margin;
-    const R fastest = b.falling + n.dot(v) + turning.sweep * across + rate_margin;
-    const R curvature = (turning.curvature(across) + b.curvature) * (1 + 32 * ulp);
+    const R rate_margin = 32 * ulp * (turning.rates(t) + b.speed);
+    const R across = turning.across(n), turned = turning.turn(n, offset);
+    const R slope = b.rate - n.dot(v) - turning.rate(t, rho, turned) - rate_margin;
+    const R fastest = b.falling + n.dot(v) + turning.rising(t, across) + rate_margin;
+    const R curvature = (turning.curvature(t, across, turned) + b.curvature) * (1 + 32 * ulp);
+    const R reach = std::min(turning.reach(t), b.reach);
     // The first zero of the larger of the two lower bounds of g_n beyond t (infinite where
-    // neither has one).
+    // neither has one; the second holds up to `reach`).
     constexpr R inf = std::numeric_limits<R>::infinity();
     R advance = 0;
     if (gap > R(0)) {
@@ -200,7 +235,7 @@ Contact<T, N> advance(const Ellipsoid<T, N>& a, const RigidMotion<T, N>& motion,
       } else {
         second_order = slope < R(0) ? gap / -slope : inf;
       }
-      advance = std::max(first_order, second_order) * (1 - 8 * ulp);
+      advance = std::max(first_order, std::min(second_order, reach)) * (1 - 8 * ulp);
     }
     if (d.status == DistanceStatus::touching) {
       if (!touched) {
@@ -224,7 +259,7 @@ Contact<T, N> advance(const Ellipsoid<T, N>& a, const RigidMotion<T, N>& motion,
       // configuration (thin bodies have a tangency band narrower than it) or its step below
       // the resolution of t, that is contact, as closely as the type resolves it; otherwise
       // the bounds are beyond the range of the type (speeds or spins near overflow).
-      const bool resolved = margin <= (turning.small + b.small) / 4;
+      const bool resolved = margin <= (turning.small * turning.scale(t) + b.small) / 4;
       if (t > R(0) && resolved && gap <= margin + 4 * ulp * t * fastest) return fill(ContactStatus::hit, t, d);
       break;
     }

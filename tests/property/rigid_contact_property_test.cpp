@@ -13,7 +13,8 @@
 // on: random pairs with moderate spin, slow spin, fast spin (several turns before contact),
 // tumbling needles and pancakes (aspect 1e3), bodies that touch only briefly (a spinning
 // needle's tip sweeping past a small body crossing its reach), grazing paths, and random
-// pairs at scale 1e-6 and 1e6.
+// pairs at scale 1e-6 and 1e6; and each of these with the bodies growing (RigidMotion::growth),
+// moving or at rest.
 #include <ellipsect/classify.hpp>
 #include <ellipsect/contact.hpp>
 
@@ -30,16 +31,18 @@ using namespace ellipsect::testing;
 using Real = ref::Real;
 using scenarios::Spin;
 using scenarios::spins;
+using scenarios::make_growing;
 using scenarios::make_moving;
 using scenarios::Moving;
 
 template <int N>
 ref::RigidMotionRef<N> to_ref(const RigidMotion<double, N>& m) {
-  return {m.velocity, m.angular_velocity};
+  return {m.velocity, m.angular_velocity, double(m.growth)};
 }
 
-template <int N>
-void check_against_reference(int count_per_kind) {
+// make(kind, seed) gives the pair of each case.
+template <int N, class Make>
+void check_against_reference(int count_per_kind, const std::string& label, Make&& make) {
   Tally tally;
   double worst_time = 0, worst_point = 0, worst_normal = 0;
   int unresolved = 0, compared = 0;
@@ -47,7 +50,7 @@ void check_against_reference(int count_per_kind) {
     const int count = kind == Spin::scaled_small || kind == Spin::scaled_large ? count_per_kind / 2 : count_per_kind;
     for (int i = 0; i < count; ++i) {
       const std::uint64_t seed = 7000 + static_cast<std::uint64_t>(i);
-      const Moving<N> m = make_moving<N>(kind, seed);
+      const Moving<N> m = make(kind, seed);
       SCOPED_TRACE(scenarios::describe_moving<N>(kind, seed, m));
       const Contact<double, N> got = first_contact(m.a, m.ma, m.b, m.mb, m.t_max);
       const ref::RigidContact<N> want =
@@ -90,7 +93,7 @@ void check_against_reference(int count_per_kind) {
       EXPECT_LE(normal_error, 1e-9);
     }
   }
-  tally.print("rigid first_contact, N=" + std::to_string(N) + " (status per category)");
+  tally.print(label + ", N=" + std::to_string(N) + " (status per category)");
   std::printf("  compared %d hits; largest errors: time %.2g (relative), point %.2g (of scale), normal %.2g rad; "
               "%d reference cases unresolved\n",
               compared, worst_time, worst_point, worst_normal, unresolved);
@@ -99,7 +102,24 @@ void check_against_reference(int count_per_kind) {
   EXPECT_LE(unresolved, count_per_kind * int(spins.size()) / 10);
 }
 
-TEST(RigidContactProperty, AgreesWithReference2D) { check_against_reference<2>(cases(30)); }
-TEST(RigidContactProperty, AgreesWithReference3D) { check_against_reference<3>(cases(30)); }
+TEST(RigidContactProperty, AgreesWithReference2D) {
+  check_against_reference<2>(cases(30), "rigid first_contact", make_moving<2>);
+}
+TEST(RigidContactProperty, AgreesWithReference3D) {
+  check_against_reference<3>(cases(30), "rigid first_contact", make_moving<3>);
+}
+
+// Growing bodies (scenarios::make_growing): moving and turning as above, or at rest with the
+// growth alone closing the gap; the reference's bounds include the growth.
+template <int N>
+void growing_against_reference(int count_per_kind) {
+  for (const bool still : {false, true})
+    check_against_reference<N>(count_per_kind, still ? "growing at rest" : "growing in rigid motion",
+                               [&](Spin kind, std::uint64_t seed) { return make_growing<N>(kind, seed, still); });
+}
+// Fewer cases than above (10 per category, not scaled): the reference's growing bounds take
+// many more samples.
+TEST(RigidContactProperty, GrowingAgreesWithReference2D) { growing_against_reference<2>(10); }
+TEST(RigidContactProperty, GrowingAgreesWithReference3D) { growing_against_reference<3>(10); }
 
 }  // namespace

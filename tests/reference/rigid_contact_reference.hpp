@@ -36,6 +36,7 @@ template <int N> using AngularRate = std::conditional_t<N == 2, double, Eigen::M
 template <int N> struct RigidMotionRef {
   Eigen::Matrix<double, N, 1> velocity;
   AngularRate<N> omega;
+  double growth = 0;  // radii times (1 + growth t)
 };
 
 template <int N> struct RigidContact {
@@ -88,6 +89,7 @@ template <int N> RBody<N> body_at(const RBody<N>& b0, const RigidMotionRef<N>& m
   RBody<N> b = b0;
   b.c = b0.c + to_real<N>(m.velocity) * t;
   b.axes = rotation<N>(m.omega, t) * b0.axes;
+  if (m.growth != 0) b.radii = b0.radii * (1 + Real(m.growth) * t);
   complete_rbody<N>(b);
   return b;
 }
@@ -103,9 +105,16 @@ RigidContact<N> rigid_first_contact(const Body<N>& a, const RigidMotionRef<N>& m
                                     const RigidMotionRef<N>& mb, double t_max, double band, long max_steps = 20000) {
   using namespace detail;
   const RBody<N> ra = make_rbody<N>(a, "a"), rb = make_rbody<N>(b, "b");
-  const Real size = ra.rmax + rb.rmax, thin = ra.rmin + rb.rmin;
+  const Real size = ra.rmax + rb.rmax;
   const RVec<N> vrel = to_real<N>(mb.velocity) - to_real<N>(ma.velocity);
-  const Real W = sqrt(dot<N>(vrel, vrel)) + rate_of<N>(ma.omega) * ra.rmax + rate_of<N>(mb.omega) * rb.rmax;
+  // The fastest any point of either body moves relative to a's center up to time s: the
+  // relative velocity, the turn (|omega| R(s), R(s) = R (1 + g s)) and the growth (g R).
+  const Real ga(ma.growth), gb(mb.growth);
+  auto W_at = [&](const Real& s) {
+    return sqrt(dot<N>(vrel, vrel)) + rate_of<N>(ma.omega) * ra.rmax * (1 + ga * s) + ga * ra.rmax +
+           rate_of<N>(mb.omega) * rb.rmax * (1 + gb * s) + gb * rb.rmax;
+  };
+  const Real W = W_at(Real(0));
 
   struct Sample {
     RBody<N> a, b;
@@ -126,20 +135,32 @@ RigidContact<N> rigid_first_contact(const Body<N>& a, const RigidMotionRef<N>& m
     if (nn > 0) n /= nn;
     return n;
   };
-  // A certified step: the larger of the distance bound over W and the support gap along the
-  // PW normal n over the fastest its slab can close, V_n = -n . v + R_a |w_a x n| + R_b |w_b x n|
-  // (a body turning about its centre moves its support plane along n at most that fast).
-  // Returns the lower bound on the distance, the step in `step`.
-  auto lower_bound = [&](const Sample& x, Real& step) {
-    Real lo = (x.mu - 1) * thin;
-    step = lo / W;
+  // A certified step from the sample's time t: the larger of the distance bound over W and
+  // the support gap along the PW normal n over the fastest its slab can close, V_n = -n . v +
+  // R_a |w_a x n| + R_b |w_b x n| + g_a R_a + g_b R_b (a body turning about its centre and
+  // growing moves its support plane along n at most that fast). With growth the rates rise
+  // with time: each is taken at the end of the step it gives (that step, shortened, stays
+  // within it). Returns the lower bound on the distance, the step in `step`.
+  auto lower_bound = [&](const Sample& x, const Real& t, Real& step) {
+    Real lo = (x.mu - 1) * (x.a.rmin + x.b.rmin);
+    auto certified = [&](const Real& gap, auto&& rate) {
+      if (!(gap > 0)) return Real(0);
+      const Real r0 = rate(t);
+      if (!(r0 > 0)) return infinity();
+      const Real r1 = rate(t + gap / r0);
+      return r1 > 0 ? Real(gap / r1) : infinity();
+    };
+    step = certified(lo, W_at);
     if (x.s.centres_coincide) return lo;
     auto along = [&](const RVec<N>& n) {
       const Real gap = dot<N>(n, RVec<N>(x.b.c - x.a.c)) - sqrt(dot<N>(n, matvec<N>(x.a.P, n))) -
                        sqrt(dot<N>(n, matvec<N>(x.b.P, n)));
       const RVec<N> wa = cross<N>(ma.omega, n), wb = cross<N>(mb.omega, n);
-      const Real vn = -dot<N>(n, vrel) + ra.rmax * sqrt(dot<N>(wa, wa)) + rb.rmax * sqrt(dot<N>(wb, wb));
-      if (gap > 0) step = std::max(step, vn > 0 ? gap / vn : infinity());
+      const Real across_a = sqrt(dot<N>(wa, wa)), across_b = sqrt(dot<N>(wb, wb));
+      auto vn = [&](const Real& s) {
+        return -dot<N>(n, vrel) + ra.rmax * ((1 + ga * s) * across_a + ga) + rb.rmax * ((1 + gb * s) * across_b + gb);
+      };
+      if (gap > 0) step = std::max(step, certified(gap, vn));
       lo = std::max(lo, gap);
     };
     const RVec<N> n_pw = normal_at(x, pw_point<N>(x.a, x.s));
@@ -179,7 +200,7 @@ RigidContact<N> rigid_first_contact(const Body<N>& a, const RigidMotionRef<N>& m
   while (true) {
     // Certified sampling down to `close`.
     Real step;
-    Real lo = lower_bound(x, step);
+    Real lo = lower_bound(x, t, step);
     while (lo > close) {
       if (++out.steps > max_steps) {
         out.resolved = false;
@@ -188,7 +209,7 @@ RigidContact<N> rigid_first_contact(const Body<N>& a, const RigidMotionRef<N>& m
       t += step;
       if (t > tmax) return out;
       x = sample(t);
-      lo = lower_bound(x, step);
+      lo = lower_bound(x, t, step);
     }
     // Bracket by doubling steps from the certified one, then bisect.
     Real h = std::max(lo, Real(0)) / W;
