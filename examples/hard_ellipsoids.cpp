@@ -1,4 +1,4 @@
-// Event-driven hard ellipses or ellipsoids in a periodic box (examples/hard_bodies.hpp):
+// Event-driven hard ellipses or ellipsoids in a periodic box (packing.hpp's HardBodies):
 // runs a number of collisions, prints collision events per second and the drift of energy
 // and momentum, and writes SVG frames (2D: the ellipses; 3D: their shadows on the xy plane,
 // far ones first).
@@ -7,62 +7,19 @@
 //                   [--frame-every 1000] [--seed 1]
 // side^dim bodies on a lattice, radii (1, 0.6, 0.4) in 3D, (1, 0.5) in 2D.
 #include "hard_bodies.hpp"
+#include "picture.hpp"
 
 #include <CLI/CLI.hpp>
-#include <Eigen/Eigenvalues>
 
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <string>
 
 namespace {
 
 using namespace ellipsect;
-
-// One ellipse of the picture: center, semi-axes and angle (degrees), depth for the order.
-struct Shadow {
-  double x, y, rx, ry, degrees, depth;
-};
-
-// The shadow of an ellipsoid on the xy plane: the ellipse of the upper-left 2x2 block of
-// A diag(r^2) A^T (for N = 2 the ellipse itself).
-template <int N>
-Shadow shadow(const Ellipsoid<double, N>& e) {
-  const Mat<double, N> A = e.axes();
-  const Mat<double, N> S = A * e.radii().cwiseProduct(e.radii()).asDiagonal() * A.transpose();
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(S.template topLeftCorner<2, 2>());
-  const Eigen::Vector2d major = eig.eigenvectors().col(1);
-  return {e.center().x(), e.center().y(), std::sqrt(eig.eigenvalues()[1]), std::sqrt(eig.eigenvalues()[0]),
-          std::atan2(major.y(), major.x()) * 180.0 / M_PI, N == 3 ? double(e.center()[N - 1]) : 0.0};
-}
-
-template <int N>
-void write_frame(const std::string& path, const hard_bodies::Simulation<N>& sim) {
-  const double w = sim.box().size[0], h = sim.box().size[1];
-  double far = 1.0;
-  if constexpr (N == 3) far = sim.box().size[2];
-  std::vector<Shadow> shadows;
-  for (const auto& e : sim.shapes()) shadows.push_back(shadow(e));
-  std::sort(shadows.begin(), shadows.end(), [](const Shadow& a, const Shadow& b) { return a.depth < b.depth; });
-  std::ofstream out(path);
-  out << "<svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"0 0 " << w << ' ' << h << "\" width=\"600\" height=\""
-      << 600.0 * h / w << "\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n<g transform=\"translate(0 " << h
-      << ") scale(1 -1)\" stroke=\"#222\" stroke-width=\"" << 0.003 * w << "\">\n";
-  for (const Shadow& s : shadows) {
-    const int shade = int(80 + 150 * s.depth / far);
-    for (int dx = -1; dx <= 1; ++dx)  // the periodic images that reach into the picture
-      for (int dy = -1; dy <= 1; ++dy) {
-        const double x = s.x + dx * w, y = s.y + dy * h;
-        if (x + s.rx < 0 || x - s.rx > w || y + s.rx < 0 || y - s.rx > h) continue;
-        out << "<ellipse cx=\"" << x << "\" cy=\"" << y << "\" rx=\"" << s.rx << "\" ry=\"" << s.ry
-            << "\" transform=\"rotate(" << s.degrees << ' ' << x << ' ' << y << ")\" fill=\"rgb(" << shade << ','
-            << shade << ",255)\"/>\n";
-      }
-  }
-  out << "</g>\n</svg>\n";
-}
+using picture::write_picture;
 
 template <int N>
 int run(int side, double phi, long events, const std::string& frames, long every, unsigned seed) {
@@ -71,7 +28,7 @@ int run(int side, double phi, long events, const std::string& frames, long every
     radii << 1.0, 0.5;
   else
     radii << 1.0, 0.6, 0.4;
-  hard_bodies::Simulation<N> sim(side, radii, phi, seed);
+  HardBodies<N> sim = hard_bodies::lattice<N>(side, radii, phi, seed);
   const auto before = sim.totals();
   if (!frames.empty()) std::filesystem::create_directories(frames);
   int frame = 0;
@@ -83,7 +40,7 @@ int run(int side, double phi, long events, const std::string& frames, long every
     if (!frames.empty() && k % every == 0) {
       char name[32];
       std::snprintf(name, sizeof name, "/frame_%04d.svg", frame++);
-      write_frame(frames + name, sim);
+      write_picture(frames + name, sim.shapes(), sim.box());
     }
   }
   const auto after = sim.totals();

@@ -16,6 +16,7 @@
 #include <ellipsect/intersect2.hpp>
 #include <ellipsect/mesh.hpp>
 #include <ellipsect/options.hpp>
+#include <ellipsect/packing.hpp>
 #include <ellipsect/point.hpp>
 #include <ellipsect/polygonal2.hpp>
 #include <ellipsect/quartic2.hpp>

@@ -1,0 +1,195 @@
+// Event-driven hard bodies in a periodic box, and the jammed packings their compression
+// reaches (Lubachevsky-Stillinger; for ellipsoids Donev, Torquato and Stillinger, J.
+// Comput. Phys. 202 (2005) 737 and 765).
+//
+// HardBodies: ellipses (N = 2) or ellipsoids (N = 3) fly with constant linear and angular
+// velocity between collisions (as in Donev et al., the angular velocity is held constant
+// rather than following Euler's equations) and collide elastically at the point and normal
+// first_contact reports; all radii may grow at one rate (RigidMotion::growth), the bodies
+// keeping their shapes. Built on the library's queries alone: neighbor lists from the
+// periodic candidate_pairs, predictions from first_contact under rigid motion with growth.
+//
+// Scheme: neighbor lists of bounding balls padded by a skin s are rebuilt whenever a body's
+// center has moved, plus its largest radius has grown, s / 2 from the last rebuild (an
+// event of its own), so that a pair not listed cannot touch before the next rebuild; each
+// listed pair's next contact is predicted up to the earlier of the two bodies' rebuild
+// events and kept in a priority queue, stamped with the bodies' collision counts (a stale
+// prediction is dropped when it comes up). A pair that has just collided touches at the
+// start of its next prediction: it is predicted from the moment its gap clears the tangency
+// band (a relative 1e-9 of its size, reached at the separation rate).
+//
+// Growth (Lubachevsky-Stillinger): every body's radii are scale(t) times its radii at
+// scale 1, scale growing at the rate `expansion` per unit time. A collision then reverses
+// the normal velocity of the contact points relative to the surfaces' own growth: with w =
+// (expansion / scale) n . (c_j - c_i) the rate at which growth closes the gap, the gap's rate
+// -a before (a = n . (u_j - u_i) - w < 0, u the contact points' velocities) becomes +|a|
+// after, which adds kinetic energy; `rescale` takes it back out.
+#pragma once
+
+#include <ellipsect/broad_phase.hpp>
+#include <ellipsect/contact.hpp>
+#include <ellipsect/shapes.hpp>
+
+#include <array>
+#include <cstdint>
+#include <queue>
+#include <span>
+#include <string_view>
+#include <vector>
+
+namespace ellipsect {
+
+// One body of a HardBodies system: its shape at its own time `time` (center not wrapped
+// into the box between rebuilds), its motion, mass, and its collision count.
+template <int N>
+struct HardBody {
+  Ellipsoid<double, N> shape;
+  RigidMotion<double, N> motion;  // growth: the system's, relative to the shape at `time`
+  double time = 0.0;
+  double mass = 1.0;
+  std::uint64_t collisions = 0;
+};
+
+// A collision (or, with i == j, body i's rebuild event).
+template <int N>
+struct HardEvent {
+  double time;
+  std::uint32_t i, j;
+  std::array<std::int32_t, N> image;  // j meets i through this image of the box
+  std::uint64_t stamp_i, stamp_j;
+  Vec<double, N> r_i, r_j, normal;  // the contact point from each center, the normal from i to j
+  bool operator>(const HardEvent& o) const { return time > o.time; }
+};
+
+// Totals the dynamics conserves (without growth), and the sum of |m v| (the scale of the
+// momentum's rounding).
+template <int N>
+struct HardTotals {
+  double energy;
+  Vec<double, N> momentum;
+  double momentum_scale;
+};
+
+template <int N>
+class HardBodies {
+public:
+  // Bodies at time 0 (non-overlapping; each smaller than a quarter of the box side), their
+  // velocities and angular velocities (growth ignored: `expansion` sets it), masses 1; the
+  // skin as a fraction of the largest radius (refreshed at every rebuild); `expansion` the
+  // rate of the scale of all radii (0: rigid bodies), the given radii at scale 1. Throws
+  // InputError naming the field (sizes, box, skin, expansion).
+  HardBodies(std::span<const Ellipsoid<double, N>> bodies, std::span<const RigidMotion<double, N>> motions,
+             const PeriodicBox<N>& box, double skin = 0.5, double expansion = 0.0);
+
+  // Processes events up to the next collision and returns it.
+  HardEvent<N> step();
+
+  // Every body at time t (>= the last event's; default: now), centers wrapped into the box.
+  std::vector<Ellipsoid<double, N>> shapes_at(double t) const;
+  std::vector<Ellipsoid<double, N>> shapes() const { return shapes_at(now_); }
+  HardTotals<N> totals() const;
+  // Twice the kinetic energy per degree of freedom of the centers (k T, m <v^2> / N).
+  double temperature() const;
+
+  // All bodies to now; velocities and angular velocities times `factor`; the expansion set
+  // anew (its scale continuous); every prediction made afresh.
+  void rescale(double factor, double expansion);
+
+  // The time of the next event (collision or rebuild): no pair touches in between.
+  double next_event();
+
+  double now() const { return now_; }
+  // The scale of the radii at time t.
+  double scale_at(double t) const { return scale_ + expansion_ * (t - scale_time_); }
+  double expansion() const { return expansion_; }
+  const PeriodicBox<N>& box() const { return box_; }
+  std::size_t size() const { return bodies_.size(); }
+  std::uint64_t collisions() const { return collisions_; }
+  // Sum over collisions of the impulse times n . (c_j - c_i): the collisional virial.
+  double virial() const { return virial_; }
+  // Predictions that found a pair overlapping, or stopped (did_not_converge): 0 in a sound run.
+  std::size_t overlaps() const { return overlaps_; }
+  std::size_t stopped() const { return stopped_; }
+  std::size_t rebuilds() const { return rebuilds_; }
+
+private:
+  double growth_at(double t) const { return expansion_ / scale_at(t); }
+  Ellipsoid<double, N> wrapped(const Ellipsoid<double, N>& s) const;
+  Ellipsoid<double, N> image_of(const HardBody<N>& b, const std::array<std::int32_t, N>& image) const;
+  void advance(HardBody<N>& b, double t);
+  void collide(const HardEvent<N>& e);
+  void predict(std::uint32_t i, std::uint32_t j, const std::array<std::int32_t, N>& image);
+  void schedule_rebuild(std::uint32_t i);
+  void rebuild(double t);
+
+  std::vector<HardBody<N>> bodies_;
+  PeriodicBox<N> box_;
+  double skin_fraction_, skin_ = 0.0, now_ = 0.0;
+  double scale_ = 1.0, scale_time_ = 0.0, expansion_ = 0.0;  // scale(t) = scale_ + expansion_ (t - scale_time_)
+  std::uint64_t collisions_ = 0;
+  double virial_ = 0.0;
+  std::size_t rebuilds_ = 0, overlaps_ = 0, stopped_ = 0;
+  std::vector<Vec<double, N>> anchor_;  // centers at the last rebuild
+  std::vector<double> anchor_radius_;   // largest radii at the last rebuild
+  std::vector<double> exit_;            // each body's rebuild time
+  std::vector<std::vector<std::pair<std::uint32_t, std::array<std::int32_t, N>>>> neighbors_;
+  std::priority_queue<HardEvent<N>, std::vector<HardEvent<N>>, std::greater<>> queue_;
+};
+
+// ---- Jammed packings ---------------------------------------------------------------------
+
+// The growth rate as reduced pressure rises: `rate` applies from reduced pressure `from` on.
+struct GrowthStage {
+  double from = 0.0;
+  double rate = 1e-2;
+};
+
+struct PackingOptions {
+  std::uint64_t seed = 1;
+  double initial_density = 0.2;  // packing fraction of the random start
+  // Growth schedule, `from` increasing from 0: the expansion rate d scale / dt in units of
+  // the thermal speed sqrt(kT / m) (kT = 1, m = 1) over the largest diameter at scale 1.
+  std::vector<GrowthStage> schedule = {{0.0, 1e-2}};
+  double pressure = 1e6;                 // jammed: reduced pressure p = PV / (N kT) beyond this
+  std::uint64_t max_collisions = 1'000'000'000;
+  double contact_gap = 0.0;              // contacts: pairs with mu - 1 below this (0: 100 / pressure)
+  double skin = 0.25;                    // neighbor-list skin, of the largest radius
+  int collisions_per_update = 20;        // per body, between thermostat and pressure updates
+};
+
+enum class PackingStatus {
+  jammed,          // reduced pressure reached options.pressure
+  collision_limit  // options.max_collisions reached first
+};
+std::string_view to_string(PackingStatus s) noexcept;
+
+template <int N>
+struct Packing {
+  PackingStatus status = PackingStatus::collision_limit;
+  PeriodicBox<N> box{};
+  std::vector<Ellipsoid<double, N>> bodies;  // centers wrapped into [0, size)
+  double density = 0.0;                      // packing fraction (sum of volumes / box volume)
+  double pressure = 0.0;                     // reduced pressure over the last update
+  std::uint64_t collisions = 0;
+  double time = 0.0;                         // of the bodies: between the last collision and the next event
+  std::vector<ImagePair<N>> contacts;        // pairs with Perram-Wertheim mu - 1 < contact gap
+  double mean_contacts = 0.0;                // 2 |contacts| / bodies
+  std::size_t rattlers = 0;                  // bodies with fewer than N + 1 contacts
+  double mean_contacts_without_rattlers = 0.0;
+  std::size_t overlapping = 0;               // pairs classify finds overlapping at the end (0)
+  std::size_t predictions_overlapping = 0, predictions_stopped = 0;  // HardBodies' counts (0)
+  // (density, reduced pressure) after each update
+  std::vector<std::array<double, 2>> history;
+};
+
+// N bodies with the given radii (their shapes; the scale is chosen so that the start has
+// options.initial_density) at random non-overlapping positions and orientations in a cube
+// (square) box, random velocities and angular velocities at kT = 1, compressed by
+// HardBodies with expansion until jammed. Every `collisions_per_update` collisions per
+// body: the reduced pressure p = 1 + virial / (N d kT dt) over the interval, the velocities
+// rescaled to kT = 1, the growth rate from the schedule at p. Throws InputError naming the
+// field (radii, options.*).
+template <int N>
+Packing<N> jam_packing(std::span<const Vec<double, N>> radii, const PackingOptions& options = {});
+
+}  // namespace ellipsect
