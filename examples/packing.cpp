@@ -70,7 +70,8 @@ int run(int bodies, const std::vector<double>& shape, double bidisperse, const P
   std::printf("contacts (mu - 1 < %.3g): mean %.3f per body, %.3f without the %zu rattlers\n",
               options.contact_gap > 0 ? options.contact_gap : 100.0 / options.pressure, p.mean_contacts,
               p.mean_contacts_without_rattlers, p.rattlers);
-  std::printf("%.1f s, %.0f collisions per second\n", seconds, double(p.collisions) / seconds);
+  std::printf("%.1f s, %.0f collisions per second, %zu neighbor-list rebuilds\n", seconds, double(p.collisions) / seconds,
+              p.rebuilds);
   std::printf("overlapping pairs at the end: %zu; predictions that found an overlap: %zu, that stopped: %zu\n",
               p.overlapping, p.predictions_overlapping, p.predictions_stopped);
   if (!svg.empty()) picture::write_picture<N>(svg, p.bodies, p.box);

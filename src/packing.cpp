@@ -467,6 +467,7 @@ Packing<N> jam_packing(std::span<const Vec<double, N>> radii, const PackingOptio
   // The packing halfway to the next event, where no pair touches: the pair that collided last
   // has moved apart (at the end of the collision it touches to within rounding).
   out.collisions = system.collisions();
+  out.rebuilds = system.rebuilds();
   const double next = system.next_event();
   out.time = std::isfinite(next) ? system.now() + (next - system.now()) / 2 : system.now();
   out.bodies = system.shapes_at(out.time);

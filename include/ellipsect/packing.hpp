@@ -171,6 +171,7 @@ struct Packing {
   double density = 0.0;                      // packing fraction (sum of volumes / box volume)
   double pressure = 0.0;                     // reduced pressure over the last update
   std::uint64_t collisions = 0;
+  std::size_t rebuilds = 0;                  // of the neighbor lists
   double time = 0.0;                         // of the bodies: between the last collision and the next event
   std::vector<ImagePair<N>> contacts;        // pairs with Perram-Wertheim mu - 1 < contact gap
   double mean_contacts = 0.0;                // 2 |contacts| / bodies

@@ -10,7 +10,8 @@ distance, signed_distance and first_contact also take a body and a HalfPlane (2D
 HalfSpace (3D), a Box2 / Box3, a Capsule2 / Capsule3, a Triangle2 / Triangle3 or a
 TriangleMesh2 / TriangleMesh3 (the answer then names the triangle); collide_and_slide moves
 a body through a list of half-spaces or a mesh. Among many bodies,
-overlapping_pairs and earliest_contact (open space or a periodic box). Every number comes
+overlapping_pairs and earliest_contact (open space or a periodic box); jam_packing
+compresses growing bodies to a jammed packing. Every number comes
 from the library; batch answers equal the scalar ones bit for bit. Pictures: ellipsect.plot;
 Dask: ellipsect.dask. Derivatives: signed_distance_gradient, perram_wertheim_gradient,
 closest_approach_gradient, first_contact_gradient (the time and the point), and in 2D
@@ -58,6 +59,7 @@ from ._ellipsect import (  # noqa: F401
     MeshRelation,
     Options,
     OverlapArea,
+    Packing,
     Pairs2,
     Pairs2f,
     Pairs3,
@@ -94,6 +96,7 @@ from ._ellipsect import (  # noqa: F401
     intersect_boundaries,
     iou,
     iou_gradient,
+    jam_packing,
     niemitalo_error_bound,
     overlap,
     overlap_on_gpu,
@@ -153,6 +156,7 @@ __all__ = [
     "MeshRelation",
     "Options",
     "OverlapArea",
+    "Packing",
     "Pairs2",
     "Pairs2f",
     "Pairs3",
@@ -189,6 +193,7 @@ __all__ = [
     "intersect_boundaries",
     "iou",
     "iou_gradient",
+    "jam_packing",
     "niemitalo_error_bound",
     "overlap",
     "overlap_area",

@@ -316,6 +316,7 @@ void normalize_rotations(std::span<double> rows) {
 
 void def_scalar(py::module_& m);
 void def_batch(py::module_& m);
+void def_packing(py::module_& m);
 
 }  // namespace ellipsect::python
 
