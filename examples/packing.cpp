@@ -5,7 +5,7 @@
 //
 //   packing [--dim 3] [--bodies 1000] [--radii 1.25,1,0.8] [--bidisperse 1.4]
 //           [--rate 0.01] [--slow-rate R --slow-from P] [--pressure 1e6] [--phi0 0.2]
-//           [--seed 1] [--svg FILE] [--scene FILE]
+//           [--skin 0.1] [--seed 1] [--svg FILE] [--scene FILE]
 // --bidisperse s: half the bodies scaled by s (disks that do not crystallize: 1.4).
 #include "picture.hpp"
 
@@ -98,6 +98,7 @@ int main(int argc, char** argv) {
   app.add_option("--slow-from", slow_from, "reduced pressure at which --slow-rate starts");
   app.add_option("--pressure", options.pressure, "reduced pressure at which the packing counts as jammed");
   app.add_option("--phi0", options.initial_density, "packing fraction of the random start");
+  app.add_option("--skin", options.skin, "neighbor-list skin, of the largest radius");
   app.add_option("--seed", options.seed, "random start");
   app.add_option("--max-collisions", options.max_collisions, "stop after this many collisions");
   app.add_option("--svg", svg, "write the packing as an SVG picture");

@@ -492,10 +492,21 @@ Packing<N> jam_packing(std::span<const Vec<double, N>> radii, const PackingOptio
     }
   }
   out.mean_contacts = 2.0 * double(out.contacts.size()) / n;
-  std::size_t kept_contacts = 0;
-  for (const ImagePair<N>& p : out.contacts)
-    if (count[p.i] > N && count[p.j] > N) ++kept_contacts;
-  out.rattlers = std::size_t(std::count_if(count.begin(), count.end(), [](int c) { return c <= N; }));
+  // Rattlers: bodies with fewer than N + 1 contacts, removed with their contacts until none is
+  // left among the rest.
+  std::vector<bool> rattler(start.size(), false);
+  std::size_t kept_contacts = out.contacts.size();
+  for (bool changed = true; changed;) {
+    changed = false;
+    for (std::size_t i = 0; i < start.size(); ++i)
+      if (!rattler[i] && count[i] <= N) rattler[i] = changed = true;
+    if (!changed) break;
+    std::fill(count.begin(), count.end(), 0);
+    kept_contacts = 0;
+    for (const ImagePair<N>& p : out.contacts)
+      if (!rattler[p.i] && !rattler[p.j]) ++count[p.i], ++count[p.j], ++kept_contacts;
+  }
+  out.rattlers = std::size_t(std::count(rattler.begin(), rattler.end(), true));
   out.mean_contacts_without_rattlers =
       out.rattlers < start.size() ? 2.0 * double(kept_contacts) / (n - double(out.rattlers)) : 0.0;
   return out;

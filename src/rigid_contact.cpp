@@ -46,6 +46,7 @@ struct BodyParty {
   Vec<R, N> velocity;
   R t = 0;
   Ellipsoid<T, N> body_b;
+  bool first = true;
 
   BodyParty(const Ellipsoid<T, N>& a, const RigidMotion<T, N>& motion_a, const Ellipsoid<T, N>& b_,
             const RigidMotion<T, N>& m, const Options& o) noexcept
@@ -59,10 +60,21 @@ struct BodyParty {
   }
   // Bounding balls (radius R at t) apart by more than their radii: the direction between the
   // centers gives a gap of at least R_a + R_b, and distance() is left for the near phase.
-  Distance<T, N> near(const Ellipsoid<T, N>& body_a, bool touched) const noexcept {
+  // At the first step also where the slab gap along that direction exceeds 1e-6 of the
+  // smallest radii (far above the tangency band: the bodies are separated and not touching
+  // at the start): its bounds may already cover the window, without a distance.
+  Distance<T, N> near(const Ellipsoid<T, N>& body_a, bool touched) noexcept {
     const Vec<R, N> between = body_b.center().template cast<R>() - body_a.center().template cast<R>();
-    if (touched || !(between.stableNorm() > 2 * (turning_a.big * turning_a.scale(t) + turning.big * turning.scale(t))))
-      return distance(body_a, body_b, options);
+    const R apart = between.stableNorm();
+    bool far = apart > 2 * (turning_a.big * turning_a.scale(t) + turning.big * turning.scale(t));
+    if (first && !touched && !far && apart > R(0)) {
+      const Vec<R, N> u = between / apart;
+      Vec<R, N> offset;
+      const R gap = apart - support(body_a, u, offset) - support(body_b, u, offset);
+      far = gap > R(1e-6) * (turning_a.small * turning_a.scale(t) + turning.small * turning.scale(t));
+    }
+    first = false;
+    if (touched || !far) return distance(body_a, body_b, options);
     Distance<T, N> d;
     d.status = DistanceStatus::separated;
     d.distance = std::numeric_limits<T>::quiet_NaN();

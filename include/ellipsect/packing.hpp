@@ -153,7 +153,7 @@ struct PackingOptions {
   double pressure = 1e6;                 // jammed: reduced pressure p = PV / (N kT) beyond this
   std::uint64_t max_collisions = 1'000'000'000;
   double contact_gap = 0.0;              // contacts: pairs with mu - 1 below this (0: 100 / pressure)
-  double skin = 0.25;                    // neighbor-list skin, of the largest radius
+  double skin = 0.1;                     // neighbor-list skin, of the largest radius
   int collisions_per_update = 20;        // per body, between thermostat and pressure updates
 };
 
@@ -175,7 +175,7 @@ struct Packing {
   double time = 0.0;                         // of the bodies: between the last collision and the next event
   std::vector<ImagePair<N>> contacts;        // pairs with Perram-Wertheim mu - 1 < contact gap
   double mean_contacts = 0.0;                // 2 |contacts| / bodies
-  std::size_t rattlers = 0;                  // bodies with fewer than N + 1 contacts
+  std::size_t rattlers = 0;                  // bodies left with fewer than N + 1 contacts, removed in turn
   double mean_contacts_without_rattlers = 0.0;
   std::size_t overlapping = 0;               // pairs classify finds overlapping at the end (0)
   std::size_t predictions_overlapping = 0, predictions_stopped = 0;  // HardBodies' counts (0)

@@ -87,7 +87,7 @@ void def_packing(py::module_& m) {
       py::arg("schedule") = py::none(),
       py::arg("pressure") = 1e6,
       py::arg("max_collisions") = std::uint64_t(1'000'000'000), py::arg("contact_gap") = 0.0,
-      py::arg("skin") = 0.25, py::arg("collisions_per_update") = 20,
+      py::arg("skin") = 0.1, py::arg("collisions_per_update") = 20,
       docs::doc("A jammed packing by Lubachevsky-Stillinger compression (packing.hpp): the bodies at random in a "
                 "periodic cube (square), grown by event-driven dynamics until the reduced pressure passes `pressure`.",
                 "radii: (n, 2) ellipses or (n, 3) ellipsoids, each body's radii (their shapes; the scale is set by "

@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <vector>
 
 namespace {
@@ -33,6 +34,8 @@ std::size_t expect_no_overlap(const Packing<N>& p) {
 
 template <int N>
 void expect_sound(const Packing<N>& p) {
+  std::printf("  %zu bodies: density %.4f at pressure %.3g, %.3f contacts per body without %zu rattlers\n",
+              p.bodies.size(), p.density, p.pressure, p.mean_contacts_without_rattlers, p.rattlers);
   EXPECT_EQ(p.status, PackingStatus::jammed);
   EXPECT_EQ(p.overlapping, 0u);
   EXPECT_EQ(p.predictions_overlapping, 0u);
@@ -43,31 +46,35 @@ void expect_sound(const Packing<N>& p) {
 
 // Bidisperse disks (radii 1 and 1.4, 50:50): random close packing at 0.842 (O'Hern, Silbert,
 // Liu and Nagel, Phys. Rev. E 68, 011306 (2003)); fast growth jams a little lower.
+// Fast growth to reduced pressure 100, then ten times slower: the contact network settles
+// into an isostatic one (with the rate 0.1 throughout, 200 disks have 3.3 contacts per body
+// within 1e-4 at pressure 1e6, and no rigid backbone once rattlers are removed).
 TEST(Packing, BidisperseDisksJamIsostatic) {
   std::vector<Vec<double, 2>> radii;
-  for (int i = 0; i < 200; ++i) radii.push_back(Vec<double, 2>::Constant(i % 2 ? 1.4 : 1.0));
+  for (int i = 0; i < 100; ++i) radii.push_back(Vec<double, 2>::Constant(i % 2 ? 1.4 : 1.0));
   PackingOptions o;
-  o.schedule = {{0.0, 0.1}};
+  o.schedule = {{0.0, 0.1}, {1e2, 0.01}};
   o.pressure = 1e4;
   const Packing<2> p = jam_packing<2>(radii, o);
   expect_sound(p);
-  EXPECT_GT(p.density, 0.82);
+  EXPECT_GT(p.density, 0.83);
   EXPECT_LT(p.density, 0.85);
-  EXPECT_NEAR(p.mean_contacts_without_rattlers, 4.0, 0.15);
+  EXPECT_NEAR(p.mean_contacts_without_rattlers, 4.0, 0.1);
 }
 
 // Spheres: maximally random jammed at about 0.64 (Torquato, Truskett and Debenedetti, Phys.
-// Rev. Lett. 84, 2064 (2000)); fast growth of 100 spheres jams lower, about 0.62.
+// Rev. Lett. 84, 2064 (2000)); 100 spheres at this growth jam a little lower.
 TEST(Packing, SpheresJamIsostatic) {
   const std::vector<Vec<double, 3>> radii(100, Vec<double, 3>::Constant(1.0));
   PackingOptions o;
-  o.schedule = {{0.0, 0.1}};
+  o.schedule = {{0.0, 0.1}, {1e3, 0.01}};  // fast enough that 100 spheres do not crystallize
   o.pressure = 1e4;
+  o.contact_gap = 3e-3;  // within 1e-2, the near neighbors of a random packing add 0.6
   const Packing<3> p = jam_packing<3>(radii, o);
   expect_sound(p);
   EXPECT_GT(p.density, 0.60);
   EXPECT_LT(p.density, 0.65);
-  EXPECT_NEAR(p.mean_contacts_without_rattlers, 6.0, 0.4);
+  EXPECT_NEAR(p.mean_contacts_without_rattlers, 6.0, 0.25);
 }
 
 TEST(Packing, BadInputIsNamed) {
