@@ -1,6 +1,7 @@
 // Event-driven hard bodies with growth and jammed packings (packing.hpp).
 #include <ellipsect/classify.hpp>
 #include <ellipsect/contact_function.hpp>
+#include <ellipsect/distance.hpp>
 #include <ellipsect/packing.hpp>
 
 #include <algorithm>
@@ -250,8 +251,19 @@ void HardBodies<N>::predict(std::uint32_t i, std::uint32_t j, const std::array<s
     const auto sb = body_at(b_image, b.motion, start - now_);
     RigidMotion<double, N> ma = a.motion, mb = b.motion;
     ma.growth = mb.growth = growth_at(start);
-    const Contact<double, N> c = first_contact(sa, ma, sb, mb, end - start);
-    if (c.status == ContactStatus::overlapping_at_start) ++overlaps_;
+    Contact<double, N> c = first_contact(sa, ma, sb, mb, end - start);
+    if (c.status == ContactStatus::overlapping_at_start) {
+      // Overlapping by no more than 1e-9 of the smaller radii (the bodies re-formed at another
+      // time, or an elongated pair turning onto a second point right after a collision): the
+      // contact of the signed distance, taken as touching. Deeper: counted, not predicted.
+      const Distance<double, N> d = signed_distance(sa, sb);
+      const double small = std::min(sa.radii().minCoeff(), sb.radii().minCoeff());
+      if (!(d.distance >= -1e-9 * small)) {
+        ++overlaps_;
+        return;
+      }
+      c = {ContactStatus::touching_at_start, 0.0, Vec<double, N>((d.point_a + d.point_b) / 2), d.normal, 0};
+    }
     if (c.status == ContactStatus::did_not_converge) ++stopped_;
     if (c.status != ContactStatus::hit && c.status != ContactStatus::touching_at_start) return;
     const Vec<double, N> ca = sa.center() + c.time * a.motion.velocity, cb = sb.center() + c.time * b.motion.velocity;
