@@ -3,7 +3,7 @@ list of shapes and seeds, a table (JSON) and the plot of phi_J against the aspec
 
     build/venv/bin/python python/examples/packing_density.py [--dim 3] [--n 200] [--seeds 1]
         [--aspects 1,1.1,1.25,1.5,2,2.5,3] [--schedule 0:0.1,10:0.01] [--pressure 1e4] [--contact-gap 1e-3]
-        [--json results.json] [--plot packing_density.png] [--picture packing.png]
+        [--initial-density 0.2] [--json results.json] [--plot packing_density.png] [--picture packing.png]
 
 3D: prolate spheroids (alpha, 1, 1), or with --oblate (1, 1, 1 / alpha); 2D: ellipses
 (alpha, 1), half of them scaled by 1.4 (bidisperse, so that disks do not crystallize).
@@ -39,7 +39,7 @@ def shapes(dim: int, n: int, alpha: float, oblate: bool) -> np.ndarray:
 
 
 def run(dim: int, n: int, alphas: Sequence[float], seeds: Sequence[int], schedule: List[Tuple[float, float]],
-        pressure: float, contact_gap: float, oblate: bool = False) -> List[Dict[str, float]]:
+        pressure: float, contact_gap: float, oblate: bool = False, initial_density: float = 0.2) -> List[Dict[str, float]]:
     """One row per (alpha, seed): density, reduced pressure, mean contacts without rattlers,
     collisions and seconds; every packing checked (no overlap, no failed prediction)."""
     rows = []
@@ -48,7 +48,7 @@ def run(dim: int, n: int, alphas: Sequence[float], seeds: Sequence[int], schedul
         for seed in seeds:
             start = time.perf_counter()
             p = ellipsect.jam_packing(shapes(dim, n, alpha, oblate), seed=seed, schedule=schedule, pressure=pressure,
-                                      contact_gap=contact_gap)
+                                      contact_gap=contact_gap, initial_density=initial_density)
             seconds = time.perf_counter() - start
             if first_packing is None:
                 first_packing = p
@@ -118,6 +118,8 @@ def main() -> None:
     parser.add_argument("--schedule", default="0:0.1,10:0.01", help="from_pressure:rate,...")
     parser.add_argument("--pressure", type=float, default=1e4)
     parser.add_argument("--contact-gap", type=float, default=1e-3)
+    parser.add_argument("--initial-density", type=float, default=0.2,
+                        help="of the random start (lower it where few long bodies do not fit the box)")
     parser.add_argument("--json")
     parser.add_argument("--plot")
     parser.add_argument("--picture")
@@ -125,7 +127,8 @@ def main() -> None:
     schedule = [(float(x.split(":")[0]), float(x.split(":")[1])) for x in a.schedule.split(",")]
     alphas = [float(x) for x in a.aspects.split(",")]
     seeds = [int(x) for x in a.seeds.split(",")]
-    rows = run(a.dim, a.n, alphas, seeds, schedule, a.pressure, a.contact_gap, oblate=a.oblate)
+    rows = run(a.dim, a.n, alphas, seeds, schedule, a.pressure, a.contact_gap, oblate=a.oblate,
+               initial_density=a.initial_density)
     if a.json:
         with open(a.json, "w") as f:
             json.dump({"dim": a.dim, "n": a.n, "schedule": schedule, "pressure": a.pressure,

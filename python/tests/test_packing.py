@@ -60,3 +60,19 @@ def test_bad_input_is_named():
         ellipsect.jam_packing(radii, pressure=0.5)
     with pytest.raises(ellipsect.InputError, match=r"options.schedule\[1\]"):
         ellipsect.jam_packing(radii, schedule=[(0.0, 0.1), (0.0, 0.2)])
+
+
+def test_density_example_runs(tmp_path):
+    # python/examples/packing_density.py (docs/packing.md) at a small size.
+    import pathlib
+    import sys
+
+    sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "examples"))
+    import packing_density
+
+    rows = packing_density.run(2, 40, [1.0, 1.5], [1], [(0.0, 0.1)], 1e3, 1e-2)
+    assert [r["alpha"] for r in rows] == [1.0, 1.5]
+    assert all(0.75 < r["density"] < 0.92 and r["pressure"] >= 1e3 for r in rows)
+    packing_density.plot(rows, 2, str(tmp_path / "plot.png"), "test")
+    packing_density.picture(packing_density.first_packing, 2, str(tmp_path / "picture.png"))
+    assert (tmp_path / "plot.png").stat().st_size > 1000 and (tmp_path / "picture.png").stat().st_size > 1000

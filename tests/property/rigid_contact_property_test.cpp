@@ -117,9 +117,10 @@ void growing_against_reference(int count_per_kind) {
     check_against_reference<N>(count_per_kind, still ? "growing at rest" : "growing in rigid motion",
                                [&](Spin kind, std::uint64_t seed) { return make_growing<N>(kind, seed, still); });
 }
-// Fewer cases than above (10 per category, not scaled): the reference's growing bounds take
-// many more samples.
-TEST(RigidContactProperty, GrowingAgreesWithReference2D) { growing_against_reference<2>(10); }
-TEST(RigidContactProperty, GrowingAgreesWithReference3D) { growing_against_reference<3>(10); }
+// Fewer cases than above (10 per category; 4 in the sanitizer pass): the reference's growing
+// bounds take many more samples.
+int growing_cases() { return ellipsect::testing::full_case_counts() ? 10 : 4; }
+TEST(RigidContactProperty, GrowingAgreesWithReference2D) { growing_against_reference<2>(growing_cases()); }
+TEST(RigidContactProperty, GrowingAgreesWithReference3D) { growing_against_reference<3>(growing_cases()); }
 
 }  // namespace

@@ -175,6 +175,25 @@ TEST(Growth, BallAgainstShapes) {
             ContactStatus::no_contact_in_window);
 }
 
+// Open space: two growing balls approaching, and a third far off; the earliest contact is the
+// pair's closed form.
+TEST(Growth, EarliestContactInOpenSpace) {
+  const std::vector<Ellipsoid<double, 3>> bodies{make_ball<double, 3>({0, 0, 0}, 1), make_ball<double, 3>({5, 0, 0}, 0.5),
+                                                 make_ball<double, 3>({0, 40, 0}, 1)};
+  std::vector<RigidMotion<double, 3>> motions{growing(0.5), growing(0.2), growing(0.1)};
+  motions[1].velocity = Vec<double, 3>(-1, 0, 0);
+  const double want = (5.0 - 1.5) / (1.0 + 0.5 + 0.1);  // closing at 1 + 0.5 * 1 + 0.2 * 0.5
+  const PairContact<double, 3> first = earliest_contact<double, 3>(bodies, motions, inf);
+  ASSERT_EQ(first.contact.status, ContactStatus::hit);
+  EXPECT_EQ(first.pair.i, 0u);
+  EXPECT_EQ(first.pair.j, 1u);
+  EXPECT_LE(first.contact.time, want * (1 + 1e-15));
+  EXPECT_NEAR(first.contact.time, want, 1e-12 * want);
+  // The swept boxes over [0, t] hold the pair from the time the grown bodies can reach.
+  const auto swept = candidate_pairs<double, 3>(bodies, motions, 0.0, want);
+  EXPECT_TRUE(std::find(swept.begin(), swept.end(), IndexPair{0, 1}) != swept.end());
+}
+
 // Equal balls at rest on a periodic lattice, growing at one rate: the first contact is the
 // nearest pair (through any image), at (d_min / (2 r) - 1) / g; the swept candidates hold it.
 TEST(Growth, EarliestContactInAPeriodicBox) {

@@ -51,7 +51,7 @@ void expect_sound(const Packing<N>& p) {
 // within 1e-4 at pressure 1e6, and no rigid backbone once rattlers are removed).
 TEST(Packing, BidisperseDisksJamIsostatic) {
   std::vector<Vec<double, 2>> radii;
-  for (int i = 0; i < 100; ++i) radii.push_back(Vec<double, 2>::Constant(i % 2 ? 1.4 : 1.0));
+  for (int i = 0; i < 200; ++i) radii.push_back(Vec<double, 2>::Constant(i % 2 ? 1.4 : 1.0));
   PackingOptions o;
   o.schedule = {{0.0, 0.1}, {1e2, 0.01}};
   o.pressure = 1e4;
