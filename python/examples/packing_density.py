@@ -2,10 +2,11 @@
 list of shapes and seeds, a table (JSON) and the plot of phi_J against the aspect ratio.
 
     build/venv/bin/python python/examples/packing_density.py [--dim 3] [--n 200] [--seeds 1]
-        [--aspects 1,1.1,1.25,1.5,2,2.5,3] [--schedule 0:0.1,10:0.01] [--pressure 1e4] [--contact-gap 1e-3]
+        [--aspects 1,1.1,1.25,1.5,2,2.5,3] [--kinds prolate,oblate] [--schedule 0:0.1,10:0.01] [--pressure 1e4] [--contact-gap 1e-3]
         [--initial-density 0.2] [--json results.json] [--plot packing_density.png] [--picture packing.png]
 
-3D: prolate spheroids (alpha, 1, 1), or with --oblate (1, 1, 1 / alpha); 2D: ellipses
+3D: prolate spheroids (alpha, 1, 1) and, with --kinds prolate,oblate, oblate ones (1, 1, 1 / alpha);
+2D: ellipses
 (alpha, 1), half of them scaled by 1.4 (bidisperse, so that disks do not crystallize).
 --picture draws the packing of the first shape and seed (3D: the bodies whose centers lie in
 a slab a largest radius thick across the middle of the box, seen along z), with its contacts.
@@ -114,7 +115,7 @@ def main() -> None:
     parser.add_argument("--n", type=int, default=200)
     parser.add_argument("--seeds", default="1")
     parser.add_argument("--aspects", default="1,1.1,1.25,1.5,2,2.5,3")
-    parser.add_argument("--oblate", action="store_true")
+    parser.add_argument("--kinds", default="prolate", help="3D: prolate, oblate or prolate,oblate")
     parser.add_argument("--schedule", default="0:0.1,10:0.01", help="from_pressure:rate,...")
     parser.add_argument("--pressure", type=float, default=1e4)
     parser.add_argument("--contact-gap", type=float, default=1e-3)
@@ -127,8 +128,10 @@ def main() -> None:
     schedule = [(float(x.split(":")[0]), float(x.split(":")[1])) for x in a.schedule.split(",")]
     alphas = [float(x) for x in a.aspects.split(",")]
     seeds = [int(x) for x in a.seeds.split(",")]
-    rows = run(a.dim, a.n, alphas, seeds, schedule, a.pressure, a.contact_gap, oblate=a.oblate,
-               initial_density=a.initial_density)
+    rows = []
+    for kind in a.kinds.split(","):
+        rows += run(a.dim, a.n, alphas, seeds, schedule, a.pressure, a.contact_gap, oblate=kind == "oblate",
+                    initial_density=a.initial_density)
     if a.json:
         with open(a.json, "w") as f:
             json.dump({"dim": a.dim, "n": a.n, "schedule": schedule, "pressure": a.pressure,
