@@ -81,7 +81,8 @@ public:
   HardBodies(std::span<const Ellipsoid<double, N>> bodies, std::span<const RigidMotion<double, N>> motions,
              const PeriodicBox<N>& box, double skin = 0.5, double expansion = 0.0);
 
-  // Processes events up to the next collision and returns it.
+  // Processes events up to the next collision and returns it. Throws std::runtime_error
+  // where no event is left (nothing moves or grows).
   HardEvent<N> step();
 
   // Every body at time t (>= the last event's; default: now), centers wrapped into the box.
