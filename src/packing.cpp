@@ -4,6 +4,8 @@
 #include <ellipsect/distance.hpp>
 #include <ellipsect/packing.hpp>
 
+#include "detail/rigid_motion.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -60,14 +62,6 @@ Spin<N> cross(const Vec<double, N>& r, const Vec<double, N>& n) {
 }
 
 template <int N>
-Vec<double, N> spin_cross(const Spin<N>& w, const Vec<double, N>& r) {
-  if constexpr (N == 2)
-    return Vec<double, 2>(-w * r.y(), w * r.x());
-  else
-    return w.cross(r);
-}
-
-template <int N>
 double dot_spin(const Spin<N>& x, const Spin<N>& y) {
   if constexpr (N == 2)
     return x * y;
@@ -78,15 +72,7 @@ double dot_spin(const Spin<N>& x, const Spin<N>& y) {
 // Velocity of the material point at r from the center.
 template <int N>
 Vec<double, N> point_velocity(const RigidMotion<double, N>& m, const Vec<double, N>& r) {
-  return m.velocity + spin_cross<N>(m.angular_velocity, r);
-}
-
-template <int N>
-bool finite_spin(const Spin<N>& w) {
-  if constexpr (N == 2)
-    return std::isfinite(w);
-  else
-    return w.allFinite();
+  return m.velocity + detail::rigid::cross<N>(m.angular_velocity, r);
 }
 
 template <int N>
@@ -108,7 +94,7 @@ HardBodies<N>::HardBodies(std::span<const Ellipsoid<double, N>> bodies, std::spa
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     const RigidMotion<double, N>& m = motions[i];
     if (!m.velocity.allFinite()) throw InputError("motions[" + std::to_string(i) + "].velocity", "must be finite");
-    if (!finite_spin<N>(m.angular_velocity))
+    if (!detail::rigid::all_finite<N>(m.angular_velocity))
       throw InputError("motions[" + std::to_string(i) + "].angular_velocity", "must be finite");
     bodies_.push_back({bodies[i], {m.velocity, m.angular_velocity, expansion}, 0.0, 1.0, 0});
   }
