@@ -95,6 +95,37 @@ TEST(Growth, TurningGrowingBodiesTouchAtTheReportedTime) {
   EXPECT_GE(hits, 20);
 }
 
+// Translation invariance (contact.hpp: the bodies are formed in a's frame): the same turning,
+// growing pairs moved about 1e6 sizes from the origin meet at the same time, within the stated
+// 1e-12. The centers lie on a grid of 2^-24 and the offset is a multiple of 2^20, so that the
+// moved pair is exactly the same pair.
+TEST(Growth, FarFromTheOriginTheSameContact) {
+  int hits = 0;
+  auto on_grid = [](const Ellipsoid<double, 3>& x) {
+    const Vec<double, 3> c = (x.center() * 0x1p24).array().round().matrix() * 0x1p-24;
+    return Ellipsoid<double, 3>::from_axes(c, x.axes(), x.radii());
+  };
+  for (std::uint64_t seed = 1; seed <= 40; ++seed) {
+    const scenarios::Case<3> k = scenarios::make_case<3>(scenarios::Category::random, seed);
+    const Ellipsoid<double, 3> a = on_grid(k.a), b = on_grid(k.b);
+    const RigidMotion<double, 3> ma{k.va, Vec<double, 3>(0.3, 1.1, -0.4), 0.2};
+    const RigidMotion<double, 3> mb{k.vb, Vec<double, 3>(-0.9, 0.2, 0.5), 0.05};
+    const Contact<double, 3> near = first_contact(a, ma, b, mb, inf);
+    const double size = a.radii().maxCoeff() + b.radii().maxCoeff();
+    const Vec<double, 3> far = Vec<double, 3>(3, -2, 1) * 0x1p20 * std::exp2(std::ceil(std::log2(size)));
+    ASSERT_EQ(a.translated(far).center() - far, a.center());  // exact
+    const Contact<double, 3> moved = first_contact(a.translated(far), ma, b.translated(far), mb, inf);
+    SCOPED_TRACE(seed);
+    ASSERT_EQ(moved.status, near.status);
+    if (near.status != ContactStatus::hit) continue;
+    ++hits;
+    const double scale = std::max(near.time, size / ((k.vb - k.va).norm() + 1e-300));
+    EXPECT_NEAR((moved.point - far - near.point).norm(), 0.0, 1e-10 * size + 1e-15 * far.norm());
+    EXPECT_NEAR(moved.time, near.time, 1e-12 * scale);
+  }
+  EXPECT_GE(hits, 15);
+}
+
 // A motion restarted from body_at(t1) with growth g / (1 + g t1) is the same motion: the
 // contact comes t1 later than from the start.
 TEST(Growth, RestartingFromBodyAtKeepsTheContact) {
@@ -138,6 +169,25 @@ TEST(Growth, BadGrowthIsInvalidInput) {
     expect_field([&] { earliest_contact<double, 3>(bodies, motions, 1.0); }, "motions[1].growth");
     expect_field([&] { candidate_pairs<double, 3>(bodies, motions, 0.0, 1.0); }, "motions[1].growth");
   }
+}
+
+// Options: the exact mode takes the narrowest band (the same contact); a step cap gives
+// did_not_converge with a lower bound on the time; an out-of-range cap is named.
+TEST(Growth, OptionsApply) {
+  const auto a = Ellipsoid<double, 3>::from_axes({0, 0, 0}, Mat<double, 3>::Identity(), {1, 0.5, 0.3});
+  const auto b = Ellipsoid<double, 3>::from_axes({4, 0.3, 0}, Mat<double, 3>::Identity(), {0.8, 0.8, 0.2});
+  const RigidMotion<double, 3> ma{{0.2, 0, 0}, {0, 0, 0.7}, 0.3}, mb{{-0.1, 0, 0}, {0.4, 0, 0}, 0.1};
+  const Contact<double, 3> c = first_contact(a, ma, b, mb, inf);
+  ASSERT_EQ(c.status, ContactStatus::hit);
+  const Contact<double, 3> exact = first_contact(a, ma, b, mb, inf, ellipsect::testing::exact_options);
+  ASSERT_EQ(exact.status, ContactStatus::hit);
+  EXPECT_NEAR(exact.time, c.time, 1e-12 * c.time);
+  Options capped;
+  capped.max_motion_steps = 1;
+  const Contact<double, 3> k = first_contact(a, ma, b, mb, inf, capped);
+  ASSERT_EQ(k.status, ContactStatus::did_not_converge);
+  EXPECT_LE(k.time, c.time);
+  expect_field([&] { capped.max_motion_steps = 0; }, "max_motion_steps");
 }
 
 // Derivatives are not formed for growing bodies: the value, NaN derivatives.
