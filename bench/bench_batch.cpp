@@ -3,7 +3,8 @@
 // that disagree with the 50-digit reference (tests/reference/reference.hpp) counted.
 //
 // Cases: make_case<N>(category, 800000 + i), i < 1024, for the categories random,
-// high_aspect, near_tangent, containment and far_apart (scenarios/scenarios.hpp); 3D for
+// high_aspect, near_tangent, containment, far_apart, spheres (equal axes), scaled_small,
+// scaled_large and grazing (scenarios/scenarios.hpp); 3D for
 // every method, 2D also for ellipsect's classify. The last name component is the category.
 //
 // BM_overlap3/*
@@ -140,8 +141,9 @@ constexpr std::size_t cached_size = std::size_t{1} << 14;  // 4.5 MB of columns:
 constexpr std::size_t large_size = std::size_t{1} << 20;   // 285 MB: streamed from memory
 constexpr double band = 2 * Options{}.tolerance;
 constexpr double inf = std::numeric_limits<double>::infinity();
-constexpr std::array categories = {Category::random, Category::high_aspect, Category::near_tangent,
-                                   Category::containment, Category::far_apart};
+constexpr std::array categories = {Category::random,       Category::high_aspect,  Category::near_tangent,
+                                   Category::containment,  Category::far_apart,    Category::spheres,
+                                   Category::scaled_small, Category::scaled_large, Category::grazing};
 
 // ---- cases ------------------------------------------------------------------------------
 

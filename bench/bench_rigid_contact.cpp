@@ -5,12 +5,15 @@
 // Cases: scenarios::make_moving<3>(kind, 900000 + i), i < 128, for the kinds random (spin
 // about the pair's own time scale), slow_spin, fast_spin (3 to 10 turns before the bodies
 // can meet), needles_pancakes (aspect 1e3, tumbling) and brief (a spinning needle's tip
-// sweeping past a small ball crossing its reach); scenarios/rigid.hpp. An infinite window
+// sweeping past a small ball crossing its reach) and grazing (paths that touch within
+// 1e-9 of the size or miss by as little); scenarios/rigid.hpp. An infinite window
 // is replaced by 4 (distance + size) / speed so that FCL, which needs the end pose, gets a
 // window that does not depend on the answer.
 //
 // BM_rigid_contact3/<method>/<kind>
 //   ellipsect         first_contact(a, motion_a, b, motion_b, t_max)
+//   ellipsect_linear  first_contact(a, v_a, b, v_b, t_max): the same pairs without their
+//                     spin, the linear query's cost on them (not judged: another motion)
 //   fcl_screw         fcl::continuousCollide from the poses at t = 0 to those at t = t_max
 //   fcl_linear        (body_at), default ContinuousCollisionRequestd (CCDC_NAIVE: fcl::collide
 //                     at 10 evenly spaced times, toc_err 1e-4), motion CCDM_SCREW or
@@ -57,7 +60,7 @@ using scenarios::Spin;
 
 constexpr int cases_per_kind = 128;
 constexpr double inf = std::numeric_limits<double>::infinity();
-constexpr std::array kinds = {Spin::random, Spin::slow, Spin::fast, Spin::needles, Spin::brief};
+constexpr std::array kinds = {Spin::random, Spin::slow, Spin::fast, Spin::needles, Spin::brief, Spin::grazing};
 
 using bench::Answer;
 using bench::Outcome;
@@ -133,6 +136,12 @@ void ellipsect_contact(benchmark::State& state, Spin kind) {
   run(state, kind, [](const Moving<3>& m) { return answer(first_contact(m.a, m.ma, m.b, m.mb, m.t_max)); });
 }
 
+void ellipsect_linear(benchmark::State& state, Spin kind) {
+  bench::time_cases(state, cases(kind), [](const Moving<3>& m) {
+    return answer(first_contact(m.a, m.ma.velocity, m.b, m.mb.velocity, m.t_max));
+  });
+}
+
 #ifdef ELLIPSECT_HAVE_FCL
 void fcl_contact(benchmark::State& state, Spin kind, fcl::CCDMotionType motion) {
   std::map<const Moving<3>*, bench::FclMotion> items;
@@ -153,6 +162,7 @@ const int registered = [] {
   for (Spin kind : kinds) {
     const std::string k = scenarios::name(kind);
     benchmark::RegisterBenchmark(("BM_rigid_contact3/ellipsect/" + k).c_str(), ellipsect_contact, kind);
+    benchmark::RegisterBenchmark(("BM_rigid_contact3/ellipsect_linear/" + k).c_str(), ellipsect_linear, kind);
 #ifdef ELLIPSECT_HAVE_FCL
     benchmark::RegisterBenchmark(("BM_rigid_contact3/fcl_screw/" + k).c_str(), fcl_contact, kind, fcl::CCDM_SCREW);
     benchmark::RegisterBenchmark(("BM_rigid_contact3/fcl_linear/" + k).c_str(), fcl_contact, kind, fcl::CCDM_LINEAR);

@@ -44,10 +44,17 @@ std::string_view to_string(ContactStatus s) noexcept {
 // outcome relative to what the caller's accuracy claim allows: > 1 means the answer may be
 // wrong (a status within rounding of the tolerance band, or a time error above 2.5e-13 of
 // the time scale, or a normal error above 2.5e-10 rad) and the caller repeats the solve in
-// a wider type.
+// a wider type; `resume` is then a time to start that solve from (0 when unknown): the hit's
+// time less 64 times its estimated error.
+//
+// Starting at `from` > 0 instead of 0: where delta(from) is above the band by more than its
+// rounding and closing (slope < 0), convexity makes delta decrease on [0, from], so the pair
+// is apart beyond the band on all of it and the first root lies after `from`; the loop goes
+// on from there. Otherwise the solve starts at 0. The start needs no trust in its source.
 template <class R, class T, int N>
 Contact<T, N> solve_contact(const Ellipsoid<T, N>& s, const Ellipsoid<T, N>& o, const Vec<T, N>& vs_in,
-                            const Vec<T, N>& vo_in, R tmax, bool a_is_s, const Options& options, R& doubt) noexcept {
+                            const Vec<T, N>& vo_in, R tmax, bool a_is_s, const Options& options, R& doubt,
+                            R& resume, R from = 0) noexcept {
   constexpr R nan = std::numeric_limits<R>::quiet_NaN();
   constexpr R eps = std::numeric_limits<R>::epsilon();
   const R tol = R(options.tolerance);
@@ -56,6 +63,7 @@ Contact<T, N> solve_contact(const Ellipsoid<T, N>& s, const Ellipsoid<T, N>& o, 
   out.point.setConstant(T(nan));
   out.normal.setConstant(T(nan));
   doubt = 0;
+  resume = 0;
 
   const auto red = detail::reduce<R>(s, o);
   const Vec<R, N> vs = vs_in.template cast<R>(), ks = s.center().template cast<R>();
@@ -135,9 +143,17 @@ Contact<T, N> solve_contact(const Ellipsoid<T, N>& s, const Ellipsoid<T, N>& o, 
 
   detail::BranchPoint<R, N> p;
   p.root = -1;
-  if (!closest_at(0, p)) return finish(ContactStatus::overlapping_at_start, 0, nullptr);
-  R delta = p.norm - R(1);
-  if (near_band_edge(delta, 0)) doubt = 2;
+  R t = 0, delta;
+  if (from > R(0) && from <= tmax && closest_at(from, p) && p.norm - R(1) - tol > rounding(from) &&
+      w.dot(p.point) < R(0)) {
+    t = from;
+    delta = p.norm - R(1);
+  } else {
+    p.root = -1;
+    if (!closest_at(0, p)) return finish(ContactStatus::overlapping_at_start, 0, nullptr);
+    delta = p.norm - R(1);
+  }
+  if (t == R(0) && near_band_edge(delta, 0)) doubt = 2;
   if (delta < -tol) return finish(ContactStatus::overlapping_at_start, 0, nullptr);
   if (delta <= tol && !options.tolerance.is_exact()) return finish(ContactStatus::touching_at_start, 0, &p);
   if (delta <= tol) {  // exact: the relation at t = 0 decides
@@ -163,10 +179,10 @@ Contact<T, N> solve_contact(const Ellipsoid<T, N>& s, const Ellipsoid<T, N>& o, 
     const R r = rounding(t), slope = w.dot(q.point) / q.norm;
     const R scale = std::max(t, R(1) / w.norm());
     doubt = std::max({doubt, r / (std::abs(slope) * scale) / R(2.5e-13), r * aspect_s / R(2.5e-10)});
+    resume = std::max(R(0), t - 64 * r / std::abs(slope));
     return finish(ContactStatus::hit, t, &q);
   };
 
-  R t = 0;
   for (int it = 1; it <= options.max_iterations; ++it) {
     out.iterations = it;
     const R slope = w.dot(p.point) / p.norm;
@@ -275,9 +291,10 @@ Contact<T, N> first_contact(const Ellipsoid<T, N>& a, const VecArg<T, N>& veloci
   if (wide) {  // long double throughout, without the double-precision quick out
     using W = detail::Wide<R>;
     const auto p = detail::order_pair(a, b);
-    W doubt;
+    W doubt, resume;
     Contact<T, N> c = solve_contact<W, T, N>(p.s, p.o, p.a_is_s ? velocity_a : velocity_b,
-                                             p.a_is_s ? velocity_b : velocity_a, W(t_max), p.a_is_s, options, doubt);
+                                             p.a_is_s ? velocity_b : velocity_a, W(t_max), p.a_is_s, options, doubt,
+                                             resume);
     return c.status == ContactStatus::hit ? beyond_window(c) : c;
   }
 
@@ -304,12 +321,12 @@ Contact<T, N> first_contact(const Ellipsoid<T, N>& a, const VecArg<T, N>& veloci
   const auto [s, o, a_is_s] = detail::order_pair(a, b);
   const Vec<T, N>& vs = a_is_s ? velocity_a : velocity_b;
   const Vec<T, N>& vo = a_is_s ? velocity_b : velocity_a;
-  R doubt;
-  out = solve_contact<R, T, N>(s, o, vs, vo, R(t_max), a_is_s, options, doubt);
-  if (doubt > R(1)) {  // too close to call in R: certify in the wider type
+  R doubt, resume;
+  out = solve_contact<R, T, N>(s, o, vs, vo, R(t_max), a_is_s, options, doubt, resume);
+  if (doubt > R(1)) {  // too close to call in R: certify in the wider type, from just before R's hit
     using W = detail::Wide<R>;
-    W wide_doubt;
-    out = solve_contact<W, T, N>(s, o, vs, vo, W(t_max), a_is_s, options, wide_doubt);
+    W wide_doubt, wide_resume;
+    out = solve_contact<W, T, N>(s, o, vs, vo, W(t_max), a_is_s, options, wide_doubt, wide_resume, W(resume));
   }
   // Speeds of any size can close at a subnormal relative speed, which time rescaling
   // (by the larger speed) leaves alone.

@@ -60,22 +60,22 @@ struct BodyParty {
   }
   // Bounding balls (radius R at t) apart by more than their radii: the direction between the
   // centers gives a gap of at least R_a + R_b, and distance() is left for the near phase.
-  // At the first step also where the slab gap along that direction exceeds 1e-6 of the
-  // largest radii plus 64 ulps of T of the separation (far above the tangency band, at most
-  // 1e-9 of the size, and the slab's rounding: the bodies are separated and not touching at
-  // the start), for radii above 2^-960 (no subnormal products): its bounds may already cover
-  // the window, without a distance.
+  // Also where the slab gap along that direction exceeds an eighth of the largest radii (at
+  // the first step 1e-6 of them: far above the tangency band, at most 1e-9 of the size, so
+  // the bodies are separated and not touching at the start) plus 64 ulps of T of the
+  // separation (the slab's rounding), for radii above 2^-960 (no subnormal products): a
+  // step on that slab costs two support points where a distance costs a solve.
   Distance<T, N> near(const Ellipsoid<T, N>& body_a, bool touched) noexcept {
     const Vec<R, N> between = body_b.center().template cast<R>() - body_a.center().template cast<R>();
     const R apart = between.stableNorm();
     const R size = turning_a.big * turning_a.scale(t) + turning.big * turning.scale(t);
     bool far = apart > 2 * size;
-    if (first && !touched && !far && apart > R(0) && std::min(turning_a.small, turning.small) > std::ldexp(R(1), -960)) {
+    if (!touched && !far && apart > R(0) && std::min(turning_a.small, turning.small) > std::ldexp(R(1), -960)) {
       constexpr R ulp = R(std::numeric_limits<T>::epsilon());
       const Vec<R, N> u = between / apart;
       Vec<R, N> offset;
       const R gap = apart - support(body_a, u, offset) - support(body_b, u, offset);
-      far = gap > R(1e-6) * size + 64 * ulp * (apart + size);
+      far = gap > (first ? R(1e-6) : R(1) / 8) * size + 64 * ulp * (apart + size);
     }
     first = false;
     if (touched || !far) return distance(body_a, body_b, options);

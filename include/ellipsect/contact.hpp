@@ -187,8 +187,8 @@ Ellipsoid<T, N> body_at(const Ellipsoid<T, N>& body, const RigidMotion<T, N>& mo
 //
 // Method (docs/method.md, section 9): conservative advancement. At the current time t the
 // distance (distance.hpp) gives the direction n of closest approach (the direction between
-// the centers while the bodies are more than their largest radii apart, or at the first step
-// while the slab along it is clearly open); the slab gap
+// the centers while the bodies are more than their largest radii apart, or while the slab
+// along it is open by an eighth of the radii, at the first step by 1e-6 of them); the slab gap
 //     g_n(s) = n . (c_b(s) - c_a(s)) - rho_a(n, s) - rho_b(n, s)
 // (rho_X the support radius of body X along n at time s) is a lower bound on the distance
 // at every s, and for s >= t
