@@ -20,6 +20,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <utility>
 
 namespace ellipsect {
@@ -69,6 +70,24 @@ Lowest lowest_of(const Vec<R, N>& n, const Capsule<T, N>& c) noexcept {
   return lowest_of<T, N, 2>(n, {c.point(0), c.point(1)}, R(c.radius()));
 }
 
+// A point inside the shape (none for a half-space, whose distance costs no solve).
+template <class T, int N>
+std::optional<Vec<R, N>> inner_point(const HalfSpace<T, N>&) noexcept {
+  return std::nullopt;
+}
+template <class T, int N>
+std::optional<Vec<R, N>> inner_point(const Triangle<T, N>& t) noexcept {
+  return (t.vertex(0).template cast<R>() + t.vertex(1).template cast<R>() + t.vertex(2).template cast<R>()) / 3;
+}
+template <class T, int N>
+std::optional<Vec<R, N>> inner_point(const Box<T, N>& b) noexcept {
+  return Vec<R, N>(b.center().template cast<R>());
+}
+template <class T, int N>
+std::optional<Vec<R, N>> inner_point(const Capsule<T, N>& c) noexcept {
+  return (c.point(0).template cast<R>() + c.point(1).template cast<R>()) / 2;
+}
+
 // A convex shape at rest as the second party of the advancement.
 template <class T, int N, class Shape>
 struct ShapeParty {
@@ -78,7 +97,33 @@ struct ShapeParty {
   R growing;           // the rate g R_0 at which its largest radius grows
 
   bool at(R) const noexcept { return true; }
-  Distance<T, N> near(const Ellipsoid<T, N>& body, bool) const noexcept { return distance(body, shape, options); }
+  // The direction u from the body's center to a point inside the shape serves instead of
+  // the distance's normal where the slab along it is open by an eighth of the body's largest
+  // radius plus 64 ulps of T of its terms (far above the tangency band and the slab's
+  // rounding): the step then costs the shape's vertices along u and one support point.
+  Distance<T, N> near(const Ellipsoid<T, N>& body, bool touched) const noexcept {
+    constexpr R ulp = R(std::numeric_limits<T>::epsilon());
+    const std::optional<Vec<R, N>> inside = inner_point<T, N>(shape);
+    if (!touched && inside) {
+      const Vec<R, N> center = body.center().template cast<R>(), between = *inside - center;
+      const R apart = between.stableNorm(), big = R(body.radii().maxCoeff());
+      if (apart > R(0) && R(body.radii().minCoeff()) > std::ldexp(R(1), -960)) {
+        const Vec<R, N> u = between / apart;
+        Vec<R, N> offset;
+        const Lowest l = lowest_of<T, N>(u, shape);
+        const R along = u.dot(center), rho = support(body, u, offset);
+        if (l.low - along - rho > big / 8 + 64 * ulp * (l.magnitude + std::abs(along) + rho)) {
+          Distance<T, N> d;
+          d.status = DistanceStatus::separated;
+          d.distance = std::numeric_limits<T>::quiet_NaN();
+          d.point_a = d.point_b = detail::nan_vec<T, N>();
+          d.normal = u.template cast<T>();
+          return d;
+        }
+      }
+    }
+    return distance(body, shape, options);
+  }
   Distance<T, N> exact(const Ellipsoid<T, N>& body) const noexcept { return signed_distance(body, shape, options); }
   Side side(const Vec<R, N>& n, const Ellipsoid<T, N>&) const noexcept {
     const Lowest l = lowest_of<T, N>(n, shape);
