@@ -259,8 +259,11 @@ Contact<T, N> advance(const Ellipsoid<T, N>& a, const RigidMotion<T, N>& motion,
       // configuration (thin bodies have a tangency band narrower than it) or its step below
       // the resolution of t, that is contact, as closely as the type resolves it; otherwise
       // the bounds are beyond the range of the type (speeds or spins near overflow).
+      // (A step on the centers' slab carries no points: the distance gives them. At times
+      // far beyond the bodies' size over their speed, 4 ulps of t can exceed that slab's gap.)
       const bool resolved = margin <= (turning.small * turning.scale(t) + b.small) / 4;
-      if (t > R(0) && resolved && gap <= margin + 4 * ulp * t * fastest) return fill(ContactStatus::hit, t, d);
+      if (t > R(0) && resolved && gap <= margin + 4 * ulp * t * fastest)
+        return fill(ContactStatus::hit, t, d.point_a.allFinite() ? d : other.near(body, true));
       break;
     }
     t += advance;
