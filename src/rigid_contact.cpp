@@ -79,12 +79,7 @@ struct BodyParty {
     }
     first = false;
     if (touched || !far) return distance(body_a, body_b, options);
-    Distance<T, N> d;
-    d.status = DistanceStatus::separated;
-    d.distance = std::numeric_limits<T>::quiet_NaN();
-    d.point_a = d.point_b = detail::nan_vec<T, N>();
-    d.normal = (between / between.stableNorm()).template cast<T>();
-    return d;
+    return slab_step<T, N>(between / between.stableNorm());
   }
   Distance<T, N> exact(const Ellipsoid<T, N>& body_a) const noexcept { return signed_distance(body_a, body_b, options); }
   Side side(const Vec<R, N>& n, const Ellipsoid<T, N>&) const noexcept {

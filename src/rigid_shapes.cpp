@@ -112,14 +112,7 @@ struct ShapeParty {
         Vec<R, N> offset;
         const Lowest l = lowest_of<T, N>(u, shape);
         const R along = u.dot(center), rho = support(body, u, offset);
-        if (l.low - along - rho > big / 8 + 64 * ulp * (l.magnitude + std::abs(along) + rho)) {
-          Distance<T, N> d;
-          d.status = DistanceStatus::separated;
-          d.distance = std::numeric_limits<T>::quiet_NaN();
-          d.point_a = d.point_b = detail::nan_vec<T, N>();
-          d.normal = u.template cast<T>();
-          return d;
-        }
+        if (l.low - along - rho > big / 8 + 64 * ulp * (l.magnitude + std::abs(along) + rho)) return slab_step<T, N>(u);
       }
     }
     return distance(body, shape, options);

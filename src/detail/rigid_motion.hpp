@@ -5,6 +5,7 @@
 #include <ellipsect/contact.hpp>
 #include <ellipsect/distance.hpp>
 
+#include "contact_start.hpp"
 #include "shape_access.hpp"
 
 #include <algorithm>
@@ -152,6 +153,18 @@ struct Turning {
 // rounding: `configuration` in units of T's epsilon, `magnitude` the size of what low is
 // computed from (for the gap's own rounding), `speed` for the rates' rounding, `small` its
 // smallest radius (0 for a shape).
+// What near() returns for a step on the slab along the unit direction u instead of a
+// distance: separated, no distance and no points.
+template <class T, int N>
+Distance<T, N> slab_step(const Vec<R, N>& u) noexcept {
+  Distance<T, N> d;
+  d.status = DistanceStatus::separated;
+  d.distance = std::numeric_limits<T>::quiet_NaN();
+  d.point_a = d.point_b = nan_vec<T, N>();
+  d.normal = u.template cast<T>();
+  return d;
+}
+
 struct Side {
   R low, rate, falling, curvature, configuration, magnitude, speed, small;
   R reach = std::numeric_limits<R>::infinity();
