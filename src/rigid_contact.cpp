@@ -79,7 +79,7 @@ struct BodyParty {
     }
     first = false;
     if (touched || !far) return distance(body_a, body_b, options);
-    return slab_step<T, N>(between / between.stableNorm());
+    return slab_step<T, N>(between / apart);
   }
   Distance<T, N> exact(const Ellipsoid<T, N>& body_a) const noexcept { return signed_distance(body_a, body_b, options); }
   Side side(const Vec<R, N>& n, const Ellipsoid<T, N>&) const noexcept {

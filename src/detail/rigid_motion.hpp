@@ -147,12 +147,6 @@ struct Turning {
   R rates(R t) const noexcept { return speed + (spin + growth) * big * scale(t); }
 };
 
-// The other party of a step along the unit n (from the body towards it), at time t: its least
-// n . x (`low`), that value's rate at fixed n, a bound on how fast it may fall (low(s) >= low -
-// falling (s - t)) and on its second derivative's fall over steps up to `reach`, and its
-// rounding: `configuration` in units of T's epsilon, `magnitude` the size of what low is
-// computed from (for the gap's own rounding), `speed` for the rates' rounding, `small` its
-// smallest radius (0 for a shape).
 // What near() returns for a step on the slab along the unit direction u instead of a
 // distance: separated, no distance and no points.
 template <class T, int N>
@@ -165,6 +159,12 @@ Distance<T, N> slab_step(const Vec<R, N>& u) noexcept {
   return d;
 }
 
+// The other party of a step along the unit n (from the body towards it), at time t: its least
+// n . x (`low`), that value's rate at fixed n, a bound on how fast it may fall (low(s) >= low -
+// falling (s - t)) and on its second derivative's fall over steps up to `reach`, and its
+// rounding: `configuration` in units of T's epsilon, `magnitude` the size of what low is
+// computed from (for the gap's own rounding), `speed` for the rates' rounding, `small` its
+// smallest radius (0 for a shape).
 struct Side {
   R low, rate, falling, curvature, configuration, magnitude, speed, small;
   R reach = std::numeric_limits<R>::infinity();
