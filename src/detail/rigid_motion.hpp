@@ -174,7 +174,8 @@ struct Side {
 // (contact.hpp). Other provides, at a time t:
 //   bool at(R t)                          forms the party at t (false: beyond the type's range);
 //   Distance<T, N> near(body, bool touched)  the distance at t (may be a far estimate:
-//                                         status separated, NaN points, a separating normal);
+//                                         slab_step; never with touched, which asks for the
+//                                         distance itself);
 //   Distance<T, N> exact(body)            the signed distance at t (for a hit found overlapping);
 //   Side side(n, body)                    as above;
 //   bool never(n, body, margin)           certifies that the two never meet from t on.
@@ -272,8 +273,8 @@ Contact<T, N> advance(const Ellipsoid<T, N>& a, const RigidMotion<T, N>& motion,
       // configuration (thin bodies have a tangency band narrower than it) or its step below
       // the resolution of t, that is contact, as closely as the type resolves it; otherwise
       // the bounds are beyond the range of the type (speeds or spins near overflow).
-      // (A step on the centers' slab carries no points: the distance gives them. At times
-      // far beyond the bodies' size over their speed, 4 ulps of t can exceed that slab's gap.)
+      // (A slab step carries no points: the distance gives them. At times far beyond the
+      // bodies' size over their speed, 4 ulps of t can exceed that slab's gap.)
       const bool resolved = margin <= (turning.small * turning.scale(t) + b.small) / 4;
       if (t > R(0) && resolved && gap <= margin + 4 * ulp * t * fastest)
         return fill(ContactStatus::hit, t, d.point_a.allFinite() ? d : other.near(body, true));
