@@ -56,7 +56,8 @@ step() { echo "==> [$((SECONDS / 60)) min $((SECONDS % 60)) s] $*"; }
 
 # The sanitized build, build/sanitize: clang with ASan and UBSan, line tables for their
 # reports, and libFuzzer's coverage instrumentation, so that the tests and the fuzz targets
-# (fuzz/) share one build of the library (CMakeLists.txt). build_sanitized [TARGET...]
+# (fuzz/) share one build of the library (CMakeLists.txt), its files compiled in batches
+# (ELLIPSECT_UNITY_LIBRARY). build_sanitized [TARGET...]
 build_sanitized() {
   # A tree configured by another compiler is rebuilt from scratch.
   if [ -f build/sanitize/CMakeCache.txt ] && ! grep -q '^CMAKE_CXX_COMPILER:.*clang' build/sanitize/CMakeCache.txt; then
@@ -64,7 +65,8 @@ build_sanitized() {
   fi
   cmake -S . -B build/sanitize -G Ninja -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo \
     -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -gline-tables-only -DNDEBUG" -DELLIPSECT_SANITIZE=ON \
-    -DELLIPSECT_BUILD_FUZZ=ON -DELLIPSECT_BUILD_TESTS=ON -DELLIPSECT_BUILD_BENCH=OFF -DELLIPSECT_BUILD_TOOLS=ON >/dev/null
+    -DELLIPSECT_BUILD_FUZZ=ON -DELLIPSECT_BUILD_TESTS=ON -DELLIPSECT_BUILD_BENCH=OFF -DELLIPSECT_BUILD_TOOLS=ON \
+    -DELLIPSECT_UNITY_LIBRARY=ON >/dev/null
   cmake --build build/sanitize -j "$(nproc)" ${1:+--target} "$@"
 }
 

@@ -199,8 +199,8 @@ Settled settled_relation(const Ellipsoid<T, N>& a, const Box<T, N>& b, const Opt
 // computed in T, are rounded to ulps of the pair's extent (a box 1e6 sizes from the origin had
 // corners 1e-10 of its size off, beyond the accuracy stated).
 template <class T, int N>
-struct AtBody : detail::AtBody<T, N, Box<T, N>> {
-  AtBody(const Ellipsoid<T, N>& a_world, const Box<T, N>& b_world) noexcept
+struct BoxAtBody : detail::AtBody<T, N, Box<T, N>> {
+  BoxAtBody(const Ellipsoid<T, N>& a_world, const Box<T, N>& b_world) noexcept
       : detail::AtBody<T, N, Box<T, N>>(a_world, b_world, b_world.center()) {}
 };
 
@@ -214,13 +214,13 @@ Relation classify_at_body(const Ellipsoid<T, N>& a, const Box<T, N>& b, const Op
 
 template <class T, int N>
 Relation classify(const Ellipsoid<T, N>& a_world, const Box<T, N>& b_world, const Options& options) noexcept {
-  const AtBody<T, N> p(a_world, b_world);
+  const BoxAtBody<T, N> p(a_world, b_world);
   return classify_at_body(p.a, p.b, options);
 }
 
 template <class T, int N>
 bool overlap(const Ellipsoid<T, N>& a_world, const Box<T, N>& b_world, const Options& options) noexcept {
-  const AtBody<T, N> p(a_world, b_world);
+  const BoxAtBody<T, N> p(a_world, b_world);
   const Settled settled = settled_relation(p.a, p.b, options);
   if (settled != Settled::unsettled) return settled == Settled::overlapping;
   return relation_of(p.a, p.b, p.b.triangles(), options).first != Relation::separated;
@@ -231,7 +231,7 @@ Contact<T, N> first_contact(const Ellipsoid<T, N>& a_world, const VecArg<T, N>& 
                             const VecArg<T, N>& velocity_b, T t_max, const Options& options) noexcept {
   Contact<T, N> out = detail::unanswered_contact<T, N>();
   if (!detail::valid_motion<T, N>(velocity_a, velocity_b, t_max)) return out;
-  const AtBody<T, N> p(a_world, b_world);
+  const BoxAtBody<T, N> p(a_world, b_world);
   const Ellipsoid<T, N>& a = p.a;
   const Box<T, N>& b = p.b;
   const auto in_world = [&](Contact<T, N> c) {
@@ -293,7 +293,7 @@ Contact<T, N> first_contact(const Ellipsoid<T, N>& a_world, const VecArg<T, N>& 
 
 template <class T, int N>
 Distance<T, N> signed_distance(const Ellipsoid<T, N>& a_world, const Box<T, N>& b_world, const Options& options) noexcept {
-  const AtBody<T, N> p(a_world, b_world);
+  const BoxAtBody<T, N> p(a_world, b_world);
   const Ellipsoid<T, N>& a = p.a;
   const Box<T, N>& b = p.b;
   constexpr int count = 1 << N;

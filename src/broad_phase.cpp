@@ -19,14 +19,14 @@ namespace ellipsect {
 namespace {
 
 template <int N>
-struct Box {
+struct Aabb {
   double lo[N], hi[N];
 };
 
 // One box of the sweep: body `body`, translated by shift * size in a periodic box.
 template <int N>
 struct Entry {
-  Box<N> box;
+  Aabb<N> box;
   std::uint32_t body;
   std::array<std::int32_t, N> shift;
 };
@@ -50,13 +50,13 @@ double grown_by(double growth, double t1) { return growth == 0.0 ? 1.0 : 1.0 + g
 // exact for a body that does not turn or grow (with the axes the queries compute with: float
 // axes orthonormalized), the box of its bounding ball for one that turns.
 template <class T, int N>
-Box<N> box_of(const Ellipsoid<T, N>& body, const Vec<T, N>& velocity, bool turning, double t0, double t1,
+Aabb<N> box_of(const Ellipsoid<T, N>& body, const Vec<T, N>& velocity, bool turning, double t0, double t1,
               double scale = 1.0) {
   const Mat<double, N> A = detail::work_axes<double>(body);
   const auto r = body.radii();
   const auto c = body.center();
   const double r_max = double(r.maxCoeff()) * scale;
-  Box<N> box;
+  Aabb<N> box;
   for (int k = 0; k < N; ++k) {
     double h = r_max;
     if (!turning) {  // r_max |row k of A diag(r / r_max)|: no underflow or overflow
@@ -81,11 +81,11 @@ Box<N> box_of(const Ellipsoid<T, N>& body, const Vec<T, N>& velocity, bool turni
 }
 
 template <class T, int N>
-std::vector<Box<N>> boxes_of(std::span<const Ellipsoid<T, N>> bodies, std::span<const RigidMotion<T, N>> motions,
+std::vector<Aabb<N>> boxes_of(std::span<const Ellipsoid<T, N>> bodies, std::span<const RigidMotion<T, N>> motions,
                              double t0, double t1) {
   if (motions.size() != bodies.size())
     throw std::invalid_argument("ellipsect: motions and bodies must have equal sizes");
-  std::vector<Box<N>> boxes;
+  std::vector<Aabb<N>> boxes;
   boxes.reserve(bodies.size());
   for (std::size_t i = 0; i < bodies.size(); ++i)
     if (!(motions[i].growth >= T(0)) || !std::isfinite(motions[i].growth) || (motions[i].growth > T(0) && !(t0 >= 0.0)))
@@ -108,14 +108,14 @@ void sweep(const std::vector<Entry<N>>& entries, Meet&& meet) {
   });
   std::vector<std::uint32_t> active;
   for (const std::uint32_t p : order) {
-    const Box<N>& bp = entries[p].box;
+    const Aabb<N>& bp = entries[p].box;
     // Drop boxes that end before this one starts.
     std::size_t keep = 0;
     for (const std::uint32_t q : active)
       if (entries[q].box.hi[0] >= bp.lo[0]) active[keep++] = q;
     active.resize(keep);
     for (const std::uint32_t q : active) {
-      const Box<N>& bq = entries[q].box;
+      const Aabb<N>& bq = entries[q].box;
       bool meets = true;
       for (int k = 1; k < N && meets; ++k) meets = bp.lo[k] <= bq.hi[k] && bq.lo[k] <= bp.hi[k];
       if (meets) meet(entries[p], entries[q]);
@@ -218,7 +218,7 @@ void find_meeting(const std::vector<Entry<N>>& entries, Meet&& meet) {
 }
 
 template <int N>
-std::vector<IndexPair> open_pairs(const std::vector<Box<N>>& boxes) {
+std::vector<IndexPair> open_pairs(const std::vector<Aabb<N>>& boxes) {
   std::vector<Entry<N>> entries;
   entries.reserve(boxes.size());
   for (std::size_t i = 0; i < boxes.size(); ++i) entries.push_back({boxes[i], std::uint32_t(i), {}});
@@ -241,7 +241,7 @@ void check_box(const PeriodicBox<N>& box) {
 // its start, `wrap`), and copied by one side along every axis on which it crosses the
 // cell's faces; two copies that meet give the pair and the image of j that meets i.
 template <int N>
-std::vector<ImagePair<N>> periodic_pairs(const std::vector<Box<N>>& boxes,
+std::vector<ImagePair<N>> periodic_pairs(const std::vector<Aabb<N>>& boxes,
                                          const std::vector<std::array<double, N>>& anchors, const PeriodicBox<N>& box) {
   check_box(box);
   const double limit = std::ldexp(1.0, 30);
@@ -249,7 +249,7 @@ std::vector<ImagePair<N>> periodic_pairs(const std::vector<Box<N>>& boxes,
   std::vector<Entry<N>> entries;
   entries.reserve(boxes.size() * 2);
   for (std::size_t i = 0; i < boxes.size(); ++i) {
-    Box<N> b = boxes[i];
+    Aabb<N> b = boxes[i];
     int crossing[N];
     for (int k = 0; k < N; ++k) {
       const double L = box.size[k];
@@ -371,7 +371,7 @@ PairContact<T, N> earliest(std::span<const Ellipsoid<T, N>> bodies, std::span<co
     if (box == nullptr) return slab;
     for (std::size_t i = 0; i < bodies.size(); ++i) {
       const double growth = double(motions[i].growth), scale = grown_by(growth, t0);
-      const Box<N> still = box_of<T, N>(bodies[i], Vec<T, N>::Zero(), spins(motions[i]), 0.0, 0.0);
+      const Aabb<N> still = box_of<T, N>(bodies[i], Vec<T, N>::Zero(), spins(motions[i]), 0.0, 0.0);
       for (int k = 0; k < N; ++k) {
         const double extent = (still.hi[k] - still.lo[k]) * scale;
         if (!(extent < 0.25 * box->size[k]))
@@ -436,7 +436,7 @@ std::vector<IndexPair> candidate_pairs(std::span<const Ellipsoid<T, N>> bodies,
                                        std::span<const Vec<T, N>> velocities, double t0, double t1) {
   if (velocities.size() != bodies.size())
     throw std::invalid_argument("ellipsect: velocities and bodies must have equal sizes");
-  std::vector<Box<N>> boxes;
+  std::vector<Aabb<N>> boxes;
   boxes.reserve(bodies.size());
   for (std::size_t i = 0; i < bodies.size(); ++i) boxes.push_back(box_of(bodies[i], velocities[i], false, t0, t1));
   return open_pairs(boxes);

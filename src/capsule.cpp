@@ -83,12 +83,12 @@ Relation relation_of(const Ellipsoid<T, N>& a, const Capsule<T, N>& b, const det
 // that the segment, also as moved by t w in first_contact, is rounded to ulps of the pair's
 // extent, and all of them decide the relation on the same rounded pair.
 template <class T, int N>
-struct AtBody : detail::AtBody<T, N, Capsule<T, N>> {
-  AtBody(const Ellipsoid<T, N>& a_world, const Capsule<T, N>& b_world) noexcept
+struct CapsuleAtBody : detail::AtBody<T, N, Capsule<T, N>> {
+  CapsuleAtBody(const Ellipsoid<T, N>& a_world, const Capsule<T, N>& b_world) noexcept
       : detail::AtBody<T, N, Capsule<T, N>>(a_world, b_world, b_world.point(0), b_world.point(1)) {}
 };
 
-// first_contact of the moved pair (AtBody).
+// first_contact of the moved pair (CapsuleAtBody).
 template <class T, int N>
 Contact<T, N> contact_at_body(const Ellipsoid<T, N>& a, const VecArg<T, N>& velocity_a, const Capsule<T, N>& b,
                               const VecArg<T, N>& velocity_b, T t_max, const Options& options) noexcept {
@@ -145,7 +145,7 @@ Contact<T, N> contact_at_body(const Ellipsoid<T, N>& a, const VecArg<T, N>& velo
 
 template <class T, int N>
 Relation classify(const Ellipsoid<T, N>& a_world, const Capsule<T, N>& b_world, const Options& options) noexcept {
-  const AtBody<T, N> p(a_world, b_world);
+  const CapsuleAtBody<T, N> p(a_world, b_world);
   return relation_of(p.a, p.b, support_of<T, N>(p.a, p.b, Vec<T, N>::Zero()), options);
 }
 
@@ -161,7 +161,7 @@ bool overlap(const Ellipsoid<T, N>& a, const Capsule<T, N>& b, const Options& op
 template <class T, int N>
 Distance<T, N> signed_distance(const Ellipsoid<T, N>& a_world, const Capsule<T, N>& b_world,
                                const Options& options) noexcept {
-  const AtBody<T, N> p(a_world, b_world);
+  const CapsuleAtBody<T, N> p(a_world, b_world);
   const detail::Support<T, N> s = support_of<T, N>(p.a, p.b, Vec<T, N>::Zero());
   Distance<T, N> out = detail::distance_of(s, p.b.radius(), relation_of(p.a, p.b, s, options));
   out.point_a += p.shift;  // NaN stays NaN
@@ -206,7 +206,7 @@ Distance<T, N> distance(const Ellipsoid<T, N>& a, const Capsule<T, N>& b, const 
 template <class T, int N>
 Contact<T, N> first_contact(const Ellipsoid<T, N>& a_world, const VecArg<T, N>& velocity_a, const Capsule<T, N>& b_world,
                             const VecArg<T, N>& velocity_b, T t_max, const Options& options) noexcept {
-  const AtBody<T, N> p(a_world, b_world);
+  const CapsuleAtBody<T, N> p(a_world, b_world);
   Contact<T, N> out = contact_at_body<T, N>(p.a, velocity_a, p.b, velocity_b, t_max, options);
   out.point += p.shift;  // NaN stays NaN
   return out;

@@ -27,6 +27,7 @@
 
 #include "detail/classify_impl.hpp"
 #include "detail/gradient.hpp"
+#include "detail/instantiate.hpp"
 #include "detail/scale.hpp"
 
 #include <algorithm>
@@ -546,23 +547,16 @@ IouGradient<T> intersection_over_union_gradient(const Ellipse2<T>& a, const Elli
   return out;
 }
 
-template BoundaryIntersection<float> intersect_boundaries<float>(const Ellipse2<float>&, const Ellipse2<float>&,
-                                                                 const Options&) noexcept;
-template BoundaryIntersection<double> intersect_boundaries<double>(const Ellipse2<double>&, const Ellipse2<double>&,
-                                                                   const Options&) noexcept;
-template OverlapArea<float> overlap_area<float>(const Ellipse2<float>&, const Ellipse2<float>&, const Options&) noexcept;
-template OverlapArea<double> overlap_area<double>(const Ellipse2<double>&, const Ellipse2<double>&,
-                                                  const Options&) noexcept;
-template float intersection_over_union<float>(const Ellipse2<float>&, const Ellipse2<float>&, const Options&) noexcept;
-template OverlapAreaGradient<float> overlap_area_gradient<float>(const Ellipse2<float>&, const Ellipse2<float>&,
-                                                                 const Options&) noexcept;
-template OverlapAreaGradient<double> overlap_area_gradient<double>(const Ellipse2<double>&, const Ellipse2<double>&,
-                                                                   const Options&) noexcept;
-template IouGradient<float> intersection_over_union_gradient<float>(const Ellipse2<float>&, const Ellipse2<float>&,
-                                                                    const Options&) noexcept;
-template IouGradient<double> intersection_over_union_gradient<double>(const Ellipse2<double>&,
-                                                                      const Ellipse2<double>&, const Options&) noexcept;
-template double intersection_over_union<double>(const Ellipse2<double>&, const Ellipse2<double>&,
-                                                const Options&) noexcept;
+#define ELLIPSECT_INSTANTIATE(T)                                                                                   \
+  template BoundaryIntersection<T> intersect_boundaries<T>(const Ellipse2<T>&, const Ellipse2<T>&,                  \
+                                                           const Options&) noexcept;                                 \
+  template OverlapArea<T> overlap_area<T>(const Ellipse2<T>&, const Ellipse2<T>&, const Options&) noexcept;          \
+  template T intersection_over_union<T>(const Ellipse2<T>&, const Ellipse2<T>&, const Options&) noexcept;            \
+  template OverlapAreaGradient<T> overlap_area_gradient<T>(const Ellipse2<T>&, const Ellipse2<T>&,                  \
+                                                           const Options&) noexcept;                                 \
+  template IouGradient<T> intersection_over_union_gradient<T>(const Ellipse2<T>&, const Ellipse2<T>&,               \
+                                                              const Options&) noexcept;
+ELLIPSECT_FOR_EACH_TYPE(ELLIPSECT_INSTANTIATE)
+#undef ELLIPSECT_INSTANTIATE
 
 }  // namespace ellipsect

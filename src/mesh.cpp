@@ -125,7 +125,7 @@ MeshRelation classify(const Ellipsoid<T, N>& a, const TriangleMesh<T, N>& b, con
   MeshRelation out;
   const std::size_t count = b.triangle_count();
   if (count == 0) return out;
-  using W = detail::Wide<T>;
+  using W = detail::Work<T>;
   std::size_t contained = 0;
   detail::for_each_near<T, N>(b, a.center().template cast<W>(), detail::half_extents(a, options.tolerance),
                               [&](std::uint32_t k) {
@@ -150,7 +150,7 @@ template <class T, int N>
 MeshContact<T, N> first_contact(const Ellipsoid<T, N>& a, const VecArg<T, N>& velocity_a, const TriangleMesh<T, N>& b,
                                 const VecArg<T, N>& velocity_b, T t_max, const Options& options) noexcept {
   if (!detail::valid_motion<T, N>(velocity_a, velocity_b, t_max)) return {detail::unanswered_contact<T, N>(), -1};
-  using W = detail::Wide<T>;
+  using W = detail::Work<T>;
   const Vec<W, N> d = velocity_a.template cast<W>() - velocity_b.template cast<W>();
   // A triangle whose closed form failed its check (triangle.hpp: did_not_converge) leaves the
   // answer open from its time on: reported unless a hit comes first.
@@ -167,7 +167,7 @@ MeshDistance<T, N> signed_distance(const Ellipsoid<T, N>& a, const TriangleMesh<
   out.distance.distance = std::numeric_limits<T>::infinity();
   out.distance.point_a = out.distance.point_b = out.distance.normal = detail::nan_vec<T, N>();
   if (b.triangle_count() == 0) return out;
-  using W = detail::Wide<T>;
+  using W = detail::Work<T>;
   detail::for_each_nearest<T, N>(b, a.center().template cast<W>(), detail::half_extents(a, options.tolerance),
                                  [&](std::uint32_t k) {
     const Distance<T, N> d = signed_distance(a, b.triangle(k), options);

@@ -15,6 +15,7 @@
 //   the circle stays a circle): A = diag(h_b, w_b) Q_b^T instead of Q_b diag(h_b, w_b) Q_b^T.
 #include <ellipsect/polygonal2.hpp>
 
+#include "detail/instantiate.hpp"
 #include "detail/niemitalo_polygon.hpp"
 #include "detail/scale.hpp"
 #include "detail/shape_access.hpp"
@@ -573,8 +574,7 @@ NiemitaloPolygons<T> niemitalo_polygons(const Ellipse2<T>& ellipse, int level) {
   template T niemitalo_error_bound<T>(T, int) noexcept;                                                             \
   template T niemitalo_error_bound<T>(const Ellipse2<T>&, int) noexcept;                                          \
   template NiemitaloPolygons<T> niemitalo_polygons<T>(const Ellipse2<T>&, int);
-ELLIPSECT_INSTANTIATE(float)
-ELLIPSECT_INSTANTIATE(double)
+ELLIPSECT_FOR_EACH_TYPE(ELLIPSECT_INSTANTIATE)
 #undef ELLIPSECT_INSTANTIATE
 
 }  // namespace ellipsect

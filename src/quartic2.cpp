@@ -1,5 +1,6 @@
 #include <ellipsect/quartic2.hpp>
 
+#include "detail/instantiate.hpp"
 #include "detail/niemitalo_quartic.hpp"
 #include "detail/reduce.hpp"
 #include "detail/scale.hpp"
@@ -140,8 +141,7 @@ QuarticPoint<T> closest_point_quartic(const Ellipse2<T>& ellipse, const VecArg<T
 #define ELLIPSECT_INSTANTIATE(T)                                                                         \
   template QuarticPoint<T> closest_point_closed_form<T>(const Ellipse2<T>&, const Vec2<T>&) noexcept; \
   template QuarticPoint<T> closest_point_quartic<T>(const Ellipse2<T>&, const Vec2<T>&) noexcept;
-ELLIPSECT_INSTANTIATE(float)
-ELLIPSECT_INSTANTIATE(double)
+ELLIPSECT_FOR_EACH_TYPE(ELLIPSECT_INSTANTIATE)
 #undef ELLIPSECT_INSTANTIATE
 
 }  // namespace ellipsect

@@ -224,7 +224,7 @@ MeshContact<T, N> first_contact(const Ellipsoid<T, N>& a, const RigidMotion<T, N
   // The candidates: triangles whose boxes the body's bounding ball (radius R at the window's
   // end, grown by the tangency band and 1e-9) meets along its center's path relative to the
   // mesh; each by its own advancement.
-  using W = detail::Wide<T>;
+  using W = detail::Work<T>;
   const W grown = motion_a.growth == T(0) ? W(1) : 1 + W(motion_a.growth) * W(t_max);
   const W reach = W(a.radii().maxCoeff()) * grown * (1 + 2 * W(options.tolerance) + W(1e-9)) *
                   (sizeof(T) < sizeof(double) ? W(1 + 1e-6) : W(1));

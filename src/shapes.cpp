@@ -433,19 +433,14 @@ Box<T, N> Box<T, N>::translated(const Vec<T, N>& offset) const {
   template void make_bodies<T, N>(std::span<const T>, std::span<const T>, std::span<const T>, std::span<Ellipsoid<T, N>>);
 ELLIPSECT_FOR_EACH_TYPE_AND_DIM(ELLIPSECT_INSTANTIATE)
 #undef ELLIPSECT_INSTANTIATE
-template Ellipse2<float> make_ellipse<float>(const Vec2<float>&, float, const Vec2<float>&);
-template Ellipse2<double> make_ellipse<double>(const Vec2<double>&, double, const Vec2<double>&);
-template Ellipsoid3<float> make_ellipsoid<float>(const Vec3<float>&, const Quat<float>&, const Vec3<float>&);
-template Ellipsoid3<double> make_ellipsoid<double>(const Vec3<double>&, const Quat<double>&, const Vec3<double>&);
-template Ellipsoid3<float> make_ellipsoid<float>(const Vec3<float>&, const Mat3<float>&, const Vec3<float>&);
-template Ellipsoid3<double> make_ellipsoid<double>(const Vec3<double>&, const Mat3<double>&, const Vec3<double>&);
-template void make_ellipses<float>(std::span<const float>, std::span<const float>, std::span<const float>,
-                                   std::span<Ellipse2<float>>);
-template void make_ellipses<double>(std::span<const double>, std::span<const double>, std::span<const double>,
-                                    std::span<Ellipse2<double>>);
-template void make_ellipsoids<float>(std::span<const float>, std::span<const float>, std::span<const float>,
-                                     std::span<Ellipsoid3<float>>);
-template void make_ellipsoids<double>(std::span<const double>, std::span<const double>, std::span<const double>,
-                                      std::span<Ellipsoid3<double>>);
+#define ELLIPSECT_INSTANTIATE(T)                                                                               \
+  template Ellipse2<T> make_ellipse<T>(const Vec2<T>&, T, const Vec2<T>&);                                       \
+  template Ellipsoid3<T> make_ellipsoid<T>(const Vec3<T>&, const Quat<T>&, const Vec3<T>&);                      \
+  template Ellipsoid3<T> make_ellipsoid<T>(const Vec3<T>&, const Mat3<T>&, const Vec3<T>&);                      \
+  template void make_ellipses<T>(std::span<const T>, std::span<const T>, std::span<const T>, std::span<Ellipse2<T>>); \
+  template void make_ellipsoids<T>(std::span<const T>, std::span<const T>, std::span<const T>,                   \
+                                   std::span<Ellipsoid3<T>>);
+ELLIPSECT_FOR_EACH_TYPE(ELLIPSECT_INSTANTIATE)
+#undef ELLIPSECT_INSTANTIATE
 
 }  // namespace ellipsect

@@ -53,13 +53,13 @@ struct Mesh {
   Triangle<T, N> at(std::size_t k) const { return mesh.triangle(k); }
   template <class Visit>
   void near(const Ellipsoid<T, N>& body, Visit&& visit) const {
-    detail::for_each_near<T, N>(mesh, body.center().template cast<detail::Wide<T>>(),
+    detail::for_each_near<T, N>(mesh, body.center().template cast<detail::Work<T>>(),
                                 detail::half_extents(body, tolerance),
                                 [&](std::uint32_t k) { visit(k, mesh.triangle(k)); });
   }
   template <class Visit>
   void swept(const Ellipsoid<T, N>& body, const Vec<T, N>& r, Visit&& visit) const {
-    using W = detail::Wide<T>;
+    using W = detail::Work<T>;
     detail::for_each_swept<T, N>(mesh, body.center().template cast<W>(), r.template cast<W>(),
                                  detail::half_extents(body, tolerance), W(1), [&](std::uint32_t k, W t_end) {
                                    visit(k, mesh.triangle(k));

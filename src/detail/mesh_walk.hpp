@@ -6,27 +6,25 @@
 #include <ellipsect/mesh.hpp>
 
 #include "contact_start.hpp"
+#include "reduce.hpp"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
-#include <type_traits>
 #include <utility>
 
 namespace ellipsect::detail {
 
-// The walks compute in double (long double for long double): float boxes and bodies are
+// The walks compute in Work<T> (reduce.hpp: double for float): float boxes and bodies are
 // widened there, where the margins below are far above the rounding.
-template <class T>
-using Wide = std::conditional_t<(sizeof(T) < sizeof(double)), double, T>;
 
 // The body's axis-aligned half-extents, sqrt(sum_k (A_ik r_k)^2), grown by 1e-9 and by the
 // tangency band (options.hpp), so that a touching triangle's box is reached; and by 1e-6 for
 // float bodies (their axes are orthonormal only to float's rounding).
 template <class T, int N>
-Vec<Wide<T>, N> half_extents(const Ellipsoid<T, N>& a, double tolerance) noexcept {
-  using W = Wide<T>;
+Vec<Work<T>, N> half_extents(const Ellipsoid<T, N>& a, double tolerance) noexcept {
+  using W = Work<T>;
   const W grow = W(1 + 2 * tolerance + 1e-9) + (sizeof(T) < sizeof(double) ? W(1e-6) : W(0));
   Vec<W, N> h;
   for (int i = 0; i < N; ++i) {
@@ -44,9 +42,9 @@ Vec<Wide<T>, N> half_extents(const Ellipsoid<T, N>& a, double tolerance) noexcep
 
 // The node's box grown by h and by 1e-9 of the box's and h's size, on axis i.
 template <class T, int N>
-std::pair<Wide<T>, Wide<T>> grown(const typename TriangleMesh<T, N>::Node& node, const Vec<Wide<T>, N>& h,
+std::pair<Work<T>, Work<T>> grown(const typename TriangleMesh<T, N>::Node& node, const Vec<Work<T>, N>& h,
                                   int i) noexcept {
-  using W = Wide<T>;
+  using W = Work<T>;
   const W lo = W(node.lo[i]), hi = W(node.hi[i]);
   const W margin = W(1e-9) * (std::abs(lo) + std::abs(hi) + h[i]) + std::numeric_limits<W>::denorm_min();
   return {lo - h[i] - margin, hi + h[i] + margin};
@@ -54,7 +52,7 @@ std::pair<Wide<T>, Wide<T>> grown(const typename TriangleMesh<T, N>::Node& node,
 
 // Calls visit(k) for each triangle k whose box, grown by h, contains the point c.
 template <class T, int N, class Visit>
-void for_each_near(const TriangleMesh<T, N>& mesh, const Vec<Wide<T>, N>& c, const Vec<Wide<T>, N>& h,
+void for_each_near(const TriangleMesh<T, N>& mesh, const Vec<Work<T>, N>& c, const Vec<Work<T>, N>& h,
                    Visit&& visit) {
   const auto nodes = mesh.nodes();
   if (nodes.empty()) return;
@@ -83,9 +81,9 @@ void for_each_near(const TriangleMesh<T, N>& mesh, const Vec<Wide<T>, N>& c, con
 // `bound` from the point c (bound: what visit returns, the least signed distance so far;
 // boxes that meet the point's are always visited, as a triangle there can be deeper).
 template <class T, int N, class Visit>
-void for_each_nearest(const TriangleMesh<T, N>& mesh, const Vec<Wide<T>, N>& c, const Vec<Wide<T>, N>& h,
+void for_each_nearest(const TriangleMesh<T, N>& mesh, const Vec<Work<T>, N>& c, const Vec<Work<T>, N>& h,
                       Visit&& visit) {
-  using W = Wide<T>;
+  using W = Work<T>;
   const auto nodes = mesh.nodes();
   if (nodes.empty()) return;
   // The distance from c to the node's grown box, -infinity where it contains c.
@@ -119,9 +117,9 @@ void for_each_nearest(const TriangleMesh<T, N>& mesh, const Vec<Wide<T>, N>& c, 
 // The interval of t in [0, t_end] at which c + t d lies in the node's box grown by h:
 // {entry, exit}, empty when entry > exit.
 template <class T, int N>
-std::pair<Wide<T>, Wide<T>> slab(const typename TriangleMesh<T, N>::Node& node, const Vec<Wide<T>, N>& c,
-                                 const Vec<Wide<T>, N>& d, const Vec<Wide<T>, N>& h, Wide<T> t_end) noexcept {
-  using W = Wide<T>;
+std::pair<Work<T>, Work<T>> slab(const typename TriangleMesh<T, N>::Node& node, const Vec<Work<T>, N>& c,
+                                 const Vec<Work<T>, N>& d, const Vec<Work<T>, N>& h, Work<T> t_end) noexcept {
+  using W = Work<T>;
   W entry = 0, exit = t_end;
   for (int i = 0; i < N; ++i) {
     const auto [lo, hi] = grown<T, N>(node, h, i);
@@ -143,11 +141,11 @@ std::pair<Wide<T>, Wide<T>> slab(const typename TriangleMesh<T, N>::Node& node, 
 // meets, nearest entry first; visit returns the new t_end (the earliest contact so far), and
 // subtrees entered after it are skipped. t_end may be +infinity.
 template <class T, int N, class Visit>
-void for_each_swept(const TriangleMesh<T, N>& mesh, const Vec<Wide<T>, N>& c, const Vec<Wide<T>, N>& d,
-                    const Vec<Wide<T>, N>& h, Wide<T> t_end, Visit&& visit) {
+void for_each_swept(const TriangleMesh<T, N>& mesh, const Vec<Work<T>, N>& c, const Vec<Work<T>, N>& d,
+                    const Vec<Work<T>, N>& h, Work<T> t_end, Visit&& visit) {
   const auto nodes = mesh.nodes();
   if (nodes.empty()) return;
-  std::array<std::pair<Wide<T>, std::uint32_t>, 64> stack;  // (entry time, node)
+  std::array<std::pair<Work<T>, std::uint32_t>, 64> stack;  // (entry time, node)
   int top = 0;
   const auto [entry0, exit0] = slab<T, N>(nodes[0], c, d, h, t_end);
   if (entry0 > exit0) return;
@@ -160,7 +158,7 @@ void for_each_swept(const TriangleMesh<T, N>& mesh, const Vec<Wide<T>, N>& c, co
       for (std::uint32_t j = 0; j < node.count; ++j) t_end = visit(mesh.order()[node.first + j], t_end);
       continue;
     }
-    std::array<std::pair<Wide<T>, std::uint32_t>, 2> children;
+    std::array<std::pair<Work<T>, std::uint32_t>, 2> children;
     int n = 0;
     for (const std::uint32_t child : {at + 1, node.first}) {
       const auto [e, x] = slab<T, N>(nodes[child], c, d, h, t_end);
@@ -178,7 +176,7 @@ void for_each_swept(const TriangleMesh<T, N>& mesh, const Vec<Wide<T>, N>& c, co
 // the mesh, so a separated body never meets it.
 template <class T, int N, class Answer>
 MeshContact<T, N> mesh_contact(const Ellipsoid<T, N>& a, const TriangleMesh<T, N>& mesh, const Options& options,
-                               const Vec<Wide<T>, N>& d, const Vec<Wide<T>, N>& h, T t_max, bool still,
+                               const Vec<Work<T>, N>& d, const Vec<Work<T>, N>& h, T t_max, bool still,
                                Answer&& answer) {
   MeshContact<T, N> out;
   const MeshRelation start = classify(a, mesh, options);
@@ -191,7 +189,7 @@ MeshContact<T, N> mesh_contact(const Ellipsoid<T, N>& a, const TriangleMesh<T, N
   out.contact.status = ContactStatus::no_contact_in_window;
   if (still) return out;
   MeshContact<T, N> failed{out.contact, -1};
-  for_each_swept<T, N>(mesh, a.center().template cast<Wide<T>>(), d, h, Wide<T>(t_max), [&](std::uint32_t k, Wide<T> t_end) {
+  for_each_swept<T, N>(mesh, a.center().template cast<Work<T>>(), d, h, Work<T>(t_max), [&](std::uint32_t k, Work<T> t_end) {
     const Contact<T, N> c = answer(k, T(t_end));
     if (c.status == ContactStatus::did_not_converge && (failed.triangle < 0 || c.time < failed.contact.time))
       failed = {c, k};
@@ -200,7 +198,7 @@ MeshContact<T, N> mesh_contact(const Ellipsoid<T, N>& a, const TriangleMesh<T, N
       out.contact = c;
       out.triangle = k;
     }
-    return Wide<T>(out.contact.time);
+    return Work<T>(out.contact.time);
   });
   if (failed.triangle >= 0 && (out.triangle < 0 || !(out.contact.time < failed.contact.time))) return failed;
   return out;

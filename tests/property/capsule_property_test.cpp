@@ -39,6 +39,7 @@
 #include <vector>
 
 namespace {
+namespace ELLIPSECT_UNITY_ID {
 
 using namespace ellipsect;
 using namespace ellipsect::testing;
@@ -303,4 +304,5 @@ void run() {
 TEST(CapsuleProperty, MatchesReference2D) { run<2>(); }
 TEST(CapsuleProperty, MatchesReference3D) { run<3>(); }
 
+}  // namespace ELLIPSECT_UNITY_ID
 }  // namespace

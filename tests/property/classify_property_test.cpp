@@ -24,6 +24,7 @@
 #include <vector>
 
 namespace {
+namespace ELLIPSECT_UNITY_ID {
 
 using namespace ellipsect;
 using namespace ellipsect::testing;
@@ -539,4 +540,5 @@ TEST(ClassifyProperty, ExactModeMatchesStoredReference3D) {
   check_exact_against_reference<float, 3>(cases(60), cases(30));
 }
 
+}  // namespace ELLIPSECT_UNITY_ID
 }  // namespace

@@ -26,6 +26,7 @@
 #include <cmath>
 
 namespace {
+namespace ELLIPSECT_UNITY_ID {
 
 using namespace ellipsect;
 using namespace ellipsect::testing;
@@ -241,4 +242,5 @@ void floats(int count) {
 TEST(ContactFunctionProperty, Float2D) { floats<2>(20); }
 TEST(ContactFunctionProperty, Float3D) { floats<3>(20); }
 
+}  // namespace ELLIPSECT_UNITY_ID
 }  // namespace

@@ -13,6 +13,7 @@
 #include <cmath>
 
 namespace {
+namespace ELLIPSECT_UNITY_ID {
 
 using namespace ellipsect;
 using namespace ellipsect::testing;
@@ -181,4 +182,5 @@ void check_invariance(int n) {
 TEST(ContactProperty, ScaleAndRigidMotionInvariance2D) { check_invariance<2>(cases(300)); }
 TEST(ContactProperty, ScaleAndRigidMotionInvariance3D) { check_invariance<3>(cases(300)); }
 
+}  // namespace ELLIPSECT_UNITY_ID
 }  // namespace

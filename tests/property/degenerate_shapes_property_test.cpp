@@ -49,6 +49,7 @@
 #include <vector>
 
 namespace {
+namespace ELLIPSECT_UNITY_ID {
 
 using namespace ellipsect;
 using namespace ellipsect::testing;
@@ -388,4 +389,5 @@ void rooms() {
 TEST(DegenerateShapes, RoomsOfSplitWalls2D) { rooms<2>(); }
 TEST(DegenerateShapes, RoomsOfSplitWalls3D) { rooms<3>(); }
 
+}  // namespace ELLIPSECT_UNITY_ID
 }  // namespace

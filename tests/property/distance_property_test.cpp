@@ -20,6 +20,7 @@
 #include <cmath>
 
 namespace {
+namespace ELLIPSECT_UNITY_ID {
 
 using namespace ellipsect;
 using namespace ellipsect::testing;
@@ -279,4 +280,5 @@ TEST(DistanceProperty, FloatMatchesReference) {
   }
 }
 
+}  // namespace ELLIPSECT_UNITY_ID
 }  // namespace

@@ -27,6 +27,7 @@
 
 namespace ellipsect::testing {
 namespace {
+namespace ELLIPSECT_UNITY_ID {
 
 using namespace gradient;
 using ref::Real;
@@ -506,5 +507,6 @@ TEST(GradientProperty, RigidContactTime2D) { rigid_contact_time_matches_differen
 TEST(GradientProperty, RigidContactTime3D) { rigid_contact_time_matches_differences<3>(); }
 TEST(GradientProperty, OverlapAreaAndIou) { area_matches_differences(); }
 
+}  // namespace ELLIPSECT_UNITY_ID
 }  // namespace
 }  // namespace ellipsect::testing

@@ -29,6 +29,7 @@
 #include <string>
 
 namespace {
+namespace ELLIPSECT_UNITY_ID {
 
 using namespace ellipsect;
 using namespace ellipsect::testing;
@@ -146,4 +147,5 @@ TEST(HalfSpaceProperty, FloatWithinTheStatedAccuracy) {
   }
 }
 
+}  // namespace ELLIPSECT_UNITY_ID
 }  // namespace

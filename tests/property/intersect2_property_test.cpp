@@ -20,6 +20,7 @@
 #include <cmath>
 
 namespace {
+namespace ELLIPSECT_UNITY_ID {
 
 using namespace ellipsect;
 using namespace ellipsect::testing;
@@ -177,8 +178,6 @@ TEST(Intersect2Property, FloatMatchesReference) {
   }
 }
 
-}  // namespace
-
 // Nearly concentric pairs: b's center is d * (random direction) off a's, for d = 0,
 // subnormals, 1e-300 .. 1e-8 (relative to the bodies' size 1), random shapes (aspect ratios
 // to 1e3, sizes within 5x: crossings, containment, four-crossing lenses). The relation, the
@@ -214,3 +213,6 @@ TEST(Intersect2Property, NearlyConcentricOffsets) {
   EXPECT_GT(tally.count("offset", "4_crossings"), cases(60));
   EXPECT_GT(tally.count("offset", "0_crossings"), cases(60));
 }
+
+}  // namespace ELLIPSECT_UNITY_ID
+}  // namespace

@@ -35,6 +35,7 @@
 #include <vector>
 
 namespace {
+namespace ELLIPSECT_UNITY_ID {
 
 using namespace ellipsect;
 using namespace ellipsect::testing;
@@ -530,4 +531,5 @@ TEST(NiemitaloProperty, SegmentCircleScaleInvariant) {
   segment_circle_scale_invariant<float>(cases(5000), {0x1p-100f, 0x1p-60f, 0x1p60f, 0x1p100f});
 }
 
+}  // namespace ELLIPSECT_UNITY_ID
 }  // namespace

@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 namespace {
+namespace ELLIPSECT_UNITY_ID {
 
 using namespace ellipsect;
 using Real = ellipsect::reference::Real;
@@ -70,4 +71,5 @@ void run(int n) {
 TEST(PointProperty, ClosestPointIsOptimal2D) { run<2>(ellipsect::testing::cases(3000)); }
 TEST(PointProperty, ClosestPointIsOptimal3D) { run<3>(ellipsect::testing::cases(3000)); }
 
+}  // namespace ELLIPSECT_UNITY_ID
 }  // namespace

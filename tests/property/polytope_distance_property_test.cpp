@@ -32,6 +32,7 @@
 #include <vector>
 
 namespace {
+namespace ELLIPSECT_UNITY_ID {
 
 using namespace ellipsect;
 using namespace ellipsect::testing;
@@ -119,4 +120,5 @@ TEST(PolytopeDistanceProperty, Triangles3D) { run_triangles<3>(); }
 TEST(PolytopeDistanceProperty, Boxes2D) { run_boxes<2>(); }
 TEST(PolytopeDistanceProperty, Boxes3D) { run_boxes<3>(); }
 
+}  // namespace ELLIPSECT_UNITY_ID
 }  // namespace

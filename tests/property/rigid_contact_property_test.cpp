@@ -25,6 +25,7 @@
 #include <cmath>
 
 namespace {
+namespace ELLIPSECT_UNITY_ID {
 
 using namespace ellipsect;
 using namespace ellipsect::testing;
@@ -123,4 +124,5 @@ int growing_cases() { return ellipsect::testing::full_case_counts() ? 10 : 4; }
 TEST(RigidContactProperty, GrowingAgreesWithReference2D) { growing_against_reference<2>(growing_cases()); }
 TEST(RigidContactProperty, GrowingAgreesWithReference3D) { growing_against_reference<3>(growing_cases()); }
 
+}  // namespace ELLIPSECT_UNITY_ID
 }  // namespace

@@ -41,6 +41,7 @@
 #include <vector>
 
 namespace {
+namespace ELLIPSECT_UNITY_ID {
 
 using namespace ellipsect;
 using namespace ellipsect::testing;
@@ -215,4 +216,5 @@ TEST(RigidShapesProperty, Box3D) { check_shape<3>(Shape::box, count(Shape::box, 
 TEST(RigidShapesProperty, Capsule2D) { check_shape<2>(Shape::capsule, count(Shape::capsule, 2)); }
 TEST(RigidShapesProperty, Capsule3D) { check_shape<3>(Shape::capsule, count(Shape::capsule, 3)); }
 
+}  // namespace ELLIPSECT_UNITY_ID
 }  // namespace

@@ -24,6 +24,7 @@
 
 namespace ellipsect::testing {
 namespace {
+namespace ELLIPSECT_UNITY_ID {
 
 constexpr int exponents[] = {500, -500, 1000, -1000};
 
@@ -193,5 +194,6 @@ void check_batch(int per_category) {
 TEST(ScaleProperty, BatchEqualsScalarOnScaledPairs2D) { check_batch<2>(cases(100)); }
 TEST(ScaleProperty, BatchEqualsScalarOnScaledPairs3D) { check_batch<3>(cases(100)); }
 
+}  // namespace ELLIPSECT_UNITY_ID
 }  // namespace
 }  // namespace ellipsect::testing

@@ -36,6 +36,7 @@
 
 namespace ellipsect::testing {
 namespace {
+namespace ELLIPSECT_UNITY_ID {
 
 using namespace gradient;
 using ref::Real;
@@ -409,5 +410,6 @@ TEST(ShapeGradientProperty, Boxes3D) { boxes<3>(); }
 TEST(ShapeGradientProperty, TrianglesAndCapsules2D) { triangles_and_capsules<2>(); }
 TEST(ShapeGradientProperty, TrianglesAndCapsules3D) { triangles_and_capsules<3>(); }
 
+}  // namespace ELLIPSECT_UNITY_ID
 }  // namespace
 }  // namespace ellipsect::testing

@@ -49,6 +49,7 @@
 #include <vector>
 
 namespace {
+namespace ELLIPSECT_UNITY_ID {
 
 using namespace ellipsect;
 using namespace ellipsect::testing;
@@ -372,4 +373,5 @@ TEST(ShapeTranslation, MeshesAndSlides3D) { run_meshes_and_slides<3>(cases(10));
 TEST(ShapeTranslation, ConvexShapes2D) { run_shapes<2>(cases(30)); }
 TEST(ShapeTranslation, ConvexShapes3D) { run_shapes<3>(cases(12)); }
 
+}  // namespace ELLIPSECT_UNITY_ID
 }  // namespace

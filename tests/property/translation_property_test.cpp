@@ -35,6 +35,7 @@
 #include <memory>
 
 namespace {
+namespace ELLIPSECT_UNITY_ID {
 
 using namespace ellipsect;
 using namespace ellipsect::testing;
@@ -229,4 +230,5 @@ void check_rigid(int per_kind) {
 TEST(TranslationProperty, RigidContactFarFromOrigin2D) { check_rigid<2>(cases(8)); }
 TEST(TranslationProperty, RigidContactFarFromOrigin3D) { check_rigid<3>(cases(8)); }
 
+}  // namespace ELLIPSECT_UNITY_ID
 }  // namespace

@@ -33,6 +33,7 @@
 #include <string>
 
 namespace {
+namespace ELLIPSECT_UNITY_ID {
 
 using namespace ellipsect;
 using namespace ellipsect::testing;
@@ -164,4 +165,5 @@ TEST(TriangleProperty, MatchesReference3D) { run<3>("3D"); }
 TEST(TriangleProperty, DegenerateMatchReference2D) { run_degenerate<2>("degenerate 2D"); }
 TEST(TriangleProperty, DegenerateMatchReference3D) { run_degenerate<3>("degenerate 3D"); }
 
+}  // namespace ELLIPSECT_UNITY_ID
 }  // namespace

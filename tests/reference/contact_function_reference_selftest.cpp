@@ -10,6 +10,7 @@
 #include <random>
 
 namespace {
+namespace ELLIPSECT_UNITY_ID {
 
 using namespace ellipsect::reference;
 
@@ -70,4 +71,5 @@ void agrees_with_newton_route() {
 TEST(ContactFunctionReference, AgreesWithNewtonRoute2D) { agrees_with_newton_route<2>(); }
 TEST(ContactFunctionReference, AgreesWithNewtonRoute3D) { agrees_with_newton_route<3>(); }
 
+}  // namespace ELLIPSECT_UNITY_ID
 }  // namespace

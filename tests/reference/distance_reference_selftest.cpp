@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 namespace {
+namespace ELLIPSECT_UNITY_ID {
 
 using namespace ellipsect::reference;
 
@@ -63,4 +64,5 @@ TEST(DistanceReference, AreasInClosedForm) {
   EXPECT_EQ(overlap_area(ball<2>(DVec<2>(0, 0), 1), ball<2>(DVec<2>(3, 0), 1)), 0);
 }
 
+}  // namespace ELLIPSECT_UNITY_ID
 }  // namespace

@@ -15,6 +15,7 @@
 #include <Eigen/Geometry>
 
 namespace {
+namespace ELLIPSECT_UNITY_ID {
 
 using namespace ellipsect::reference;
 
@@ -657,4 +658,5 @@ TYPED_TEST(Ref, Timings) {
   EXPECT_GT(hits, 0);
 }
 
+}  // namespace ELLIPSECT_UNITY_ID
 }  // namespace

@@ -31,6 +31,7 @@
 #include <vector>
 
 namespace {
+namespace ELLIPSECT_UNITY_ID {
 
 using ellipsect::testing::expect_field;
 using namespace ellipsect;
@@ -156,4 +157,5 @@ TEST(Abi, AlignedEigenArgumentsConvert) {
   EXPECT_NEAR(p.signed_distance, 4, 1e-14);
 }
 
+}  // namespace ELLIPSECT_UNITY_ID
 }  // namespace

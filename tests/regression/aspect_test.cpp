@@ -9,6 +9,7 @@
 
 namespace ellipsect {
 namespace {
+namespace ELLIPSECT_UNITY_ID {
 
 // A needle of aspect 2e19 (radii 8 and 4.3e-19) across a circle of radius 8 got an
 // overlap_area of 402, twice the circle's area, and in 3D such needles gave distance and
@@ -63,5 +64,6 @@ TEST(Aspect, SeparatedDistanceIsNeverNegative) {
   EXPECT_EQ(distance(large, b).status, DistanceStatus::touching);
 }
 
+}  // namespace ELLIPSECT_UNITY_ID
 }  // namespace
 }  // namespace ellipsect

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 namespace {
+namespace ELLIPSECT_UNITY_ID {
 
 using namespace ellipsect;
 using E = Ellipse2<double>;
@@ -78,4 +79,5 @@ TEST(ContactAccuracy, ZeroSpinContactFarFromOrigin) {
   EXPECT_LE(std::abs(rigid.time - hi), 1e-12 * hi);
 }
 
+}  // namespace ELLIPSECT_UNITY_ID
 }  // namespace

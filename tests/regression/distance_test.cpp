@@ -13,6 +13,7 @@
 #include <cmath>
 
 namespace {
+namespace ELLIPSECT_UNITY_ID {
 
 using namespace ellipsect;
 namespace ref = ellipsect::reference;
@@ -184,4 +185,5 @@ TEST(DistanceRegression, SignedDistanceNormalOffUnitOffset1em159) {
   }
 }
 
+}  // namespace ELLIPSECT_UNITY_ID
 }  // namespace

@@ -52,6 +52,7 @@
 #include <vector>
 
 namespace {
+namespace ELLIPSECT_UNITY_ID {
 
 using namespace ellipsect;
 using namespace ellipsect::testing;
@@ -400,4 +401,5 @@ TEST(ExactClassify, DefaultBandOnTangentPairs3D) {
   check_default_band<float, 3>(configs3());
 }
 
+}  // namespace ELLIPSECT_UNITY_ID
 }  // namespace

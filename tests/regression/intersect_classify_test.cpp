@@ -19,6 +19,7 @@
 #include <numbers>
 
 namespace {
+namespace ELLIPSECT_UNITY_ID {
 
 using namespace ellipsect;
 namespace ref = ellipsect::reference;
@@ -238,4 +239,5 @@ TEST(IntersectClassify, OverlapClassifyContactAgreeSmallBallOnHugeBall) {
   EXPECT_EQ(first_contact(b, vb, a, va, 1.0).status, ContactStatus::touching_at_start);
 }
 
+}  // namespace ELLIPSECT_UNITY_ID
 }  // namespace

@@ -13,6 +13,7 @@
 #include <limits>
 
 namespace {
+namespace ELLIPSECT_UNITY_ID {
 
 using namespace ellipsect;
 namespace ref = ellipsect::reference;
@@ -452,4 +453,5 @@ TEST(NiemitaloRegression, SegmentFarShorterThanTheCircle) {
             Verdict::collision);
 }
 
+}  // namespace ELLIPSECT_UNITY_ID
 }  // namespace

@@ -12,6 +12,7 @@
 #include <limits>
 
 namespace {
+namespace ELLIPSECT_UNITY_ID {
 
 using namespace ellipsect;
 using V2 = Vec2<double>;
@@ -210,4 +211,5 @@ TEST(Scales, ClosestPointFromASubnormalOffset) {
   EXPECT_LE((p.point - V3(1, 0, 0)).norm(), 1e-15);
 }
 
+}  // namespace ELLIPSECT_UNITY_ID
 }  // namespace

@@ -18,6 +18,7 @@
 #include <limits>
 
 namespace {
+namespace ELLIPSECT_UNITY_ID {
 
 using namespace ellipsect;
 constexpr double inf = std::numeric_limits<double>::infinity();
@@ -127,4 +128,5 @@ TEST(SeedBugs, NearlyEqualEigenvaluesKeepTheShape) {
     EXPECT_LT(static_cast<double>(abs(Real(e[i]) - svd.singularValues()[i]) / svd.singularValues()[i]), 32 * 2.3e-16);
 }
 
+}  // namespace ELLIPSECT_UNITY_ID
 }  // namespace

@@ -11,6 +11,7 @@
 #include <cmath>
 
 namespace {
+namespace ELLIPSECT_UNITY_ID {
 
 using namespace ellipsect;
 
@@ -63,4 +64,5 @@ TEST(ShapesRegression, CapsuleFloatGapBelowOneUlpSameStatusEverywhere) {
   EXPECT_LE(hit.time, 1e-6f);  // the gap, 3.3e-8, closed at speed 1
 }
 
+}  // namespace ELLIPSECT_UNITY_ID
 }  // namespace

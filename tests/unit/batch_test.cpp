@@ -25,6 +25,7 @@
 #include <unistd.h>
 
 namespace {
+namespace ELLIPSECT_UNITY_ID {
 
 using namespace ellipsect;
 using ellipsect::testing::scenario_pairs;
@@ -414,4 +415,5 @@ TEST(Batch, SizesAndTargetsAreChecked) {
   EXPECT_EQ(simd_target(), simd_targets().front());
 }
 
+}  // namespace ELLIPSECT_UNITY_ID
 }  // namespace

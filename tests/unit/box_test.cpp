@@ -23,6 +23,7 @@
 #include <string>
 
 namespace {
+namespace ELLIPSECT_UNITY_ID {
 
 using namespace ellipsect;
 using ellipsect::testing::expect_field;
@@ -259,8 +260,6 @@ void matches_reference() {
 TEST(Box, MatchesReference2D) { matches_reference<2>(); }
 TEST(Box, MatchesReference3D) { matches_reference<3>(); }
 
-}  // namespace
-
 // A float plate thinner than its corners' rounding (half thickness 1.4e-6 at 16 from the
 // origin, where float's ulp is 1.9e-6): its twelve triangles, as computed in float, no
 // longer bound a box, so first_contact must not skip faces by the box's normals. A ball
@@ -289,3 +288,6 @@ TEST(Box, ThinFloatPlateTestsEveryFace) {
   EXPECT_EQ(c.time, earliest);
   EXPECT_LT(c.time, 0.13f);  // the big face's contact, not the rim's at 0.1386
 }
+
+}  // namespace ELLIPSECT_UNITY_ID
+}  // namespace

@@ -15,6 +15,7 @@
 
 namespace ellipsect {
 namespace {
+namespace ELLIPSECT_UNITY_ID {
 
 template <class T, int N>
 std::vector<Ellipsoid<T, N>> random_bodies(std::size_t n, unsigned seed, double spread) {
@@ -105,5 +106,6 @@ TEST(BroadPhase, FloatBoxesUseTheAxesOfTheQueries) {
   EXPECT_EQ((overlapping_pairs<float, 2>(bodies)), (std::vector<IndexPair>{{0, 1}}));
 }
 
+}  // namespace ELLIPSECT_UNITY_ID
 }  // namespace
 }  // namespace ellipsect

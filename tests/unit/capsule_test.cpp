@@ -12,6 +12,7 @@
 #include <limits>
 
 namespace {
+namespace ELLIPSECT_UNITY_ID {
 
 using namespace ellipsect;
 using ellipsect::testing::expect_field;
@@ -180,4 +181,5 @@ TEST(Capsule, PointCapsuleSubnormalOffFromABallsCenter) {
   EXPECT_NEAR((d.point_a - ball.center()).norm(), r, 1e-14 * r);
 }
 
+}  // namespace ELLIPSECT_UNITY_ID
 }  // namespace

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 namespace {
+namespace ELLIPSECT_UNITY_ID {
 
 using namespace ellipsect;
 
@@ -96,4 +97,5 @@ TEST(Classify, ToString) {
   EXPECT_EQ(to_string(Relation::touching), "touching");
 }
 
+}  // namespace ELLIPSECT_UNITY_ID
 }  // namespace

@@ -12,6 +12,7 @@
 #include <limits>
 
 namespace {
+namespace ELLIPSECT_UNITY_ID {
 
 using namespace ellipsect;
 namespace ref = ellipsect::reference;
@@ -155,4 +156,5 @@ TEST(PerramWertheim, DidNotConvergeGivesBounds) {
   EXPECT_NEAR(closest_approach(a, b, u).distance, sigma, 1e-12 * sigma);
 }
 
+}  // namespace ELLIPSECT_UNITY_ID
 }  // namespace

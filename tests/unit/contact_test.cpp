@@ -10,6 +10,7 @@
 #include <limits>
 
 namespace {
+namespace ELLIPSECT_UNITY_ID {
 
 using namespace ellipsect;
 constexpr double inf = std::numeric_limits<double>::infinity();
@@ -152,4 +153,5 @@ TEST(FirstContact, FloatInstantiation) {
   EXPECT_FLOAT_EQ(c.time, 4.0f);
 }
 
+}  // namespace ELLIPSECT_UNITY_ID
 }  // namespace

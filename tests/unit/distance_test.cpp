@@ -8,6 +8,7 @@
 #include <cmath>
 
 namespace {
+namespace ELLIPSECT_UNITY_ID {
 
 using namespace ellipsect;
 
@@ -204,4 +205,5 @@ TEST(Distance, StatusNames) {
   EXPECT_EQ(to_string(DistanceStatus::did_not_converge), "did_not_converge");
 }
 
+}  // namespace ELLIPSECT_UNITY_ID
 }  // namespace

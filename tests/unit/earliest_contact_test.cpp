@@ -20,6 +20,7 @@
 
 namespace ellipsect {
 namespace {
+namespace ELLIPSECT_UNITY_ID {
 
 template <class T, int N>
 struct Scene {
@@ -258,5 +259,6 @@ TEST(PeriodicBox, OverlappingPairsEqualAllImagesLoop) {
   }
 }
 
+}  // namespace ELLIPSECT_UNITY_ID
 }  // namespace
 }  // namespace ellipsect

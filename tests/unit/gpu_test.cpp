@@ -14,6 +14,7 @@
 #include <vector>
 
 namespace {
+namespace ELLIPSECT_UNITY_ID {
 
 using namespace ellipsect;
 using ellipsect::testing::scenario_pairs;
@@ -94,4 +95,5 @@ TEST(Gpu, EmptyAndMismatchedSizes) {
   EXPECT_THROW(classify_on_gpu(some, std::span<Relation>(rel, 1)), std::invalid_argument);
 }
 
+}  // namespace ELLIPSECT_UNITY_ID
 }  // namespace

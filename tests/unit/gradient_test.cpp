@@ -11,6 +11,7 @@
 
 namespace ellipsect {
 namespace {
+namespace ELLIPSECT_UNITY_ID {
 
 using L = long double;
 
@@ -86,5 +87,6 @@ TEST(QuaternionGradient, ChainsSignedDistanceThroughTheQuaternionFactory) {
   }
 }
 
+}  // namespace ELLIPSECT_UNITY_ID
 }  // namespace
 }  // namespace ellipsect

@@ -22,6 +22,7 @@
 #include <vector>
 
 namespace {
+namespace ELLIPSECT_UNITY_ID {
 
 using namespace ellipsect;
 using ellipsect::testing::expect_field;
@@ -288,4 +289,5 @@ TEST(Growth, EarliestContactInAPeriodicBox) {
   expect_field([&] { earliest_contact<double, 3>(two, grow, inf, PeriodicBox<3>{{30, 30, 30}}); }, "box");
 }
 
+}  // namespace ELLIPSECT_UNITY_ID
 }  // namespace

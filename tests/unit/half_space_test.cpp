@@ -10,6 +10,7 @@
 #include <limits>
 
 namespace {
+namespace ELLIPSECT_UNITY_ID {
 
 using namespace ellipsect;
 using ellipsect::testing::expect_field;
@@ -156,4 +157,5 @@ TEST(HalfSpace, FloatQueriesRoundTheDoubleAnswer) {
   EXPECT_EQ(hit.time, 1.0f);
 }
 
+}  // namespace ELLIPSECT_UNITY_ID
 }  // namespace

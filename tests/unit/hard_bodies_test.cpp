@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 namespace {
+namespace ELLIPSECT_UNITY_ID {
 
 using namespace ellipsect;
 
@@ -74,4 +75,5 @@ TEST(HardBodies, GrowingEllipsoids) {
   run<3>(6, Vec<double, 3>(1.0, 0.6, 0.4), 0.3, ellipsect::testing::cases(3000), 0.02);
 }
 
+}  // namespace ELLIPSECT_UNITY_ID
 }  // namespace

@@ -9,6 +9,7 @@
 #include <vector>
 
 namespace {
+namespace ELLIPSECT_UNITY_ID {
 
 using namespace ellipsect;
 
@@ -176,8 +177,6 @@ TEST(Intersect2, Names) {
   EXPECT_EQ(to_string(BoundaryStatus::equal), "equal");
 }
 
-}  // namespace
-
 // intersection_over_union: 1 for equal ellipses, the ratio of the areas under containment,
 // 0 apart, 8 atan(1/2) / (4 pi - 8 atan(1/2)) for the cross, unchanged by a 2^600 scale.
 TEST(Intersect2, IntersectionOverUnion) {
@@ -223,3 +222,6 @@ TEST(Intersect2, NearlyEqualBodies) {
     EXPECT_LE(overlap_area(a, b).area, std::min(2 * M_PI * grow / std::sqrt(grow), 2 * M_PI)) << k;
   }
 }
+
+}  // namespace ELLIPSECT_UNITY_ID
+}  // namespace

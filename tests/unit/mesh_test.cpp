@@ -20,6 +20,7 @@
 #include <vector>
 
 namespace {
+namespace ELLIPSECT_UNITY_ID {
 
 using namespace ellipsect;
 using ellipsect::testing::expect_field;
@@ -325,4 +326,5 @@ void slides_through_soups() {
 TEST(TriangleMesh, SlidesThroughSoups2D) { slides_through_soups<2>(); }
 TEST(TriangleMesh, SlidesThroughSoups3D) { slides_through_soups<3>(); }
 
+}  // namespace ELLIPSECT_UNITY_ID
 }  // namespace

@@ -17,6 +17,7 @@
 #include <vector>
 
 namespace {
+namespace ELLIPSECT_UNITY_ID {
 
 using namespace ellipsect;
 using ellipsect::testing::expect_field;
@@ -230,4 +231,5 @@ TEST(Options, TangentShapesAgreeAcrossQueries) {
   tangent_shapes<float, 3>();
 }
 
+}  // namespace ELLIPSECT_UNITY_ID
 }  // namespace

@@ -14,6 +14,7 @@
 #include <vector>
 
 namespace {
+namespace ELLIPSECT_UNITY_ID {
 
 using namespace ellipsect;
 using ellipsect::testing::expect_field;
@@ -94,4 +95,5 @@ TEST(Packing, BadInputIsNamed) {
   expect_field([&] { jam_packing<2>(radii, o); }, "options.pressure");
 }
 
+}  // namespace ELLIPSECT_UNITY_ID
 }  // namespace

@@ -6,6 +6,7 @@
 #include <cmath>
 
 namespace {
+namespace ELLIPSECT_UNITY_ID {
 
 using namespace ellipsect;
 
@@ -114,4 +115,5 @@ TEST(ClosestPoint, SubnormalOffsetFromTheCenter) {
   EXPECT_NEAR(closest_point(disc, Vec2<double>(0, 0)).signed_distance, -1.0, 1e-15);
 }
 
+}  // namespace ELLIPSECT_UNITY_ID
 }  // namespace

@@ -16,6 +16,7 @@
 #include <vector>
 
 namespace {
+namespace ELLIPSECT_UNITY_ID {
 
 using namespace ellipsect;
 constexpr double nan = std::numeric_limits<double>::quiet_NaN();
@@ -365,4 +366,5 @@ TEST(NiemitaloPolygons, VerticesOnTheEllipseCornersOnTheTangents) {
   }
 }
 
+}  // namespace ELLIPSECT_UNITY_ID
 }  // namespace

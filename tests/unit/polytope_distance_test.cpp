@@ -9,6 +9,7 @@
 #include <cmath>
 
 namespace {
+namespace ELLIPSECT_UNITY_ID {
 
 using namespace ellipsect;
 using V3 = Vec3<double>;
@@ -96,4 +97,5 @@ TEST(PolytopeDistance, FloatBodies) {
   EXPECT_NEAR(d.normal[2], 1.0f, 1e-6f);
 }
 
+}  // namespace ELLIPSECT_UNITY_ID
 }  // namespace

@@ -12,6 +12,7 @@
 #include <limits>
 
 namespace {
+namespace ELLIPSECT_UNITY_ID {
 
 using namespace ellipsect;
 
@@ -143,4 +144,5 @@ TEST(QuarticClosestPoint, UnpolishedRootAccuracy) {
   }
 }
 
+}  // namespace ELLIPSECT_UNITY_ID
 }  // namespace

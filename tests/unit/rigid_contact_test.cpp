@@ -12,6 +12,7 @@
 #include <limits>
 
 namespace {
+namespace ELLIPSECT_UNITY_ID {
 
 using namespace ellipsect;
 using ellipsect::testing::expect_field;
@@ -255,4 +256,5 @@ TEST(RigidContact, FloatAgreesWithDouble) {
   }
 }
 
+}  // namespace ELLIPSECT_UNITY_ID
 }  // namespace

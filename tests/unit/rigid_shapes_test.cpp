@@ -18,6 +18,7 @@
 #include <vector>
 
 namespace {
+namespace ELLIPSECT_UNITY_ID {
 
 using namespace ellipsect;
 using V2 = Vec<double, 2>;
@@ -266,4 +267,5 @@ TEST(RigidShapes, InvalidInputAndStepCap) {
   EXPECT_TRUE(std::isnan(c.point[0]));
 }
 
+}  // namespace ELLIPSECT_UNITY_ID
 }  // namespace

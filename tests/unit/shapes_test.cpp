@@ -14,6 +14,7 @@
 #include <vector>
 
 namespace {
+namespace ELLIPSECT_UNITY_ID {
 
 using namespace ellipsect;
 using ellipsect::testing::expect_field;
@@ -225,4 +226,5 @@ TEST(Shapes, ArrayFactoriesNameRowAndField) {
   expect_field([&] { make_bodies<double, 3>(c, rot, r2, out); }, "radii");
 }
 
+}  // namespace ELLIPSECT_UNITY_ID
 }  // namespace

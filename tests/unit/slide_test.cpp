@@ -15,6 +15,7 @@
 #include <vector>
 
 namespace {
+namespace ELLIPSECT_UNITY_ID {
 
 using namespace ellipsect;
 using V2 = Vec2<double>;
@@ -148,4 +149,5 @@ void random_worlds() {
 TEST(CollideAndSlide, RandomWorlds2D) { random_worlds<2>(); }
 TEST(CollideAndSlide, RandomWorlds3D) { random_worlds<3>(); }
 
+}  // namespace ELLIPSECT_UNITY_ID
 }  // namespace

@@ -12,6 +12,7 @@
 #include <limits>
 
 namespace {
+namespace ELLIPSECT_UNITY_ID {
 
 using namespace ellipsect;
 using ellipsect::testing::expect_field;
@@ -249,4 +250,5 @@ TEST(Triangle, FloatAgreesWithDouble) {
   EXPECT_NEAR(hit.time, 2.0f, 1e-6f);
 }
 
+}  // namespace ELLIPSECT_UNITY_ID
 }  // namespace
