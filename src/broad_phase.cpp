@@ -51,7 +51,7 @@ double grown_by(double growth, double t1) { return growth == 0.0 ? 1.0 : 1.0 + g
 // axes orthonormalized), the box of its bounding ball for one that turns.
 template <class T, int N>
 Aabb<N> box_of(const Ellipsoid<T, N>& body, const Vec<T, N>& velocity, bool turning, double t0, double t1,
-              double scale = 1.0) {
+               double scale = 1.0) {
   const Mat<double, N> A = detail::work_axes<double>(body);
   const auto r = body.radii();
   const auto c = body.center();
@@ -82,7 +82,7 @@ Aabb<N> box_of(const Ellipsoid<T, N>& body, const Vec<T, N>& velocity, bool turn
 
 template <class T, int N>
 std::vector<Aabb<N>> boxes_of(std::span<const Ellipsoid<T, N>> bodies, std::span<const RigidMotion<T, N>> motions,
-                             double t0, double t1) {
+                              double t0, double t1) {
   if (motions.size() != bodies.size())
     throw std::invalid_argument("ellipsect: motions and bodies must have equal sizes");
   std::vector<Aabb<N>> boxes;
