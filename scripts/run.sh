@@ -17,8 +17,11 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-packages=(g++ cmake ninja-build pkg-config libeigen3-dev libhwy-dev libboost-dev libgmp-dev libgtest-dev libgmock-dev libbenchmark-dev
-          libfcl-dev libccd-dev libcli11-dev nlohmann-json3-dev librsvg2-bin
+# The packages each command needs. `example` needs the C++ set alone (the library, the program
+# and its picture); the others add the test, benchmark, page and Python sets.
+cxx_packages=(g++ cmake ninja-build ccache pkg-config libeigen3-dev libhwy-dev libboost-dev libgmp-dev libcli11-dev
+              nlohmann-json3-dev librsvg2-bin)
+packages=("${cxx_packages[@]}" libgtest-dev libgmock-dev libbenchmark-dev libfcl-dev libccd-dev
           clang libclang-rt-14-dev)
 # ---- web (the demo page, web/): Emscripten, Chromium for its browser test, Node and npm
 # for playwright-core. npm only where no npm is on the PATH (a Node from elsewhere bundles
@@ -31,9 +34,10 @@ packages+=(python3-dev python3-venv python3-pip python3-setuptools python3-wheel
            python3-pytest python3-hypothesis python3-mpmath python3-matplotlib python3-dask python3-distributed
            python3-pandas python3-shapely python3-torch mypy)
 
-install_missing() {
-  local missing=()
-  for p in "${packages[@]}"; do
+install_missing() {  # install_missing [PACKAGE...] (default: every package above)
+  local missing=() p
+  [ $# -gt 0 ] || set -- "${packages[@]}"
+  for p in "$@"; do
     dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
   done
   [ ${#missing[@]} -eq 0 ] && return 0
@@ -44,12 +48,24 @@ install_missing() {
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq "${missing[@]}" >/dev/null
 }
 
-# The Python module is left to pip (python_test), which builds it in the Release tree.
-build() {  # build DIR [cmake args...]
-  local dir=$1
+# The compiler cache (ccache): every build below compiles through it, in ~/.cache/ccache
+# (CCACHE_DIR elsewhere). Paths under the checkout are hashed relative to it, and the
+# working directory is not hashed, so a fresh clone in another folder reuses what an
+# earlier build of the same code compiled on this machine. The precompiled headers of the
+# tests are cached too (ccache's pch sloppiness; clang's without their timestamp,
+# tests/CMakeLists.txt).
+export CCACHE_BASEDIR=$PWD CCACHE_NOHASHDIR=1 CCACHE_MAXSIZE=${CCACHE_MAXSIZE:-8G}
+export CCACHE_SLOPPINESS=pch_defines,time_macros,include_file_mtime,include_file_ctime
+launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
+
+# build DIR [--target TARGET...] [cmake args...]. The Python module is left to pip
+# (python_test), which builds it in the Release tree.
+build() {
+  local dir=$1 targets=()
   shift
-  cmake -S . -B "$dir" -G Ninja -DELLIPSECT_BUILD_PYTHON=OFF "$@" >/dev/null
-  cmake --build "$dir" -j "$(nproc)"
+  while [ "${1:-}" = --target ]; do targets+=(--target "$2"); shift 2; done
+  cmake -S . -B "$dir" -G Ninja -DELLIPSECT_BUILD_PYTHON=OFF "${launcher[@]}" "$@" >/dev/null
+  cmake --build "$dir" -j "$(nproc)" "${targets[@]}"
 }
 
 step() { echo "==> [$((SECONDS / 60)) min $((SECONDS % 60)) s] $*"; }
@@ -63,7 +79,7 @@ build_sanitized() {
   if [ -f build/sanitize/CMakeCache.txt ] && ! grep -q '^CMAKE_CXX_COMPILER:.*clang' build/sanitize/CMakeCache.txt; then
     rm -rf build/sanitize
   fi
-  cmake -S . -B build/sanitize -G Ninja -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  cmake -S . -B build/sanitize -G Ninja -DCMAKE_CXX_COMPILER=clang++ "${launcher[@]}" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
     -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -gline-tables-only -DNDEBUG" -DELLIPSECT_SANITIZE=ON \
     -DELLIPSECT_BUILD_FUZZ=ON -DELLIPSECT_BUILD_TESTS=ON -DELLIPSECT_BUILD_BENCH=OFF -DELLIPSECT_BUILD_TOOLS=ON \
     -DELLIPSECT_UNITY_LIBRARY=ON >/dev/null
@@ -143,7 +159,7 @@ fuzz_all() {
 # Emscripten's own is compiled here. Its JS optimizer needs Debian's acorn module, which a
 # Node from elsewhere does not look for: NODE_PATH.
 build_web() {
-  NODE_PATH=/usr/share/nodejs emcmake cmake -S web -B build/web -G Ninja >/dev/null
+  NODE_PATH=/usr/share/nodejs emcmake cmake -S web -B build/web -G Ninja "${launcher[@]}" >/dev/null
   NODE_PATH=/usr/share/nodejs cmake --build build/web -j "$(nproc)"
   echo "==> demo page: build/web/site/ ($(stat -c %s build/web/site/ellipsect.wasm) bytes of wasm)"
 }
@@ -163,8 +179,7 @@ web_test() {
 # tree, beside the library it links), then its pytest suite (docs/python.md).
 python_test() {
   [ -x build/venv/bin/python ] || /usr/bin/python3 -m venv --system-site-packages build/venv
-  # No compiler launcher here: a changed one would change every compile command of the
-  # Release tree and rebuild its library.
+  # pip's CMake configures the Release tree again: its cache keeps the compiler launcher.
   ELLIPSECT_BUILD_DIR=build/release CMAKE_BUILD_PARALLEL_LEVEL=$(nproc) \
     build/venv/bin/pip install -q --no-build-isolation ./python
   build/venv/bin/python -m pytest -q python/tests
@@ -172,13 +187,16 @@ python_test() {
 
 case "${1:-}" in
   example)
-    install_missing
-    build build/release -DCMAKE_BUILD_TYPE=Release -DELLIPSECT_BUILD_TESTS=OFF -DELLIPSECT_BUILD_BENCH=OFF \
-      -DELLIPSECT_BUILD_TOOLS=ON
+    # The C++ packages alone, and the program alone (not the tests, benchmarks or examples).
+    install_missing "${cxx_packages[@]}"
+    step "build: the library and the ellipsect program"
+    build build/release --target ellipsect_cli -DCMAKE_BUILD_TYPE=Release -DELLIPSECT_BUILD_TESTS=OFF \
+      -DELLIPSECT_BUILD_BENCH=OFF -DELLIPSECT_BUILD_TOOLS=ON
+    step "ellipsect check examples/scenes/swept_2d.json"
     ./build/release/tools/ellipsect check examples/scenes/swept_2d.json
     ./build/release/tools/ellipsect render examples/scenes/swept_2d.json -o build/release/swept_2d.svg
     ./build/release/tools/ellipsect render examples/scenes/swept_2d.json -o build/release/swept_2d.png
-    echo "==> picture of the first contact: build/release/swept_2d.svg (and swept_2d.png)"
+    step "picture of the first contact: build/release/swept_2d.svg (and swept_2d.png)"
     ;;
   test)
     install_missing
