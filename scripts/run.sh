@@ -187,16 +187,17 @@ python_test() {
 
 case "${1:-}" in
   example)
-    # The C++ packages alone, and the program alone (not the tests, benchmarks or examples).
+    # The C++ packages alone, and the program alone, in a tree of its own (build/example): the
+    # library's double queries (the program's), its files compiled in batches.
     install_missing "${cxx_packages[@]}"
     step "build: the library and the ellipsect program"
-    build build/release --target ellipsect_cli -DCMAKE_BUILD_TYPE=Release -DELLIPSECT_BUILD_TESTS=OFF \
-      -DELLIPSECT_BUILD_BENCH=OFF -DELLIPSECT_BUILD_TOOLS=ON
+    build build/example --target ellipsect_cli -DCMAKE_BUILD_TYPE=Release -DELLIPSECT_BUILD_TESTS=OFF \
+      -DELLIPSECT_BUILD_BENCH=OFF -DELLIPSECT_BUILD_TOOLS=ON -DELLIPSECT_DOUBLE_ONLY=ON -DELLIPSECT_UNITY_LIBRARY=ON
     step "ellipsect check examples/scenes/swept_2d.json"
-    ./build/release/tools/ellipsect check examples/scenes/swept_2d.json
-    ./build/release/tools/ellipsect render examples/scenes/swept_2d.json -o build/release/swept_2d.svg
-    ./build/release/tools/ellipsect render examples/scenes/swept_2d.json -o build/release/swept_2d.png
-    step "picture of the first contact: build/release/swept_2d.svg (and swept_2d.png)"
+    ./build/example/tools/ellipsect check examples/scenes/swept_2d.json
+    ./build/example/tools/ellipsect render examples/scenes/swept_2d.json -o build/example/swept_2d.svg
+    ./build/example/tools/ellipsect render examples/scenes/swept_2d.json -o build/example/swept_2d.png
+    step "picture of the first contact: build/example/swept_2d.svg (and swept_2d.png)"
     ;;
   test)
     install_missing

@@ -403,6 +403,8 @@ Packing<N> jam_packing(std::span<const Vec<double, N>> radii, const PackingOptio
     throw InputError("options.pressure", "must be finite and > 1");
   if (!(options.contact_gap >= 0.0) || !std::isfinite(options.contact_gap))
     throw InputError("options.contact_gap", "must be finite and >= 0");
+  if (!(options.skin > 0.0) || !std::isfinite(options.skin))
+    throw InputError("options.skin", "must be finite and > 0");
   if (options.collisions_per_update < 1) throw InputError("options.collisions_per_update", "must be >= 1");
 
   std::mt19937_64 rng(options.seed);
@@ -472,10 +474,16 @@ Packing<N> jam_packing(std::span<const Vec<double, N>> radii, const PackingOptio
   out.density = total * std::pow(system.scale_at(out.time), N) / box_volume;
   out.predictions_overlapping = system.overlaps();
   out.predictions_stopped = system.stopped();
-  // Contacts and the final check, on the candidate pairs of the final bodies.
+  // Contacts and the final check, on the candidate pairs of the final bodies grown by 1 + gap
+  // about their centers: a pair with mu - 1 < gap overlaps when both are grown by mu, so the
+  // boxes of the grown bodies meet (those of the bodies themselves need not).
   const double gap = options.contact_gap > 0.0 ? options.contact_gap : 100.0 / options.pressure;
   std::vector<int> count(start.size(), 0);
-  for (const ImagePair<N>& p : candidate_pairs<double, N>(out.bodies, box)) {
+  std::vector<Ellipsoid<double, N>> grown;
+  grown.reserve(out.bodies.size());
+  for (const Ellipsoid<double, N>& s : out.bodies)
+    grown.push_back(Ellipsoid<double, N>::from_axes(s.center(), s.axes(), s.radii() * (1.0 + gap)));
+  for (const ImagePair<N>& p : candidate_pairs<double, N>(grown, box)) {
     Vec<double, N> offset;
     for (int k = 0; k < N; ++k) offset[k] = p.image[k] * box.size[k];
     const Ellipsoid<double, N>& a = out.bodies[p.i];

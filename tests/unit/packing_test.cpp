@@ -4,12 +4,15 @@
 // arithmetic: a certificate independent of the floating-point predictions); input errors.
 #include <ellipsect/broad_phase.hpp>
 #include <ellipsect/classify.hpp>
+#include <ellipsect/contact_function.hpp>
 #include <ellipsect/packing.hpp>
 
 #include "tests/support.hpp"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <vector>
 
@@ -78,6 +81,50 @@ TEST(Packing, SpheresJamIsostatic) {
   EXPECT_NEAR(p.mean_contacts_without_rattlers, 6.0, 0.25);
 }
 
+// The contacts are every pair, through every image, whose Perram-Wertheim scale factor mu is
+// within the gap of 1: found here among all pairs and all 3^N images, not the broad phase's
+// candidates. (They were the candidates of the bodies' own boxes, which miss a near-contact
+// lined up with a box axis: its boxes are apart by up to the gap.) A wide gap makes such
+// pairs common.
+template <int N>
+void expect_contacts_complete(const Packing<N>& p, double gap) {
+  std::vector<ImagePair<N>> expected;
+  const std::size_t n = p.bodies.size();
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = i + 1; j < n; ++j)
+      for (int code = 0; code < (N == 2 ? 9 : 27); ++code) {
+        ImagePair<N> q{std::uint32_t(i), std::uint32_t(j), {}};
+        Vec<double, N> offset;
+        for (int k = 0, c = code; k < N; ++k, c /= 3) {
+          q.image[k] = c % 3 - 1;
+          offset[k] = q.image[k] * p.box.size[k];
+        }
+        const Ellipsoid<double, N> b = p.bodies[j].translated(offset);
+        if ((b.center() - p.bodies[i].center()).norm() >
+            (1 + gap) * (p.bodies[i].radii().maxCoeff() + b.radii().maxCoeff()))
+          continue;
+        if (std::sqrt(perram_wertheim(p.bodies[i], b).f) - 1.0 < gap) expected.push_back(q);
+      }
+  std::vector<ImagePair<N>> got = p.contacts;
+  std::sort(expected.begin(), expected.end());
+  std::sort(got.begin(), got.end());
+  EXPECT_EQ(got, expected);
+  EXPECT_DOUBLE_EQ(p.mean_contacts, 2.0 * double(expected.size()) / double(n));
+}
+
+TEST(Packing, ContactsAreEveryPairWithinTheGap) {
+  std::vector<Vec<double, 2>> disks;
+  for (int i = 0; i < 60; ++i) disks.push_back(Vec<double, 2>::Constant(i % 2 ? 1.4 : 1.0));
+  PackingOptions o;
+  o.schedule = {{0.0, 0.1}};
+  o.pressure = 1e3;
+  o.contact_gap = 0.05;
+  expect_contacts_complete(jam_packing<2>(disks, o), o.contact_gap);
+  const std::vector<Vec<double, 3>> spheroids(40, Vec<double, 3>(1.25, 1.0, 0.8));
+  o.pressure = 1e2;
+  expect_contacts_complete(jam_packing<3>(spheroids, o), o.contact_gap);
+}
+
 TEST(Packing, BadInputIsNamed) {
   const std::vector<Vec<double, 2>> radii(10, Vec<double, 2>(1.0, 0.5));
   PackingOptions o;
@@ -93,6 +140,11 @@ TEST(Packing, BadInputIsNamed) {
   o = {};
   o.pressure = 0.5;
   expect_field([&] { jam_packing<2>(radii, o); }, "options.pressure");
+  for (const double skin : {-0.1, std::nan("")}) {
+    o = {};
+    o.skin = skin;
+    expect_field([&] { jam_packing<2>(radii, o); }, "options.skin");
+  }
 }
 
 }  // namespace ELLIPSECT_UNITY_ID
