@@ -295,10 +295,14 @@ Contact<T, N> first_contact(const Ellipsoid<T, N>& a, const VecArg<T, N>& veloci
     if (!(sigma > F(0))) return out;
     const F time = std::max(pow2(g.lower / sigma, g.exponent - v), F(std::numeric_limits<T>::denorm_min()));
     if (!(std::isfinite(T(time)) && T(time) <= t_max)) return out;
-    out.status = ContactStatus::hit;
     out.time = T(time);
     Vec<F, N> point;
     for (int i = 0; i < N; ++i) point[i] = pow2(g.lowest[i], g.exponent) + time * F(velocity_a[i]);
+    if (!point.template cast<T>().allFinite()) {  // the body has left the range of T by then
+      out.status = ContactStatus::did_not_converge;
+      return out;
+    }
+    out.status = ContactStatus::hit;
     out.point = point.template cast<T>();
     out.normal = -b.normal();
     return out;

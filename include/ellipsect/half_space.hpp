@@ -36,7 +36,10 @@
 //   point_a, point_b, contact point   within 1e-14 * (scale + |point|) of the exact points;
 //   normal          exactly -n (from the body towards the half-space);
 //   contact time    relative error <= 1e-14 (time and t_max are compared exactly as computed).
-// Status: never did_not_converge (no iteration); iterations is 0.
+// Status: no iteration (iterations is 0); did_not_converge only from first_contact, for a hit
+// whose point lies beyond the range of T (the body has moved out of it by then: bodies of
+// radius 1e200 closing at 1e-70 with a speed of 1e100 along the plane, hit at 2e270): the hit's
+// time, point and normal NaN.
 #pragma once
 
 #include <ellipsect/classify.hpp>
@@ -130,7 +133,8 @@ DistanceGradient<T, N, HalfSpaceGradient<T, N>> signed_distance_gradient(const E
 // for two bodies: invalid_input for a non-finite velocity or a NaN or negative t_max;
 // overlapping_at_start for an overlap or containment at t = 0; touching_at_start; hit at
 // time L(0) / sigma in (0, t_max] with the body's lowest point then and the normal -n;
-// otherwise no_contact_in_window (also for sigma <= 0: receding or sliding along the plane).
+// otherwise no_contact_in_window (also for sigma <= 0: receding or sliding along the plane);
+// did_not_converge for a hit whose point lies beyond the range of T (above).
 template <class T, int N>
 Contact<T, N> first_contact(const Ellipsoid<T, N>& a, const VecArg<T, N>& velocity_a, const HalfSpace<T, N>& b,
                             const VecArg<T, N>& velocity_b, T t_max, const Options& options = {}) noexcept;

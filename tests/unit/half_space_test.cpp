@@ -116,6 +116,28 @@ TEST(HalfSpace, FirstContactStatuses) {
 
 // Scaled by 2^k the answers are the unit-scale answers times 2^k, bit for bit: rescaled
 // (k = +-600) and long double pairs (radius 2^-700 far from the origin) alike.
+// A hit so late that the body has left the range of double by then (radius 1e200, closing
+// at 1e-70 with a speed of 1e100 along the plane: at t = 2e270 the point's second coordinate
+// is 2e370) was a hit with an infinite point; it is did_not_converge, the time still the
+// hit's, the point and normal NaN (linear and rigid, which answers the same at zero spin).
+TEST(HalfSpace, HitBeyondTheRangeIsNotAHit) {
+  const auto a = make_ball<double, 2>(V2(0, 0), 1e200);
+  const auto h = make_half_space<double, 2>(V2(3e200, 0), V2(-1, 0));
+  const double inf = std::numeric_limits<double>::infinity();
+  const Contact<double, 2> linear = first_contact(a, V2(1e-70, 1e100), h, V2(0, 0), inf);
+  const Contact<double, 2> rigid = first_contact(a, RigidMotion<double, 2>{V2(1e-70, 1e100), 0.0}, h, V2(0, 0), inf);
+  for (const Contact<double, 2>& c : {linear, rigid}) {
+    EXPECT_EQ(c.status, ContactStatus::did_not_converge);
+    EXPECT_DOUBLE_EQ(c.time, 2e270);
+    EXPECT_TRUE(c.point.array().isNaN().all());
+    EXPECT_TRUE(c.normal.array().isNaN().all());
+  }
+  // Along the plane at 1e30 instead, the point stays in range (2e300): a hit.
+  const Contact<double, 2> hit = first_contact(a, V2(1e-70, 1e30), h, V2(0, 0), inf);
+  EXPECT_EQ(hit.status, ContactStatus::hit);
+  EXPECT_TRUE(hit.point.allFinite());
+}
+
 TEST(HalfSpace, AnswersScaleExactlyAcrossTheRange) {
   const auto e = make_ellipsoid<double>(V3(0.3, -0.2, 0.9), Quat<double>(0.8, 0.2, -0.4, 0.4).normalized(), V3(1.5, 0.25, 0.7));
   const auto h = make_half_space<double, 3>(V3(0.1, 0.4, -0.6), V3(0.3, -0.5, 0.8));
