@@ -59,6 +59,7 @@ TEST(Packing, BidisperseDisksJamIsostatic) {
   PackingOptions o;
   o.schedule = {{0.0, 0.1}, {1e2, 0.01}};
   o.pressure = 1e4;
+  o.contact_gap = 1e-3;  // within the default 1e-2 (100 / pressure), near neighbors add 0.19
   const Packing<2> p = jam_packing<2>(radii, o);
   expect_sound(p);
   EXPECT_GT(p.density, 0.83);
@@ -120,7 +121,7 @@ TEST(Packing, ContactsAreEveryPairWithinTheGap) {
   o.pressure = 1e3;
   o.contact_gap = 0.05;
   expect_contacts_complete(jam_packing<2>(disks, o), o.contact_gap);
-  const std::vector<Vec<double, 3>> spheroids(40, Vec<double, 3>(1.25, 1.0, 0.8));
+  const std::vector<Vec<double, 3>> spheroids(80, Vec<double, 3>(1.25, 1.0, 0.8));
   o.pressure = 1e2;
   expect_contacts_complete(jam_packing<3>(spheroids, o), o.contact_gap);
 }
