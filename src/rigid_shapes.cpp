@@ -13,8 +13,10 @@
 #include "detail/contact_start.hpp"
 #include "detail/instantiate.hpp"
 #include "detail/mesh_walk.hpp"
+#include "detail/reduce.hpp"
 #include "detail/rigid_motion.hpp"
 #include "detail/scale.hpp"
+#include "detail/shape_access.hpp"
 
 #include <algorithm>
 #include <array>
@@ -167,16 +169,6 @@ Contact<T, N> in_world(Contact<T, N> c, const VecArg<T, N>& velocity_b) noexcept
   return c;
 }
 
-template <class T, int N, class Shape>
-Contact<T, N> rigid_contact(const Ellipsoid<T, N>& a, const RigidMotion<T, N>& motion, const Shape& b,
-                            const VecArg<T, N>& velocity_b, T coordinate, T t_max, const Options& options) noexcept {
-  if (!valid_rigid<T, N>(motion, velocity_b, t_max)) return detail::unanswered_contact<T, N>();
-  if (magnitude<N>(motion.angular_velocity) == R(0) && motion.growth == T(0))
-    return first_contact(a, motion.velocity, b, velocity_b, t_max, options);
-  return in_world<T, N>(advance_at_rest<T, N>(a, relative<T, N>(motion, velocity_b), b, coordinate, t_max, options),
-                        velocity_b);
-}
-
 template <class T, int N, std::size_t K>
 T largest(const std::array<Vec<T, N>, K>& points) noexcept {
   T out = 0;
@@ -184,34 +176,75 @@ T largest(const std::array<Vec<T, N>, K>& points) noexcept {
   return out;
 }
 
+// The shape's largest coordinate (for the range of the pair).
+template <class T, int N>
+T coordinate_of(const HalfSpace<T, N>& h) noexcept {
+  return detail::max_abs(h.point());
+}
+template <class T, int N>
+T coordinate_of(const Triangle<T, N>& t) noexcept {
+  return largest<T, N, 3>({t.vertex(0), t.vertex(1), t.vertex(2)});
+}
+template <class T, int N>
+T coordinate_of(const Box<T, N>& b) noexcept {
+  std::array<Vec<T, N>, 1 << N> corners;
+  for (int k = 0; k < (1 << N); ++k) corners[std::size_t(k)] = b.corner(k);
+  return largest<T, N, (1 << N)>(corners);
+}
+template <class T, int N>
+T coordinate_of(const Capsule<T, N>& c) noexcept {
+  return largest<T, N, 2>({c.point(0), c.point(1)}) + c.radius();
+}
+
+// In the body's frame at time 0 (the shape moved by minus the body's center, the body at the
+// origin), as the pair query forms its bodies in a's: the bodies formed at each step and the
+// margins for their rounding are relative to the pair, not to the distance from the origin
+// (1e6 sizes out, world coordinates moved the times by up to 4.7e-9 of size / speed). The
+// point comes back with the body's center and the shape's motion to the contact time. A
+// shape whose moved coordinates overflow is taken as given.
+template <class T, int N, class Shape>
+Contact<T, N> rigid_contact(const Ellipsoid<T, N>& a, const RigidMotion<T, N>& motion, const Shape& b,
+                            const VecArg<T, N>& velocity_b, T t_max, const Options& options) noexcept {
+  if (!valid_rigid<T, N>(motion, velocity_b, t_max)) return detail::unanswered_contact<T, N>();
+  if (magnitude<N>(motion.angular_velocity) == R(0) && motion.growth == T(0))
+    return first_contact(a, motion.velocity, b, velocity_b, t_max, options);
+  const RigidMotion<T, N> moving = relative<T, N>(motion, velocity_b);
+  const Shape moved = b.translated(Vec<T, N>(-a.center()));
+  const T coordinate = coordinate_of<T, N>(moved);
+  if (!std::isfinite(coordinate))
+    return in_world<T, N>(advance_at_rest<T, N>(a, moving, b, coordinate_of<T, N>(b), t_max, options), velocity_b);
+  const Ellipsoid<T, N> body = detail::ShapeAccess::unchecked<T, N>(Vec<T, N>::Zero(), a.axes(), a.radii());
+  Contact<T, N> c = advance_at_rest<T, N>(body, moving, moved, coordinate, t_max, options);
+  if (c.status == ContactStatus::hit)
+    for (int i = 0; i < N; ++i)
+      c.point[i] = T(detail::mul_add(R(c.time), R(velocity_b[i]), R(a.center()[i])) + R(c.point[i]));
+  return c;
+}
+
 }  // namespace
 
 template <class T, int N>
 Contact<T, N> first_contact(const Ellipsoid<T, N>& a, const RigidMotion<T, N>& motion_a, const HalfSpace<T, N>& b,
                             const VecArg<T, N>& velocity_b, T t_max, const Options& options) noexcept {
-  return rigid_contact<T, N>(a, motion_a, b, velocity_b, detail::max_abs(b.point()), t_max, options);
+  return rigid_contact<T, N>(a, motion_a, b, velocity_b, t_max, options);
 }
 
 template <class T, int N>
 Contact<T, N> first_contact(const Ellipsoid<T, N>& a, const RigidMotion<T, N>& motion_a, const Triangle<T, N>& b,
                             const VecArg<T, N>& velocity_b, T t_max, const Options& options) noexcept {
-  const T coordinate = largest<T, N, 3>({b.vertex(0), b.vertex(1), b.vertex(2)});
-  return rigid_contact<T, N>(a, motion_a, b, velocity_b, coordinate, t_max, options);
+  return rigid_contact<T, N>(a, motion_a, b, velocity_b, t_max, options);
 }
 
 template <class T, int N>
 Contact<T, N> first_contact(const Ellipsoid<T, N>& a, const RigidMotion<T, N>& motion_a, const Box<T, N>& b,
                             const VecArg<T, N>& velocity_b, T t_max, const Options& options) noexcept {
-  std::array<Vec<T, N>, 1 << N> corners;
-  for (int k = 0; k < (1 << N); ++k) corners[std::size_t(k)] = b.corner(k);
-  return rigid_contact<T, N>(a, motion_a, b, velocity_b, largest<T, N, (1 << N)>(corners), t_max, options);
+  return rigid_contact<T, N>(a, motion_a, b, velocity_b, t_max, options);
 }
 
 template <class T, int N>
 Contact<T, N> first_contact(const Ellipsoid<T, N>& a, const RigidMotion<T, N>& motion_a, const Capsule<T, N>& b,
                             const VecArg<T, N>& velocity_b, T t_max, const Options& options) noexcept {
-  const T coordinate = largest<T, N, 2>({b.point(0), b.point(1)}) + b.radius();
-  return rigid_contact<T, N>(a, motion_a, b, velocity_b, coordinate, t_max, options);
+  return rigid_contact<T, N>(a, motion_a, b, velocity_b, t_max, options);
 }
 
 template <class T, int N>

@@ -269,10 +269,12 @@ ContactGradient<T, N> first_contact_gradient(const Ellipsoid<T, N>& a, const Rig
 // shapes' 50-digit static references at the reported time and before it): a hit at a time
 // where the reference's relative gap is within 1e-9 of 0 and positive at earlier sampled
 // times; no contact reported where the reference finds the shape touched; balls and bodies
-// spinning about a symmetry axis give the translational time. Unlike the pair query, the
-// bodies are formed in world coordinates: moved 1e6 sizes from the origin, hit times change
-// by up to 4.7e-9 of size / speed (tests/property/shape_translation_property_test.cpp,
-// within 1e-8). Range: pairs within the
+// spinning about a symmetry axis give the translational time. As in the pair query, the
+// advancement runs in the body's frame at time 0 (the shape moved by minus the body's
+// center), so the answer does not depend on the distance from the origin: moved 1e6 sizes
+// from it (exactly), the hit times are the same to 1e-12 of size / speed
+// (tests/property/shape_translation_property_test.cpp; 4.7e-9 when the bodies were formed in
+// world coordinates). Range: pairs within the
 // native range (shapes.hpp, "Range"); beyond it the start state, else did_not_converge at 0.
 
 }  // namespace ellipsect

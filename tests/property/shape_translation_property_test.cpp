@@ -19,8 +19,8 @@
 //                           rounding of its coordinates;
 //   first_contact           linear and rigid (contact.hpp, "Rigid motion against shapes"):
 //                           the untranslated status, and the untranslated time to 1e-12
-//                           (linear) or 1e-9 (rigid) of scale / closing speed for head-on
-//                           approaches (the contact is transversal);
+//                           of scale / closing speed for head-on approaches (the contact
+//                           is transversal);
 //   collide_and_slide       the guarantees of slide.hpp on the translated input (it states
 //                           no accuracy of the end position; see below), through half-spaces
 //                           and through a mesh.
@@ -126,10 +126,11 @@ void check_contacts(const std::string& what, double scale, const Vec<double, N>&
   const Contact<double, N> r0 = query(false, true), r1 = query(true, true);
   if (r0.status == ContactStatus::did_not_converge || r1.status == ContactStatus::did_not_converge) return;
   ASSERT_EQ(r1.status, r0.status) << what << " (rigid)";
-  // The rigid query against a shape forms the body and the shape's vertices in world
-  // coordinates (contact.hpp): 1e6 sizes out, its times move by up to 4.7e-9 of size / speed.
+  // The rigid query against a shape runs in the body's frame (contact.hpp); it formed the
+  // body and the shape's vertices in world coordinates, whose times moved by up to 4.7e-9 of
+  // size / speed 1e6 sizes out.
   if (r0.status == ContactStatus::hit) {
-    ASSERT_NEAR(r1.time, r0.time, 1e-8 * scale / w.norm()) << what << " (rigid)";
+    ASSERT_NEAR(r1.time, r0.time, 1e-12 * scale / w.norm()) << what << " (rigid)";
   }
 }
 
