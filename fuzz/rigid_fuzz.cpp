@@ -17,7 +17,10 @@
 //   of its largest radius (p the type's digits: 2^-30 for double) and moved by an offset of up
 //   to 2^(p - 3) grid steps (2^20 radii), both exact: the same status, time and normal
 //   bit for bit, the point moved by the offset to its rounding (the queries compute relative to
-//   one body).
+//   one body);
+//   growth (a flag after that): both growths from the input, the pair and the first body
+//   against a zero-length capsule and a collinear triangle made from the second, with the
+//   promises above (invalid_input also exactly for a negative or non-finite growth).
 #include "fuzz_support.hpp"
 
 #include <ellipsect/box.hpp>
@@ -25,6 +28,7 @@
 #include <ellipsect/contact.hpp>
 #include <ellipsect/distance.hpp>
 #include <ellipsect/half_space.hpp>
+#include <ellipsect/triangle.hpp>
 
 namespace {
 
@@ -149,6 +153,40 @@ void check_translated(Bytes& in, const Ellipsoid<T, N>& a, const RigidMotion<T, 
              "moved point " << hex(c1.point) << " vs " << hex(c0.point) << " + " << hex(offset));
 }
 
+// Growth (a flag after the translation's): both bodies' growths from the input (any double:
+// invalid_input exactly where one is negative or not finite, or the motions or window are
+// bad), the pair and the first body against degenerate shapes made from the second: a
+// zero-length capsule at its center (its smallest radius) and a collinear triangle along
+// its first axis (a segment with a vertex at its midpoint). A growing body never gets the
+// translational answer's shortcut.
+template <class T, int N>
+void check_growing(Bytes& in, const Ellipsoid<T, N>& a, RigidMotion<T, N> ma, const Ellipsoid<T, N>& b,
+                   RigidMotion<T, N> mb, T t_max, const Options& capped) {
+  ma.growth = static_cast<T>(in.number());
+  mb.growth = static_cast<T>(in.number());
+  trace() += " growth " + hex(ma.growth) + " " + hex(mb.growth);
+  auto bad_growth = [](T g) { return !(g >= T(0)) || !std::isfinite(g); };
+  const bool bad_window = std::isnan(t_max) || t_max < T(0);
+  const bool bad_a = !ma.velocity.allFinite() || !finite_spin(ma) || bad_growth(ma.growth) || bad_window;
+  check_contact<T, N>([&](const Options& o) { return first_contact(a, ma, b, mb, t_max, o); },
+                      [&] { return first_contact(a, ma.velocity, b, mb.velocity, t_max); },
+                      bad_a || !mb.velocity.allFinite() || !finite_spin(mb) || bad_growth(mb.growth),
+                      zero_spin(ma) && zero_spin(mb) && ma.growth == T(0) && mb.growth == T(0), distance(a, b).status,
+                      t_max, capped);
+  const auto shape = [&](const auto& s) {
+    check_contact<T, N>([&](const Options& o) { return first_contact(a, ma, s, mb.velocity, t_max, o); },
+                        [&] { return first_contact(a, ma.velocity, s, mb.velocity, t_max); },
+                        bad_a || !mb.velocity.allFinite(), zero_spin(ma) && ma.growth == T(0), distance(a, s).status,
+                        t_max, capped);
+  };
+  try {
+    const Vec<T, N> axis = b.axes().col(0) * b.radii()[0];
+    shape(make_capsule<T, N>(b.center(), b.center(), b.radii().minCoeff()));
+    shape(make_triangle<T, N>(Vec<T, N>(b.center() - axis), Vec<T, N>(b.center() + axis), b.center()));
+  } catch (const InputError&) {
+  }
+}
+
 template <class T, int N>
 void run(Bytes& in) {
   const auto a = read_body<T, N>(in);
@@ -194,6 +232,7 @@ void run(Bytes& in) {
   } catch (const InputError&) {
   }
   if (in.flag() && !bad && mb.velocity.allFinite() && finite_spin(mb)) check_translated<T, N>(in, *a, ma, *b, mb, t_max);
+  if (in.flag()) check_growing<T, N>(in, *a, ma, *b, mb, t_max, capped);
 }
 
 }  // namespace
