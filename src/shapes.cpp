@@ -11,6 +11,7 @@
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/QR>
+#include <Eigen/SVD>
 
 #include <array>
 #include <cmath>
@@ -336,26 +337,42 @@ void make_ellipses(std::span<const T> centers, std::span<const T> angles, std::s
 }
 
 template <class T>
+Quat<T> normalized_quaternion(const Quat<T>& q) {
+  const T norm = q.coeffs().norm();
+  return std::abs(norm - T(1)) <= T(normalize_tolerance) ? Quat<T>(q.coeffs() / norm) : q;
+}
+
+template <class T, int N>
+Mat<T, N> normalized_rotation(const Mat<T, N>& rotation) {
+  if (!((rotation.transpose() * rotation - Mat<T, N>::Identity()).cwiseAbs().maxCoeff() <= T(normalize_tolerance)))
+    return rotation;
+  const Eigen::JacobiSVD<Mat<T, N>> svd(rotation, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  return svd.matrixU() * svd.matrixV().transpose();
+}
+
+template <class T>
 void make_ellipsoids(std::span<const T> centers, std::span<const T> quaternions, std::span<const T> radii,
-                     std::span<Ellipsoid3<T>> out) {
+                     std::span<Ellipsoid3<T>> out, Orientations orientations) {
   require_rows(centers.size(), out.size(), 3, "centers");
   if (!quaternions.empty()) require_rows(quaternions.size(), out.size(), 4, "quaternions");
   require_rows(radii.size(), out.size(), 3, "radii");
   for_each_row(out.size(), [&](std::size_t i) {
     const T* q = quaternions.empty() ? nullptr : quaternions.data() + 4 * i;
-    const Quat<T> rotation = q ? Quat<T>(q[0], q[1], q[2], q[3]) : Quat<T>(1, 0, 0, 0);
+    const Quat<T> given = q ? Quat<T>(q[0], q[1], q[2], q[3]) : Quat<T>(1, 0, 0, 0);
+    const Quat<T> rotation = orientations == Orientations::normalized ? normalized_quaternion<T>(given) : given;
     out[i] = make_ellipsoid<T>(row<T, 3>(centers, i), rotation, row<T, 3>(radii, i));
   });
 }
 
 template <class T, int N>
 void make_bodies(std::span<const T> centers, std::span<const T> rotations, std::span<const T> radii,
-                 std::span<Ellipsoid<T, N>> out) {
+                 std::span<Ellipsoid<T, N>> out, Orientations orientations) {
   require_rows(centers.size(), out.size(), N, "centers");
   require_rows(rotations.size(), out.size(), N * N, "rotations");
   require_rows(radii.size(), out.size(), N, "radii");
   for_each_row(out.size(), [&](std::size_t i) {
-    const Mat<T, N> axes = Eigen::Map<const Eigen::Matrix<T, N, N, Eigen::RowMajor>>(rotations.data() + N * N * i);
+    const Mat<T, N> given = Eigen::Map<const Eigen::Matrix<T, N, N, Eigen::RowMajor>>(rotations.data() + N * N * i);
+    const Mat<T, N> axes = orientations == Orientations::normalized ? normalized_rotation<T, N>(given) : given;
     out[i] = Ellipsoid<T, N>::from_axes(row<T, N>(centers, i), axes, row<T, N>(radii, i));
   });
 }
@@ -430,7 +447,9 @@ Box<T, N> Box<T, N>::translated(const Vec<T, N>& offset) const {
   template Box<T, N> Box<T, N>::translated(const Vec<T, N>&) const; \
   template class Ellipsoid<T, N>;   \
   template Ellipsoid<T, N> make_ball<T, N>(const Vec<T, N>&, T); \
-  template void make_bodies<T, N>(std::span<const T>, std::span<const T>, std::span<const T>, std::span<Ellipsoid<T, N>>);
+  template void make_bodies<T, N>(std::span<const T>, std::span<const T>, std::span<const T>, std::span<Ellipsoid<T, N>>, \
+                                  Orientations);                                                                     \
+  template Mat<T, N> normalized_rotation<T, N>(const Mat<T, N>&);
 ELLIPSECT_FOR_EACH_TYPE_AND_DIM(ELLIPSECT_INSTANTIATE)
 #undef ELLIPSECT_INSTANTIATE
 #define ELLIPSECT_INSTANTIATE(T)                                                                               \
@@ -439,7 +458,8 @@ ELLIPSECT_FOR_EACH_TYPE_AND_DIM(ELLIPSECT_INSTANTIATE)
   template Ellipsoid3<T> make_ellipsoid<T>(const Vec3<T>&, const Mat3<T>&, const Vec3<T>&);                      \
   template void make_ellipses<T>(std::span<const T>, std::span<const T>, std::span<const T>, std::span<Ellipse2<T>>); \
   template void make_ellipsoids<T>(std::span<const T>, std::span<const T>, std::span<const T>,                   \
-                                   std::span<Ellipsoid3<T>>);
+                                   std::span<Ellipsoid3<T>>, Orientations);                                        \
+  template Quat<T> normalized_quaternion<T>(const Quat<T>&);
 ELLIPSECT_FOR_EACH_TYPE(ELLIPSECT_INSTANTIATE)
 #undef ELLIPSECT_INSTANTIATE
 

@@ -210,6 +210,21 @@ Ellipsoid3<T> make_ellipsoid(const Vec3<T>& center, const Mat3<T>& rotation, con
 template <class T, int N>
 Ellipsoid<T, N> make_ball(const Vec<T, N>& center, T radius);
 
+// Orientations stored with fewer digits than the type (float32 arrays, rounded text) made
+// exact first: a quaternion whose norm is within normalize_tolerance of 1 divided by its norm;
+// a matrix within it of orthonormal (largest |R^T R - I|) replaced by its polar factor, the
+// nearest orthonormal matrix (U V^T of its singular value decomposition; a reflection stays
+// one). Farther ones, and non-finite ones, are returned as given, for the factories to reject
+// with their usual errors.
+inline constexpr double normalize_tolerance = 1e-5;
+template <class T>
+Quat<T> normalized_quaternion(const Quat<T>& q);
+template <class T, int N>
+Mat<T, N> normalized_rotation(const Mat<T, N>& rotation);
+
+// How the array factories read orientations: as given, or made exact first as above.
+enum class Orientations { as_given, normalized };
+
 // Factories over arrays: out[i] from row i of contiguous arrays (structure of arrays, rows
 // one after another as numpy's C order stores them): centers and radii hold N values per
 // row, and the orientation
@@ -220,15 +235,16 @@ Ellipsoid<T, N> make_ball(const Vec<T, N>& center, T radius);
 // Each row gets the single-body factory's checks and answer bit for bit, with no cost per row
 // beyond them. The first invalid row throws RowInputError (its index, the field, the
 // reason), and out's rows before it are written; an array whose length is not out.size()
-// rows throws InputError naming it ("centers", "angles", ...).
+// rows throws InputError naming it ("centers", "angles", ...). `orientations`: quaternions and
+// rotations as given, or each normalized first (normalized_quaternion, normalized_rotation).
 template <class T>
 void make_ellipses(std::span<const T> centers, std::span<const T> angles, std::span<const T> radii,
                    std::span<Ellipse2<T>> out);
 template <class T>
 void make_ellipsoids(std::span<const T> centers, std::span<const T> quaternions, std::span<const T> radii,
-                     std::span<Ellipsoid3<T>> out);
+                     std::span<Ellipsoid3<T>> out, Orientations orientations = Orientations::as_given);
 template <class T, int N>
 void make_bodies(std::span<const T> centers, std::span<const T> rotations, std::span<const T> radii,
-                 std::span<Ellipsoid<T, N>> out);
+                 std::span<Ellipsoid<T, N>> out, Orientations orientations = Orientations::as_given);
 
 }  // namespace ellipsect

@@ -83,26 +83,23 @@ std::optional<py::array_t<double>> checked_if(py::handle obj, const std::string&
   return checked(obj, name, std::move(trailing), rows, rows_from);
 }
 
-// The orientation rows (quaternions, or N x N rotations), `normalized` when asked or when the
-// array holds fewer digits than float64 (float32: the tolerance follows the input's precision).
+// The orientation rows (quaternions, or N x N rotations), and how the library reads them:
+// normalized (shapes.hpp, Orientations) when asked or when the array holds fewer digits than
+// float64 (float32 rows are ~6e-8 off, beyond the 1e-9 the float64 factories accept).
 struct Orientation {
   std::optional<py::array_t<double>> array;
-  std::vector<double> normalized;
   std::span<const double> rows;
+  Orientations read = Orientations::as_given;
 };
 
 Orientation orientation(py::handle obj, const std::string& name, std::vector<py::ssize_t> trailing, py::ssize_t& n,
-                        bool normalize, const std::function<void(std::span<double>)>& normalize_rows) {
+                        bool normalize) {
   Orientation out;
   out.array = checked_if(obj, name, trailing, n, "centers");
   if (!out.array) return out;
   out.rows = std::span<const double>(out.array->data(), std::size_t(out.array->size()));
   const py::dtype given = py::reinterpret_borrow<py::array>(numbers(obj, name)).dtype();
-  if (normalize || (given.kind() == 'f' && given.itemsize() < 8)) {
-    out.normalized.assign(out.rows.begin(), out.rows.end());
-    normalize_rows(out.normalized);
-    out.rows = out.normalized;
-  }
+  if (normalize || (given.kind() == 'f' && given.itemsize() < 8)) out.read = Orientations::normalized;
   return out;
 }
 
@@ -113,9 +110,9 @@ Bodies<2> make_ellipses(py::handle centers, py::handle radii, py::handle angles,
   const auto r = checked(radii, "radii", {2}, n, "centers");
   if (!angles.is_none() && !rotations.is_none()) throw py::value_error("Ellipses: give angles or rotations, not both");
   if (!rotations.is_none()) {
-    const Orientation m = orientation(rotations, "rotations", {2, 2}, n, normalize, &normalize_rotations<2>);
+    const Orientation m = orientation(rotations, "rotations", {2, 2}, n, normalize);
     return bodies_from<2>(n, [&](std::span<Ellipse2<double>> out) {
-      ellipsect::make_bodies<double, 2>(values(c, n, 2), m.rows, values(r, n, 2), out);
+      ellipsect::make_bodies<double, 2>(values(c, n, 2), m.rows, values(r, n, 2), out, m.read);
     });
   }
   const auto a = checked_if(angles, "angles", {}, n, "centers");
@@ -132,13 +129,13 @@ Bodies<3> make_ellipsoids(py::handle centers, py::handle radii, py::handle quate
   if (!quaternions.is_none() && !rotations.is_none())
     throw py::value_error("Ellipsoids: give quaternions or rotations, not both");
   const Orientation o = rotations.is_none()
-                            ? orientation(quaternions, "quaternions", {4}, n, normalize, &normalize_quaternions)
-                            : orientation(rotations, "rotations", {3, 3}, n, normalize, &normalize_rotations<3>);
+                            ? orientation(quaternions, "quaternions", {4}, n, normalize)
+                            : orientation(rotations, "rotations", {3, 3}, n, normalize);
   return bodies_from<3>(n, [&](std::span<Ellipsoid3<double>> out) {
     if (rotations.is_none())
-      ellipsect::make_ellipsoids<double>(values(c, n, 3), o.rows, values(r, n, 3), out);
+      ellipsect::make_ellipsoids<double>(values(c, n, 3), o.rows, values(r, n, 3), out, o.read);
     else
-      ellipsect::make_bodies<double, 3>(values(c, n, 3), o.rows, values(r, n, 3), out);
+      ellipsect::make_bodies<double, 3>(values(c, n, 3), o.rows, values(r, n, 3), out, o.read);
   });
 }
 

@@ -288,32 +288,6 @@ inline py::array_t<std::int64_t> integers(py::handle obj, const std::string& nam
   return py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>::ensure(a);
 }
 
-// normalize=True (and float32 orientations): each row of quaternions (w, x, y, z) within
-// float32's tolerance of unit norm is divided by its norm, and each row-major N x N rotation
-// within it of orthonormal is replaced by the nearest orthonormal matrix (U V^T of its SVD),
-// in double; rows farther off stay as given, for the library's checks to name. Data rounded to
-// float32 is ~6e-8 off, beyond the 1e-9 the float64 factories accept (shapes.hpp).
-inline constexpr double normalize_tolerance = Ellipsoid<float, 3>::axes_tolerance;
-
-inline void normalize_quaternions(std::span<double> rows) {
-  for (std::size_t i = 0; i + 4 <= rows.size(); i += 4) {
-    Eigen::Map<Eigen::Vector4d> q(rows.data() + i);
-    const double norm = q.norm();
-    if (std::abs(norm - 1.0) <= normalize_tolerance) q /= norm;
-  }
-}
-
-template <int N>
-void normalize_rotations(std::span<double> rows) {
-  using M = Eigen::Matrix<double, N, N>;
-  for (std::size_t i = 0; i + N * N <= rows.size(); i += N * N) {
-    Eigen::Map<Eigen::Matrix<double, N, N, Eigen::RowMajor>> r(rows.data() + i);
-    if (!((r.transpose() * r - M::Identity()).cwiseAbs().maxCoeff() <= normalize_tolerance)) continue;
-    const Eigen::JacobiSVD<M> svd(M(r), Eigen::ComputeFullU | Eigen::ComputeFullV);
-    r = svd.matrixU() * svd.matrixV().transpose();
-  }
-}
-
 void def_scalar(py::module_& m);
 void def_batch(py::module_& m);
 void def_packing(py::module_& m);

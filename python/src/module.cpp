@@ -34,11 +34,10 @@ Mat<double, N> mat(const Rows<N>& m) {
   return out;
 }
 
-// A rotation given as rows, made orthonormal first when asked (normalize_rotations).
+// A rotation given as rows, made orthonormal first when asked (shapes.hpp, normalized_rotation).
 template <int N>
-Mat<double, N> normalized(Rows<N> m, bool normalize) {
-  if (normalize) normalize_rotations<N>(std::span<double>(m[0].data(), N * N));
-  return mat<N>(m);
+Mat<double, N> normalized(const Rows<N>& m, bool normalize) {
+  return normalize ? normalized_rotation<double, N>(mat<N>(m)) : mat<N>(m);
 }
 
 // The constructor call that rebuilds the body bit for bit (rotation: its axes as columns).
@@ -880,9 +879,10 @@ void def_scalar(py::module_& m) {
                   if (quaternion && rotation) throw py::value_error("Ellipsoid: give quaternion or rotation, not both");
                   if (rotation)
                     return make_ellipsoid<double>(vec<3>(center), normalized<3>(*rotation, normalize), vec<3>(radii));
-                  Row<4> q = quaternion.value_or(Row<4>{1, 0, 0, 0});
-                  if (normalize) normalize_quaternions(q);
-                  return make_ellipsoid<double>(vec<3>(center), Quat<double>(q[0], q[1], q[2], q[3]), vec<3>(radii));
+                  const Row<4> q = quaternion.value_or(Row<4>{1, 0, 0, 0});
+                  const Quat<double> given(q[0], q[1], q[2], q[3]);
+                  return make_ellipsoid<double>(vec<3>(center), normalize ? normalized_quaternion(given) : given,
+                                                vec<3>(radii));
                 }),
                 py::arg("center"), py::arg("radii"), py::arg("quaternion") = py::none(),
                 py::arg("rotation") = py::none(), py::arg("normalize") = false,

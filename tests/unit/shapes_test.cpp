@@ -226,5 +226,50 @@ TEST(Shapes, ArrayFactoriesNameRowAndField) {
   expect_field([&] { make_bodies<double, 3>(c, rot, r2, out); }, "radii");
 }
 
+// Orientations rounded to float (about 6e-8 off, beyond the 1e-9 double accepts) made exact
+// by the array factories' Orientations::normalized, and by normalized_quaternion and
+// normalized_rotation alone: the quaternion's direction kept at unit norm; the rotation
+// replaced by an orthonormal matrix no farther from the given one than the true rotation
+// (the polar factor is the nearest, in the Frobenius norm); a row beyond 1e-5 kept as given,
+// so that the factory names it.
+TEST(Shapes, NormalizedOrientations) {
+  std::mt19937_64 rng(17);
+  std::normal_distribution<double> normal;
+  constexpr int n = 50;
+  std::vector<double> c(3 * n), r(3 * n, 1.0), q(4 * n), rot(9 * n);
+  std::vector<Eigen::Matrix3d> exact(n);
+  for (int i = 0; i < n; ++i) {
+    Eigen::Vector4d v(normal(rng), normal(rng), normal(rng), normal(rng));
+    v.normalize();
+    exact[i] = Eigen::Quaterniond(v[0], v[1], v[2], v[3]).toRotationMatrix();
+    for (int k = 0; k < 4; ++k) q[4 * i + k] = double(float(v[k]));
+    for (int k = 0; k < 9; ++k) rot[9 * i + k] = double(float(exact[i](k / 3, k % 3)));
+  }
+  std::vector<Ellipsoid3<double>> out(n), again(n);
+  expect_field([&] { make_ellipsoids<double>(c, q, r, out); }, "quaternion");
+  expect_field([&] { make_bodies<double, 3>(c, rot, r, out); }, "axes");
+  make_ellipsoids<double>(c, q, r, out, Orientations::normalized);
+  make_bodies<double, 3>(c, rot, r, again, Orientations::normalized);
+  for (int i = 0; i < n; ++i) {
+    const Quat<double> given(q[4 * i], q[4 * i + 1], q[4 * i + 2], q[4 * i + 3]);
+    const Quat<double> unit = normalized_quaternion(given);
+    EXPECT_NEAR(unit.coeffs().norm(), 1.0, 4e-16);
+    EXPECT_LE((unit.coeffs() - given.coeffs() / given.coeffs().norm()).norm(), 4e-16);
+    EXPECT_TRUE(out[i].axes() == make_ellipsoid<double>(Vec3<double>::Zero(), unit, Vec3<double>::Ones()).axes());
+    const Mat3<double> given_r = Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(rot.data() + 9 * i);
+    const Mat3<double> polar = normalized_rotation<double, 3>(given_r);
+    EXPECT_LE((polar.transpose() * polar - Mat3<double>::Identity()).cwiseAbs().maxCoeff(),
+              12 * std::numeric_limits<double>::epsilon());  // kept as given by from_axes
+    EXPECT_LE((polar - given_r).norm(), (exact[i] - given_r).norm() * (1 + 1e-9));
+    EXPECT_LE((polar - exact[i]).cwiseAbs().maxCoeff(), 2e-7);
+    EXPECT_TRUE(again[i].axes() == polar);
+  }
+  q[4 * 7] *= 2;  // |q| near 2: left as given, and named
+  expect_field([&] { make_ellipsoids<double>(c, q, r, out, Orientations::normalized); }, "quaternion");
+  EXPECT_TRUE(normalized_quaternion(Quat<double>(2, 0, 0, 0)).coeffs() == Quat<double>(2, 0, 0, 0).coeffs());
+  const Mat3<double> sheared = (Mat3<double>() << 1, 1e-3, 0, 0, 1, 0, 0, 0, 1).finished();
+  EXPECT_TRUE((normalized_rotation<double, 3>(sheared) == sheared));
+}
+
 }  // namespace ELLIPSECT_UNITY_ID
 }  // namespace
