@@ -149,26 +149,6 @@ void def_equality(py::class_<X>& c, Numbers numbers) {
       });
 }
 
-// Pickling of a result type as its bytes: the library's results are plain structs (standard
-// layout) of numbers, enums, bodies and Eigen fixed-size vectors, which hold their values in
-// place, so the copy comes back bit for bit (between builds of the same version on machines of
-// the same byte order).
-template <class X>
-void def_pickle_bytes(py::class_<X>& c) {
-  static_assert(std::is_standard_layout_v<X> && std::is_trivially_destructible_v<X> &&
-                std::is_default_constructible_v<X>);
-  c.def(py::pickle([](const X& x) { return py::bytes(reinterpret_cast<const char*>(&x), sizeof(X)); },
-                   [](const py::bytes& state) {
-                     const std::string bytes = state;
-                     if (bytes.size() != sizeof(X))
-                       throw py::value_error("pickled state: expected " + std::to_string(sizeof(X)) + " bytes, got " +
-                                             std::to_string(bytes.size()));
-                     X x;
-                     std::memcpy(static_cast<void*>(&x), bytes.data(), sizeof(X));
-                     return x;
-                   }));
-}
-
 // Calls f(i) for every i in [0, n) on up to `threads` threads (0: every hardware thread),
 // in chunks of 256; each i writes its own output slot, so results do not depend on the
 // thread count.

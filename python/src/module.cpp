@@ -325,11 +325,113 @@ void def_capsule(py::module_& m, const char* name) {
   def_equality(c, [](const C& x) { return numbers_of(x.point(0), x.point(1), x.radius()); });
 }
 
-// A result type (a plain struct of the library), pickled as its bytes.
+// Results pickle by their fields: a dict from each field's name to its value (numbers,
+// tuples of numbers, statuses by name, bodies and nested results as their own pickled
+// objects), so that a pickle loads in a later version of the module and on any machine,
+// whatever the struct's layout; fields the state lacks are an error naming them, fields it
+// has beyond them (a later version's) are left.
+template <int N>
+void fields(Contact<double, N>& c, auto&& f) {
+  f("status", c.status), f("time", c.time), f("point", c.point), f("normal", c.normal), f("iterations", c.iterations);
+}
+template <int N>
+void fields(Slide<double, N>& r, auto&& f) {
+  f("status", r.status), f("body", r.body), f("moved", r.moved), f("contacts", r.contacts),
+      f("last_contact", r.last_contact);
+}
+template <int N>
+void fields(MeshContact<double, N>& c, auto&& f) {
+  f("contact", c.contact), f("triangle", c.triangle);
+}
+template <int N>
+void fields(MeshDistance<double, N>& d, auto&& f) {
+  f("distance", d.distance), f("triangle", d.triangle);
+}
+template <int N>
+void fields(Distance<double, N>& d, auto&& f) {
+  f("status", d.status), f("distance", d.distance), f("point_a", d.point_a), f("point_b", d.point_b),
+      f("normal", d.normal), f("iterations", d.iterations);
+}
+template <int N>
+void fields(ClosestPoint<double, N>& p, auto&& f) {
+  f("point", p.point), f("signed_distance", p.signed_distance);
+}
+template <int N>
+void fields(ClosestApproach<double, N>& a, auto&& f) {
+  f("status", a.status), f("distance", a.distance), f("distance_lower", a.distance_lower), f("point", a.point),
+      f("normal", a.normal), f("lambda", a.lambda), f("iterations", a.iterations);
+}
+
+inline void fields(BoundaryIntersection<double>& b, auto&& f) {
+  f("status", b.status), f("count", b.count), f("points", b.points), f("kinds", b.kinds);
+}
+inline void fields(OverlapArea<double>& a, auto&& f) { f("area", a.area), f("relation", a.relation); }
+inline void fields(SegmentCircle& c, auto&& f) { f("verdict", c.verdict), f("side", c.side); }
+inline void fields(PolygonalOverlap<double>& p, auto&& f) {
+  f("verdict", p.verdict), f("level", p.level), f("iterations", p.iterations), f("gap_lo", p.gap_lo),
+      f("gap_hi", p.gap_hi);
+}
+inline void fields(QuarticPoint<double>& q, auto&& f) { f("status", q.status), f("point", q.point), f("distance", q.distance); }
+inline void fields(MeshRelation& r, auto&& f) { f("relation", r.relation), f("triangle", r.triangle); }
+inline void fields(ContactFunction<double>& c, auto&& f) {
+  f("status", c.status), f("f", c.f), f("f_upper", c.f_upper), f("lambda", c.lambda), f("iterations", c.iterations);
+}
+
+template <class V>
+py::object field_state(const V& v) {
+  if constexpr (std::is_enum_v<V>) {
+    return py::str(std::string(to_string(v)));
+  } else if constexpr (std::is_arithmetic_v<V>) {
+    return py::cast(v);
+  } else if constexpr (requires { v.size(); v[0]; }) {  // a vector, or an array of them
+    py::tuple t(std::size_t(v.size()));
+    for (std::size_t i = 0; i < std::size_t(v.size()); ++i) t[i] = field_state(v[i]);
+    return std::move(t);
+  } else {
+    return py::cast(v);  // a body or a nested result: its own class, pickled by its own fields
+  }
+}
+
+template <class V>
+void field_from_state(V& v, const py::handle& h, const std::string& where) {
+  if constexpr (std::is_enum_v<V>) {
+    const std::string name = h.cast<std::string>();
+    for (int k = 0; k < 64; ++k)
+      if (to_string(V(k)) == name) {
+        v = V(k);
+        return;
+      }
+    throw py::value_error(where + ": unknown status '" + name + "'");
+  } else if constexpr (std::is_arithmetic_v<V>) {
+    v = h.cast<V>();
+  } else if constexpr (requires { v.size(); v[0]; }) {
+    const auto items = h.cast<py::sequence>();
+    if (items.size() != std::size_t(v.size()))
+      throw py::value_error(where + ": expected " + std::to_string(v.size()) + " items");
+    for (std::size_t i = 0; i < items.size(); ++i) field_from_state(v[i], items[i], where);
+  } else {
+    v = h.cast<V>();
+  }
+}
+
 template <class X>
 py::class_<X> result_class(py::module_& m, const std::string& name, const char* doc) {
   py::class_<X> c(m, name.c_str(), doc);
-  def_pickle_bytes(c);
+  c.def(py::pickle(
+      [](const X& x) {
+        py::dict state;
+        fields(const_cast<X&>(x), [&](const char* field, const auto& v) { state[field] = field_state(v); });
+        return state;
+      },
+      [name](const py::dict& state) {
+        X x;
+        fields(x, [&](const char* field, auto& v) {
+          const std::string where = "pickled " + name + "." + field;
+          if (!state.contains(field)) throw py::value_error(where + ": missing");
+          field_from_state(v, state[field], where);
+        });
+        return x;
+      }));
   return c;
 }
 

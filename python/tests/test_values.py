@@ -1,4 +1,4 @@
-"""Every value type of the module pickles bit for bit; bodies and shapes compare by value and
+"""Every value type of the module pickles bit for bit (results by their named fields); bodies and shapes compare by value and
 their reprs rebuild them; every public function, class, method and property has a docstring."""
 
 import inspect
@@ -70,6 +70,45 @@ def test_every_value_type_pickles_bit_for_bit():
     for name, x in values.items():
         again = pickle.loads(pickle.dumps(x))
         assert type(again) is type(x) and state(again) == state(x) != {}, name
+
+
+RESULTS = ["Contact2", "Contact3", "Slide2", "Slide3", "MeshContact2", "MeshContact3", "MeshDistance2", "MeshDistance3",
+           "Distance2", "Distance3", "ClosestPoint2", "ClosestPoint3", "ClosestApproach2", "ClosestApproach3",
+           "BoundaryIntersection", "OverlapArea", "SegmentCircle", "PolygonalOverlap", "QuarticPoint", "MeshRelation",
+           "ContactFunction"]
+
+
+def test_results_pickle_by_named_fields():
+    # A result's state is a dict of its fields (statuses by name, vectors as tuples, bodies and
+    # nested results as objects), not its bytes: it loads in a later version and on another
+    # machine. A state with a field more (a later version's) loads; one with a field less is
+    # an error naming it, as is an unknown status.
+    values = examples()
+    for name in RESULTS:
+        x = values[name]
+        s = x.__getstate__()
+        assert isinstance(s, dict) and s, name
+        later = dict(s, a_field_of_a_later_version=1.0)
+        again = type(x).__new__(type(x))
+        again.__setstate__(later)
+        assert state(again) == state(x), name
+        for field in s:
+            fewer = {k: v for k, v in s.items() if k != field}
+            with pytest.raises(ValueError, match=rf"pickled {name}\.{field}: missing"):
+                type(x).__new__(type(x)).__setstate__(fewer)
+    ball = ellipsect.Ellipsoid.ball([0, 0, 0], 1)
+    contact = ellipsect.first_contact(ball, [1, 0, 0], ellipsect.Ellipsoid.ball([8, 0, 0], 1), [0, 0, 0], 10.0)
+    s = contact.__getstate__()
+    assert pickle.loads(pickle.dumps(contact)).time == 6.0
+    assert s["status"] == "hit" and isinstance(s["point"], tuple) and len(s["point"]) == 3
+    assert s["time"] == contact.time and s["iterations"] == contact.iterations
+    with pytest.raises(ValueError, match="unknown status 'hot'"):
+        type(contact).__new__(type(contact)).__setstate__(dict(s, status="hot"))
+    with pytest.raises(ValueError, match=r"pickled Contact3\.point: expected 3 items"):
+        type(contact).__new__(type(contact)).__setstate__(dict(s, point=(1.0, 2.0)))
+    slide = values["Slide3"].__getstate__()
+    assert type(slide["body"]).__name__ == "Ellipsoid" and slide["status"] in ("moved", "slid", "blocked")
+    assert type(values["MeshContact2"].__getstate__()["contact"]).__name__ == "Contact2"
 
 
 def test_bodies_and_shapes_compare_by_value_and_repr_rebuilds_them():
