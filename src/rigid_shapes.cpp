@@ -162,11 +162,24 @@ Contact<T, N> advance_at_rest(const Ellipsoid<T, N>& a, const RigidMotion<T, N>&
                                                R(motion.growth) * R(a.radii().maxCoeff())});
 }
 
+// A hit whose world point lies beyond the range of T (both moving at 1e305: the shape has
+// left the range by the contact time) is did_not_converge: its time a certified lower bound,
+// point and normal NaN (contact.hpp).
+template <class T, int N>
+Contact<T, N> beyond_range(Contact<T, N> c) noexcept {
+  if (c.status == ContactStatus::hit && !c.point.allFinite()) {
+    c.status = ContactStatus::did_not_converge;
+    c.point.setConstant(std::numeric_limits<T>::quiet_NaN());
+    c.normal.setConstant(std::numeric_limits<T>::quiet_NaN());
+  }
+  return c;
+}
+
 // The answer in world coordinates: the contact point moved with the shape to the contact time.
 template <class T, int N>
 Contact<T, N> in_world(Contact<T, N> c, const VecArg<T, N>& velocity_b) noexcept {
   if (c.status == ContactStatus::hit) c.point += c.time * velocity_b;
-  return c;
+  return beyond_range<T, N>(c);
 }
 
 template <class T, int N, std::size_t K>
@@ -201,7 +214,9 @@ T coordinate_of(const Capsule<T, N>& c) noexcept {
 // margins for their rounding are relative to the pair, not to the distance from the origin
 // (1e6 sizes out, world coordinates moved the times by up to 4.7e-9 of size / speed). The
 // point comes back with the body's center and the shape's motion to the contact time. A
-// shape whose moved coordinates overflow is taken as given.
+// shape whose moved coordinates overflow is taken as given, and so is every float shape,
+// whose moved vertices would round by float's last bit, moving the start state off the
+// stored pair's (double's rounding lies far inside the tangency band).
 template <class T, int N, class Shape>
 Contact<T, N> rigid_contact(const Ellipsoid<T, N>& a, const RigidMotion<T, N>& motion, const Shape& b,
                             const VecArg<T, N>& velocity_b, T t_max, const Options& options) noexcept {
@@ -209,16 +224,22 @@ Contact<T, N> rigid_contact(const Ellipsoid<T, N>& a, const RigidMotion<T, N>& m
   if (magnitude<N>(motion.angular_velocity) == R(0) && motion.growth == T(0))
     return first_contact(a, motion.velocity, b, velocity_b, t_max, options);
   const RigidMotion<T, N> moving = relative<T, N>(motion, velocity_b);
-  const Shape moved = b.translated(Vec<T, N>(-a.center()));
-  const T coordinate = coordinate_of<T, N>(moved);
-  if (!std::isfinite(coordinate))
-    return in_world<T, N>(advance_at_rest<T, N>(a, moving, b, coordinate_of<T, N>(b), t_max, options), velocity_b);
-  const Ellipsoid<T, N> body = detail::ShapeAccess::unchecked<T, N>(Vec<T, N>::Zero(), a.axes(), a.radii());
-  Contact<T, N> c = advance_at_rest<T, N>(body, moving, moved, coordinate, t_max, options);
-  if (c.status == ContactStatus::hit)
-    for (int i = 0; i < N; ++i)
-      c.point[i] = T(detail::mul_add(R(c.time), R(velocity_b[i]), R(a.center()[i])) + R(c.point[i]));
-  return c;
+  if constexpr (sizeof(T) >= sizeof(double)) {
+    std::optional<Shape> moved;
+    try {
+      moved = b.translated(Vec<T, N>(-a.center()));
+    } catch (const InputError&) {  // moved beyond the range of T
+    }
+    if (moved && std::isfinite(coordinate_of<T, N>(*moved))) {
+      const Ellipsoid<T, N> body = detail::ShapeAccess::unchecked<T, N>(Vec<T, N>::Zero(), a.axes(), a.radii());
+      Contact<T, N> c = advance_at_rest<T, N>(body, moving, *moved, coordinate_of<T, N>(*moved), t_max, options);
+      if (c.status == ContactStatus::hit)
+        for (int i = 0; i < N; ++i)
+          c.point[i] = T(detail::mul_add(R(c.time), R(velocity_b[i]), R(a.center()[i])) + R(c.point[i]));
+      return beyond_range<T, N>(c);
+    }
+  }
+  return in_world<T, N>(advance_at_rest<T, N>(a, moving, b, coordinate_of<T, N>(b), t_max, options), velocity_b);
 }
 
 }  // namespace

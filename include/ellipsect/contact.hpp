@@ -236,8 +236,8 @@ Ellipsoid<T, N> body_at(const Ellipsoid<T, N>& body, const RigidMotion<T, N>& mo
 //     when nothing turns (where that slab does not close, the advancement above).
 // invalid_input where a velocity or angular velocity is not finite, a growth is negative or
 // not finite, or t_max is NaN or negative. Range: radii and speeds at any scale (rescaled by powers of two); pairs that
-// need more than double (radius ratios beyond 2^160 or coordinates beyond 2^340 radii,
-// shapes.hpp) and angular velocities whose magnitude overflows (given, or in the time unit in
+// need more than double (radius ratios beyond 2^160 or the centers' offset beyond 2^340
+// radii, shapes.hpp; the offset, not the coordinates: the pair is solved in a's frame) and angular velocities whose magnitude overflows (given, or in the time unit in
 // which bodies beyond 2^+-64 move about a radius where their speeds leave 2^+-960 radii) get
 // their start state (overlapping_at_start, touching_at_start) or did_not_converge at time 0.
 template <class T, int N>
@@ -274,7 +274,10 @@ ContactGradient<T, N> first_contact_gradient(const Ellipsoid<T, N>& a, const Rig
 // center), so the answer does not depend on the distance from the origin: moved 1e6 sizes
 // from it (exactly), the hit times are the same to 1e-12 of size / speed
 // (tests/property/shape_translation_property_test.cpp; 4.7e-9 when the bodies were formed in
-// world coordinates). Range: pairs within the
-// native range (shapes.hpp, "Range"); beyond it the start state, else did_not_converge at 0.
+// world coordinates; float shapes are taken as given, their moved vertices would round).
+// A hit whose point lies beyond the range of T (both moving at 1e305) is did_not_converge,
+// its time a certified lower bound. Range: pairs within the native range (shapes.hpp,
+// "Range", of the shape moved into the body's frame); beyond it the start state, else
+// did_not_converge at 0.
 
 }  // namespace ellipsect
