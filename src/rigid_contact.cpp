@@ -348,8 +348,11 @@ Contact<T, N> first_contact(const Ellipsoid<T, N>& a, const RigidMotion<T, N>& m
       const int g = speed > T(0) ? std::ilogb(speed) - e : 0;
       const int f = g > 960 || g < -960 ? g : 0;
       // Bodies 2^963 across moving 1 per unit time and turning at 2^500 rad per unit time:
-      // in the time unit where they move about a radius, the spin overflows.
-      if (std::isfinite(std::ldexp(std::max(spin_a, spin_b), -f)))
+      // in the time unit where they move about a radius, the spin overflows; so does a growth
+      // (radii 2^996 moving at 2^-592 and growing at 2^996 per unit time: it was taken for an
+      // invalid one).
+      if (std::isfinite(std::ldexp(std::max(spin_a, spin_b), -f)) &&
+          std::isfinite(std::ldexp(std::max(motion_a.growth, motion_b.growth), -f)))
         return rescaled_first_contact(a, motion_a, b, motion_b, t_max, options, e, f);
       out_of_range = true;
     }

@@ -237,7 +237,8 @@ Ellipsoid<T, N> body_at(const Ellipsoid<T, N>& body, const RigidMotion<T, N>& mo
 // invalid_input where a velocity or angular velocity is not finite, a growth is negative or
 // not finite, or t_max is NaN or negative. Range: radii and speeds at any scale (rescaled by powers of two); pairs that
 // need more than double (radius ratios beyond 2^160 or the centers' offset beyond 2^340
-// radii, shapes.hpp; the offset, not the coordinates: the pair is solved in a's frame) and angular velocities whose magnitude overflows (given, or in the time unit in
+// radii, shapes.hpp; the offset, not the coordinates: the pair is solved in a's frame) and
+// angular velocities or growths whose magnitude overflows (given, or in the time unit in
 // which bodies beyond 2^+-64 move about a radius where their speeds leave 2^+-960 radii) get
 // their start state (overlapping_at_start, touching_at_start) or did_not_converge at time 0.
 template <class T, int N>
