@@ -329,13 +329,10 @@ Contact<T, N> first_contact(const Ellipsoid<T, N>& a, const RigidMotion<T, N>& m
   // 2^340 radii; detail/scale.hpp): the pair as it is solved, in a's frame below (radii of
   // 2^-550 at 2^516 from the origin, overlapping, got did_not_converge where the start state
   // is decided). Only the start state is decided there; otherwise did_not_converge at 0.
-  const Vec<T, N> between = b.center() - a.center();
-  const detail::Range range =
-      between.allFinite()
-          ? detail::scale_of(detail::ShapeAccess::unchecked<T, N>(Vec<T, N>::Zero(), a.axes(), a.radii()),
-                             detail::ShapeAccess::unchecked<T, N>(between, b.axes(), b.radii()))
-                .range
-          : detail::scale_of(a, b).range;
+  const Vec<T, N> offset = b.center() - a.center();
+  const Ellipsoid<T, N> a_rel = detail::ShapeAccess::unchecked<T, N>(Vec<T, N>::Zero(), a.axes(), a.radii());
+  const Ellipsoid<T, N> b_rel = detail::ShapeAccess::unchecked<T, N>(offset, b.axes(), b.radii());
+  const detail::Range range = (offset.allFinite() ? detail::scale_of(a_rel, b_rel) : detail::scale_of(a, b)).range;
   bool out_of_range = !std::isfinite(spin_a) || !std::isfinite(spin_b) || range == detail::Range::wide;
 
   // Lengths rescaled by 2^-e (exact) where the radii leave 2^+-64, so that squares of radii
@@ -363,7 +360,7 @@ Contact<T, N> first_contact(const Ellipsoid<T, N>& a, const RigidMotion<T, N>& m
   // relative to the pair's separation and its relative path, not to the distance from the
   // origin (at 8e5 sizes from it, the world frame's margins stopped the advancement 1e-9 of
   // the size early). The point is moved back with a's center at the contact time.
-  const Vec<T, N> offset = b.center() - a.center(), velocity = motion_b.velocity - motion_a.velocity;
+  const Vec<T, N> velocity = motion_b.velocity - motion_a.velocity;
   // float: the offset must be exact, or the start state in a's frame is not that of the stored
   // bodies (touching circles 4.58 apart went overlapping by the offset's last bit); double's
   // rounding lies far inside the tangency band.
@@ -372,8 +369,6 @@ Contact<T, N> first_contact(const Ellipsoid<T, N>& a, const RigidMotion<T, N>& m
     for (int i = 0; i < N; ++i) exact = exact && R(offset[i]) == R(b.center()[i]) - R(a.center()[i]);
   if (!offset.allFinite() || !velocity.allFinite() || !exact)  // differences beyond the type's range
     return advance<T, N>(a, motion_a, t_max, options, out_of_range, BodyParty<T, N>(a, motion_a, b, motion_b, options));
-  const Ellipsoid<T, N> a_rel = detail::ShapeAccess::unchecked<T, N>(Vec<T, N>::Zero(), a.axes(), a.radii());
-  const Ellipsoid<T, N> b_rel = detail::ShapeAccess::unchecked<T, N>(offset, b.axes(), b.radii());
   RigidMotion<T, N> ma = motion_a, mb = motion_b;
   ma.velocity.setZero();
   mb.velocity = velocity;

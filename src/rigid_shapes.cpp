@@ -230,9 +230,10 @@ Contact<T, N> rigid_contact(const Ellipsoid<T, N>& a, const RigidMotion<T, N>& m
       moved = b.translated(Vec<T, N>(-a.center()));
     } catch (const InputError&) {  // moved beyond the range of T
     }
-    if (moved && std::isfinite(coordinate_of<T, N>(*moved))) {
+    const T coordinate = moved ? coordinate_of<T, N>(*moved) : std::numeric_limits<T>::infinity();
+    if (std::isfinite(coordinate)) {
       const Ellipsoid<T, N> body = detail::ShapeAccess::unchecked<T, N>(Vec<T, N>::Zero(), a.axes(), a.radii());
-      Contact<T, N> c = advance_at_rest<T, N>(body, moving, *moved, coordinate_of<T, N>(*moved), t_max, options);
+      Contact<T, N> c = advance_at_rest<T, N>(body, moving, *moved, coordinate, t_max, options);
       if (c.status == ContactStatus::hit)
         for (int i = 0; i < N; ++i)
           c.point[i] = T(detail::mul_add(R(c.time), R(velocity_b[i]), R(a.center()[i])) + R(c.point[i]));
