@@ -2,6 +2,7 @@
 
 #include "detail/instantiate.hpp"
 #include "detail/mesh_walk.hpp"
+#include "detail/scale.hpp"
 #include "detail/shape_access.hpp"
 
 #include <algorithm>
@@ -29,12 +30,13 @@ Ellipsoid<T, N> at(const Ellipsoid<T, N>& body, const Vec<T, N>& center) noexcep
   return detail::ShapeAccess::unchecked<T, N>(center, body.axes(), body.radii());
 }
 
-// The obstacles of a world: near(body, visit) calls visit(k, obstacle) for every obstacle
-// that may touch the body, swept(body, r, visit) for every one it may meet moving by t r,
-// t in [0, 1]; at(k) is obstacle k.
+// The obstacles of a world in the frame whose origin is `origin` (the obstacles moved by
+// -origin): near(body, visit) calls visit(k, obstacle) for every obstacle that may touch the
+// body, swept(body, r, visit) for every one it may meet moving by t r, t in [0, 1]; at(k) is
+// obstacle k.
 template <class T, int N>
 struct HalfSpaces {
-  std::span<const HalfSpace<T, N>> world;
+  std::vector<HalfSpace<T, N>> world;
   const HalfSpace<T, N>& at(std::size_t k) const { return world[k]; }
   template <class Visit>
   void near(const Ellipsoid<T, N>&, Visit&& visit) const {
@@ -44,27 +46,39 @@ struct HalfSpaces {
   void swept(const Ellipsoid<T, N>&, const Vec<T, N>&, Visit&& visit) const {
     for (std::size_t k = 0; k < world.size(); ++k) visit(k, world[k]);
   }
+  HalfSpaces(std::span<const HalfSpace<T, N>> given, const Vec<T, N>& origin) {
+    world.reserve(given.size());
+    for (const auto& h : given) world.push_back(origin.isZero() ? h : h.translated(Vec<T, N>(-origin)));
+  }
 };
 
 template <class T, int N>
 struct Mesh {
+  using W = detail::Work<T>;
   const TriangleMesh<T, N>& mesh;
   double tolerance;
-  Triangle<T, N> at(std::size_t k) const { return mesh.triangle(k); }
+  Vec<T, N> origin;
+  Triangle<T, N> at(std::size_t k) const {
+    return origin.isZero() ? mesh.triangle(k) : mesh.triangle(k).translated(Vec<T, N>(-origin));
+  }
+  // The hierarchy is in world coordinates: the body's center there, and its half-extents
+  // grown by that center's rounding.
+  Vec<W, N> center(const Ellipsoid<T, N>& body) const { return body.center().template cast<W>() + origin.template cast<W>(); }
+  Vec<W, N> extents(const Ellipsoid<T, N>& body, const Vec<W, N>& c) const {
+    return detail::half_extents(body, tolerance).array() + W(2) * std::numeric_limits<W>::epsilon() * c.cwiseAbs().maxCoeff();
+  }
   template <class Visit>
   void near(const Ellipsoid<T, N>& body, Visit&& visit) const {
-    detail::for_each_near<T, N>(mesh, body.center().template cast<detail::Work<T>>(),
-                                detail::half_extents(body, tolerance),
-                                [&](std::uint32_t k) { visit(k, mesh.triangle(k)); });
+    const Vec<W, N> c = center(body);
+    detail::for_each_near<T, N>(mesh, c, extents(body, c), [&](std::uint32_t k) { visit(k, at(k)); });
   }
   template <class Visit>
   void swept(const Ellipsoid<T, N>& body, const Vec<T, N>& r, Visit&& visit) const {
-    using W = detail::Work<T>;
-    detail::for_each_swept<T, N>(mesh, body.center().template cast<W>(), r.template cast<W>(),
-                                 detail::half_extents(body, tolerance), W(1), [&](std::uint32_t k, W t_end) {
-                                   visit(k, mesh.triangle(k));
-                                   return t_end;
-                                 });
+    const Vec<W, N> c = center(body);
+    detail::for_each_swept<T, N>(mesh, c, r.template cast<W>(), extents(body, c), W(1), [&](std::uint32_t k, W t_end) {
+      visit(k, at(k));
+      return t_end;
+    });
   }
 };
 
@@ -146,7 +160,6 @@ Slide<T, N> slide_through(const Ellipsoid<T, N>& body, const VecArg<T, N>& displ
                           const Options& options) {
   Slide<T, N> out;
   out.body = body;
-  if (!displacement.allFinite() || !Vec<T, N>(body.center() + displacement).allFinite()) return out;
   if (inside_any(body, world, options)) {
     out.status = SlideStatus::overlapping_at_start;
     return out;
@@ -229,18 +242,84 @@ Slide<T, N> slide_through(const Ellipsoid<T, N>& body, const VecArg<T, N>& displ
   return out;
 }
 
+// The world as given (`given`, origin 0) and moved by minus the start body's center
+// (`moved`): the slide runs in the body's frame, as the pair queries do, where its rounding is
+// relative to the body's size and the tangency band is met; in world coordinates 1e6 sizes
+// out, where each center rounds by 1e-10 of the size, beyond the band, the moves shortened for
+// that rounding left the path up to 1.6e-7 of the displacement off, or blocked a body sliding
+// along a floor and a wall. Only the end comes back: the body's center plus the slide's, and
+// where that rounded end overlaps an obstacle (the exact end touches it within the band), it
+// is moved off along the obstacles' normals (from the slide's frame, facing the body) by 1,
+// 2, 4, ... units of the end's last bit; where no such step clears it (at most 64), the body is
+// left at the start, blocked. float worlds stay as given: their moved vertices would round by
+// float's last bit.
+template <class T, int N, class World, class MakeWorld>
+Slide<T, N> slide_in_body_frame(const Ellipsoid<T, N>& body, const VecArg<T, N>& displacement, const World& given,
+                                MakeWorld&& make_world, bool movable, const Options& options) {
+  Slide<T, N> out;
+  out.body = body;
+  if (!displacement.allFinite() || !Vec<T, N>(body.center() + displacement).allFinite()) return out;
+  if (inside_any(body, given, options)) {
+    out.status = SlideStatus::overlapping_at_start;
+    return out;
+  }
+  if (sizeof(T) < sizeof(double) || !movable || body.center().isZero()) return slide_through(body, displacement, given, options);
+  const Vec<T, N> origin = body.center();
+  const World moved = make_world(origin);
+  const Slide<T, N> s = slide_through(at<T, N>(body, Vec<T, N>::Zero()), displacement, moved, options);
+  if (s.status == SlideStatus::overlapping_at_start || s.status == SlideStatus::invalid_input) return {s.status, body};
+  out = s;
+  const Vec<T, N> end = origin + s.body.center();
+  out.body = at(body, end);
+  if (!inside_any(out.body, given, options)) return out;
+  // The obstacles within the end's rounding (and the band) of the slide's end.
+  const T unit = std::numeric_limits<T>::epsilon() * detail::max_abs(end);
+  const T reach = T(4 * N) * unit + T(options.tolerance) * s.body.radii().maxCoeff();
+  Vec<T, N> away = Vec<T, N>::Zero();
+  moved.near(s.body, [&](std::size_t, const auto& obstacle) {
+    const Distance<T, N> d = signed_distance(s.body, obstacle, options);
+    if (d.normal.allFinite() && d.distance <= reach) away -= d.normal;
+  });
+  const T length = away.norm();
+  if (length > T(0)) {
+    away /= length;
+    for (int k = 0; k < 64; ++k) {
+      const Vec<T, N> step = away * std::ldexp(unit, k), nudged = end + step;
+      if (!nudged.allFinite()) break;
+      if (!inside_any(at(body, nudged), given, options)) {
+        out.body = at(body, nudged);
+        out.moved += step;
+        return out;
+      }
+    }
+  }
+  return {SlideStatus::blocked, body, Vec<T, N>::Zero(), s.contacts, s.last_contact};
+}
+
 }  // namespace
 
 template <class T, int N>
 Slide<T, N> collide_and_slide(const Ellipsoid<T, N>& body, const VecArg<T, N>& displacement,
                               std::span<const std::type_identity_t<HalfSpace<T, N>>> world, const Options& options) {
-  return slide_through(body, displacement, HalfSpaces<T, N>{world}, options);
+  bool movable = true;
+  for (const auto& h : world) movable = movable && Vec<T, N>(h.point() - body.center()).allFinite();
+  return slide_in_body_frame(
+      body, displacement, HalfSpaces<T, N>(world, Vec<T, N>::Zero()),
+      [&](const Vec<T, N>& origin) { return HalfSpaces<T, N>(world, origin); }, movable, options);
 }
 
 template <class T, int N>
 Slide<T, N> collide_and_slide(const Ellipsoid<T, N>& body, const VecArg<T, N>& displacement,
                               const TriangleMesh<T, N>& world, const Options& options) {
-  return slide_through(body, displacement, Mesh<T, N>{world, options.tolerance}, options);
+  // Every vertex lies in the root box: where its corners move within range, every vertex does.
+  bool movable = true;
+  if (!world.nodes().empty())
+    for (int i = 0; i < N; ++i)
+      movable = movable && std::isfinite(world.nodes()[0].lo[i] - body.center()[i]) &&
+                std::isfinite(world.nodes()[0].hi[i] - body.center()[i]);
+  return slide_in_body_frame(
+      body, displacement, Mesh<T, N>{world, options.tolerance, Vec<T, N>::Zero()},
+      [&](const Vec<T, N>& origin) { return Mesh<T, N>{world, options.tolerance, origin}; }, movable, options);
 }
 
 #define ELLIPSECT_INSTANTIATE(T, N)                                                                        \

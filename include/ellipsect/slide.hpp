@@ -26,15 +26,26 @@
 // Steps are walls: a riser stops the body or turns it along itself; climbing a step is the
 // caller's (a move up, one forward, one down), as in the controllers cited.
 //
+// Frame. The slide runs in the start body's frame (the obstacles moved by minus its center;
+// double and long double worlds), as the pair queries do, so its rounding is relative to the
+// body's size and not to the magnitude of the coordinates: moved together by 1e6 sizes, a
+// body and its world slide the same path (tests/property/shape_translation_property_test.cpp).
+// The end comes back to world coordinates rounded; where that rounded end overlaps an
+// obstacle (the exact end touches it within the band), it is moved off along the normals of
+// the obstacles it touches by 1, 2, 4, ... units of its coordinates' last bit (at most 64
+// such steps). float worlds are slid as given (their moved vertices would round).
+//
 // Guarantees:
 //   * the body never ends overlapping an obstacle (a half-space, or any triangle of the
 //     mesh: a mesh is a surface, the body never passes through it): every position is
 //     checked with classify before it is taken; a move whose rounding would end inside
 //     (a contact time is exact, the moved center is rounded to T) is shortened until it
-//     does not, or not made;
+//     does not, or not made; where no step clears the rounded end (a gap narrower than the
+//     coordinates' rounding), the body is left at the start, blocked;
 //   * the moves add up to `moved` (the body's center is the start center plus `moved`, to
-//     the rounding of each move), and the displacement is never exceeded: each round's
-//     remaining displacement is the previous one's, minus the move, projected;
+//     the rounding of each move and of the end), and the displacement is never exceeded
+//     beyond that rounding: each round's remaining displacement is the previous one's,
+//     minus the move, projected;
 //   * at most Options::max_iterations rounds (default 64; `blocked` when displacement is left);
 //   * a body that starts overlapping an obstacle is not moved (overlapping_at_start); one
 //     that starts touching slides along it or leaves it.
