@@ -7,12 +7,17 @@
 //     of the maximum of the support gap and the gap at the returned normal within 1e-12
 //     scale of it (scale: the largest radius plus the largest |vertex - center|), point_a
 //     on the body, the status classify's;
-//   * first_contact of a turning body (contact.hpp, rigid motion) against those triangles,
+//   * first_contact of a turning body (contact.hpp, rigid motion; every other case also
+//     growing, the reference body's radii times 1 + growth t) against those triangles,
 //     against the least quadric value over the triangle (triangle_reference.hpp) with the
 //     body turned in 50 digits (rigid_contact_reference.hpp), as
 //     rigid_shapes_property_test.cpp: a hit where the reference's gap is within 1e-9 of 0
 //     and not below -1e-12 at 8 earlier times; no contact where it stays above -1e-12 at
 //     16 times of the window;
+//   * first_contact of a turning (and every other case growing) body against a zero-length
+//     capsule, against the pair reference for the body and the capsule's ball
+//     (rigid_contact_reference.hpp): hit where it hits, never late, within 1e-9 of the time
+//     scale where not grazing; no contact where it finds none;
 //   * meshes of coplanar pieces: a square of a plane split into k x k squares of two
 //     triangles each (3D; in 2D a segment split into k collinear segments), as floors, walls
 //     and ramps, the body over its middle: classify and first_contact against the
@@ -22,6 +27,7 @@
 //     (half_space_reference.hpp) to 1e-12 scale; collide_and_slide against the same plane
 //     as a half-space (the slide stays over the square), and box rooms with split walls
 //     against the six half-spaces: the same end to 1e-12 of the size of the move.
+#include <ellipsect/capsule.hpp>
 #include <ellipsect/half_space.hpp>
 #include <ellipsect/mesh.hpp>
 #include <ellipsect/slide.hpp>
@@ -110,12 +116,28 @@ double rigid_gap_at(const scenarios::TriangleCase<N>& c, const RigidMotion<doubl
   ref::Body<N> body;
   for (int i = 0; i < N; ++i) {
     body.center[i] = ref::to_double(b.c(i));
-    body.radii[i] = c.a.radii()[i];
+    body.radii[i] = ref::to_double(Real(c.a.radii()[i]) * (1 + Real(motion.growth) * Real(t)));
     for (int j = 0; j < N; ++j) body.axes(i, j) = ref::to_double(b.axes(i, j));
   }
   std::array<ref::DVec<N>, 3> v;
   for (int k = 0; k < 3; ++k) v[k] = c.b.vertex(k) + t * c.vb;
   return ref::to_double(Real(ref::triangle_gaps<N>(body, v).d - 1));
+}
+
+// A motion at `velocity`, turning at `rate`, log-uniform in [0.1, 3], about a random axis,
+// and where `growing` growing at a rate log-uniform in [0.01, 1].
+template <int N>
+RigidMotion<double, N> turning(Rng& rng, const Vec<double, N>& velocity, bool growing, double& rate) {
+  RigidMotion<double, N> motion;
+  motion.velocity = velocity;
+  rate = log_uniform(rng, 0.1, 3);
+  if constexpr (N == 2) {
+    motion.angular_velocity = rate;
+  } else {
+    motion.angular_velocity = rate * unit_vector<3>(rng);
+  }
+  if (growing) motion.growth = log_uniform(rng, 0.01, 1);
+  return motion;
 }
 
 template <int N>
@@ -126,18 +148,12 @@ void rigid_contact_of_degenerate_triangles() {
       for (int seed = 0; seed < cases(25) / 5; ++seed) {
         const auto c = degenerate<N>(scenarios::make_triangle_case<N>(kind, seed), d);
         Rng rng(static_cast<std::uint64_t>(seed) * 11 + 5);
-        RigidMotion<double, N> motion;
-        motion.velocity = c.va;
-        const double rate = log_uniform(rng, 0.1, 3);
-        if constexpr (N == 2) {
-          motion.angular_velocity = rate;
-        } else {
-          motion.angular_velocity = rate * unit_vector<3>(rng);
-        }
+        double rate;  // every other case grows (radii times 1 + growth t) as it turns
+        const RigidMotion<double, N> motion = turning<N>(rng, c.va, seed % 2 == 1, rate);
         const double t_max = c.window;
-        SCOPED_TRACE(std::string(name(d)) + " " + scenarios::describe(c));
+        SCOPED_TRACE(std::string(name(d)) + " " + scenarios::describe(c) + " growth " + std::to_string(motion.growth));
         const Contact<double, N> got = first_contact(c.a, motion, c.b, c.vb, t_max);
-        tally[std::string(to_string(got.status))]++;
+        tally[std::string(to_string(got.status)) + (motion.growth > 0 ? " growing" : "")]++;
         const double start = rigid_gap_at<N>(c, motion, 0);
         switch (got.status) {
           case ContactStatus::overlapping_at_start: ASSERT_LT(start, 1e-12); break;
@@ -155,10 +171,62 @@ void rigid_contact_of_degenerate_triangles() {
       }
   report(N == 2 ? "rigid 2D" : "rigid 3D", tally);
   EXPECT_GT(tally["hit"], 0);
+  EXPECT_GT(tally["hit growing"], 0);
+}
+
+// A zero-length capsule (both end points equal: a ball of the capsule's radius) against a
+// turning body, every other one growing, the capsule heading for the body: against the pair reference's
+// first contact of the body and that ball (rigid_contact_reference.hpp, a different route
+// from the capsule's advancement): hit where it hits, never late, and within 1e-9 of the
+// time scale (size / speed) where the approach is not grazing (sine >= 1e-3); no contact
+// where it finds none.
+template <int N>
+void rigid_contact_of_zero_length_capsules() {
+  std::map<std::string, int> tally;
+  for (int seed = 0; seed < cases(40); ++seed) {
+    const auto c = scenarios::make_triangle_case<N>(base_kinds[std::size_t(seed) % base_kinds.size()], seed);
+    Rng rng(static_cast<std::uint64_t>(seed) * 13 + 7);
+    const Vec<double, N> p = c.b.vertex(std::size_t(seed) % 3);
+    const double radius = c.a.radii().minCoeff() * log_uniform(rng, 0.01, 3);
+    double rate;
+    const RigidMotion<double, N> motion = turning<N>(rng, c.va, seed % 2 == 1, rate);
+    // The capsule heads for the body's center (most cases hit), through a window long enough.
+    const double speed = std::max(1.0, c.vb.norm());
+    const Vec<double, N> vb = (c.a.center() - p).normalized() * speed;
+    const double t_max = 4 * (c.a.center() - p).norm() / speed;
+    SCOPED_TRACE(scenarios::describe(c) + " capsule at vertex " + std::to_string(seed % 3) + " radius " +
+                 std::to_string(radius) + " growth " + std::to_string(motion.growth));
+    const Contact<double, N> got = first_contact(c.a, motion, make_capsule<double, N>(p, p, radius), vb, t_max);
+    const ref::RigidContact<N> want = ref::rigid_first_contact<N>(
+        ref::to_ref(c.a), {motion.velocity, motion.angular_velocity, motion.growth}, ref::to_ref(make_ball<double, N>(p, radius)),
+        {vb, RigidMotion<double, N>{}.angular_velocity, 0}, t_max, 1e-30, 6000);
+    if (!want.resolved) {
+      tally["unresolved"]++;
+      continue;
+    }
+    tally[std::string(to_string(got.status)) + (motion.growth > 0 ? " growing" : "")]++;
+    const double size = c.a.radii().maxCoeff() + radius;
+    const double rates = (vb - c.va).norm() + (rate + motion.growth) * c.a.radii().maxCoeff();
+    switch (want.kind) {
+      case ref::ContactKind::hit: {
+        ASSERT_EQ(got.status, ContactStatus::hit);
+        ASSERT_LE(Real(got.time), want.time * (1 + Real(1e-15))) << "late by " << ref::to_double(Real(got.time) - want.time);
+        if (want.approach_sine >= Real(1e-3))
+          ASSERT_NEAR(got.time, ref::to_double(want.time), 1e-9 * size / rates);
+        break;
+      }
+      case ref::ContactKind::none: ASSERT_EQ(got.status, ContactStatus::no_contact_in_window); break;
+      default: ASSERT_TRUE(got.status == ContactStatus::overlapping_at_start || got.status == ContactStatus::touching_at_start);
+    }
+  }
+  report(N == 2 ? "zero-length capsules, rigid 2D" : "zero-length capsules, rigid 3D", tally);
+  EXPECT_GT(tally["hit growing"], 0);
 }
 
 TEST(DegenerateShapes, TriangleRigidContact2D) { rigid_contact_of_degenerate_triangles<2>(); }
 TEST(DegenerateShapes, TriangleRigidContact3D) { rigid_contact_of_degenerate_triangles<3>(); }
+TEST(DegenerateShapes, ZeroLengthCapsuleRigidContact2D) { rigid_contact_of_zero_length_capsules<2>(); }
+TEST(DegenerateShapes, ZeroLengthCapsuleRigidContact3D) { rigid_contact_of_zero_length_capsules<3>(); }
 
 // A square of side 2 H about q in the plane normal to m (3D; in 2D the segment of length
 // 2 H), split into k x k squares of two triangles (k collinear segments (a, b, b)); and the
