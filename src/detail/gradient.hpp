@@ -325,7 +325,8 @@ TurnJacobian<R, N> turn_columns(const RotationVector<R, N>& theta, bool jacobian
 }
 
 // S = L L^T for a symmetric positive definite S (N <= 3; backward stable without pivoting),
-// and S^-1 b by substitution. A matrix that is not positive definite in rounding gives NaN.
+// and S^-1 b by substitution (b one column or several). A matrix that is not positive
+// definite in rounding gives NaN.
 template <class R, int N>
 struct Cholesky {
   Eigen::Matrix<R, N, N> l = Eigen::Matrix<R, N, N>::Zero();
@@ -341,14 +342,16 @@ struct Cholesky {
       }
     }
   }
-  Vec<R, N> solve(Vec<R, N> b) const noexcept {
+  // Every column of b at once.
+  template <int M>
+  Eigen::Matrix<R, N, M> solve(Eigen::Matrix<R, N, M> b) const noexcept {
     for (int i = 0; i < N; ++i) {
-      for (int k = 0; k < i; ++k) b[i] -= l(i, k) * b[k];
-      b[i] /= l(i, i);
+      for (int k = 0; k < i; ++k) b.row(i) -= l(i, k) * b.row(k);
+      b.row(i) /= l(i, i);
     }
     for (int i = N - 1; i >= 0; --i) {
-      for (int k = i + 1; k < N; ++k) b[i] -= l(k, i) * b[k];
-      b[i] /= l(i, i);
+      for (int k = i + 1; k < N; ++k) b.row(i) -= l(k, i) * b.row(k);
+      b.row(i) /= l(i, i);
     }
     return b;
   }
@@ -404,43 +407,48 @@ void contact_time_gradient(ContactGradient<T, N>& out, const Ellipsoid<T, N>& a_
   };
   // (H_a + H_b) on the tangent plane.
   const Cholesky<R, N> solve(sa.h + sb.h + (sa.rho + sb.rho) * n * n.transpose());
-  const Vec<R, N> dv = velocity_b - velocity_a;
-  // One parameter: its explicit changes of c_b - c_a, of p_a and p_b at fixed n, and of c_a;
-  // sets its dt and dx.
-  auto column = [&](const Vec<R, N>& dr, const Vec<R, N>& dpa, const Vec<R, N>& dpb, const Vec<R, N>& dca, R& dt,
-                    auto&& dx) {
-    dt = (n.dot(dr) - n.dot(dpa) - n.dot(dpb)) / closing;  // d g = 0 along the motion
-    Vec<R, N> rhs = dr + dv * dt - dpa - dpb - (rate_a + rate_b) * dt;
-    rhs -= n * n.dot(rhs);
-    const Vec<R, N> dn = solve.solve(rhs);
-    dx = (dca + velocity_a * dt + dpa + rate_a * dt + sa.h * dn).template cast<T>();
-  };
-  const Vec<R, N> zero = Vec<R, N>::Zero();
-  auto body = [&](int sign, const HitSide<R, N>& side, const Turn& w, BodyGradient<T, N>& g, Vec<T, N>& velocity,
+  // The parameters solved for, P per body: its center, its radii and the K world turns of its
+  // orientation at t. Each column holds a parameter's explicit change of c_b - c_a - p_a - p_b
+  // (e) and of the point c_a + p_a (own); then dt = n . e / closing (d g = 0 along the
+  // motion), dn = (H_a + H_b)^-1 P_n (e + (dv - rate_a - rate_b) dt) on the tangent plane and
+  // dx = own + (v_a + rate_a) dt + H_a dn, all columns at once. The other parameters follow
+  // linearly: a velocity's derivatives are t times its center's (its change of c_X at t is t
+  // times theirs), the orientation's and the angular velocity's are the turns' combined by
+  // the turns they make at t.
+  constexpr int P = 2 * N + K, M = 2 * P;
+  Eigen::Matrix<R, N, M> e, own = Eigen::Matrix<R, N, M>::Zero();
+  for (int body = 0; body < 2; ++body) {
+    const HitSide<R, N>& side = body == 0 ? sa : sb;
+    const int at = body * P;
+    for (int j = 0; j < N; ++j) {
+      e.col(at + j) = Vec<R, N>::Unit(j) * (body == 0 ? R(-1) : R(1));
+      e.col(at + N + j) = -side.by_radius(j);
+    }
+    for (int i = 0; i < K; ++i) e.col(at + 2 * N + i) = -side.turn.col(i);
+  }
+  own.template leftCols<N>().setIdentity();
+  own.template middleCols<N + K>(N) = -e.template middleCols<N + K>(N);
+  const Eigen::Matrix<R, 1, M> dt = (n.transpose() * e) / closing;
+  Eigen::Matrix<R, N, M> rhs = e + (velocity_b - velocity_a - rate_a - rate_b) * dt;
+  rhs -= n * (n.transpose() * rhs);
+  const Eigen::Matrix<R, N, M> dx = own + (velocity_a + rate_a) * dt + sa.h * solve.solve(rhs);
+  auto body = [&](int at, const Turn& w, BodyGradient<T, N>& g, Vec<T, N>& velocity,
                   RotationVector<T, N>& angular_velocity, BodyJacobian<T, N>& jg, Mat<T, N>& jv,
                   TurnJacobian<T, N>& jw) {
-    const bool is_a = sign < 0;
-    auto put = [&](const Vec<R, N>& dp, const Vec<R, N>& dr, const Vec<R, N>& dca, R& dt, auto&& dx) {
-      column(dr, is_a ? dp : zero, is_a ? zero : dp, dca, dt, dx);
-    };
-    R dt;
     for (int j = 0; j < N; ++j) {
-      const Vec<R, N> e = Vec<R, N>::Unit(j);
-      put(zero, R(sign) * e, is_a ? e : zero, dt, jg.center.col(j));
-      g.center[j] = T(dt);
-      put(zero, R(sign) * t * e, is_a ? Vec<R, N>(t * e) : zero, dt, jv.col(j));
-      velocity[j] = T(dt);
-      put(side.by_radius(j), zero, zero, dt, jg.radii.col(j));
-      g.radii[j] = T(dt);
+      g.center[j] = T(dt[at + j]);
+      velocity[j] = T(t * dt[at + j]);
+      g.radii[j] = T(dt[at + N + j]);
     }
+    jg.center = dx.template middleCols<N>(at).template cast<T>();
+    jv = (t * dx.template middleCols<N>(at)).template cast<T>();
+    jg.radii = dx.template middleCols<N>(at + N).template cast<T>();
     const Eigen::Matrix<R, K, K> orient = turns(w, false), spin = turns(w, true);
-    Turn go, gw;
-    for (int j = 0; j < K; ++j) {
-      put(side.turn * orient.col(j), zero, zero, dt, jg.orientation.col(j));
-      go[j] = dt;
-      put(side.turn * spin.col(j), zero, zero, dt, jw.col(j));
-      gw[j] = dt;
-    }
+    const Eigen::Matrix<R, 1, K> dt_turn = dt.template middleCols<K>(at + 2 * N);
+    const Eigen::Matrix<R, N, K> dx_turn = dx.template middleCols<K>(at + 2 * N);
+    const Turn go = (dt_turn * orient).transpose(), gw = (dt_turn * spin).transpose();
+    jg.orientation = (dx_turn * orient).template cast<T>();
+    jw = (dx_turn * spin).template cast<T>();
     if constexpr (N == 2) {
       g.orientation = T(go[0]);
       angular_velocity = T(gw[0]);
@@ -449,9 +457,9 @@ void contact_time_gradient(ContactGradient<T, N>& out, const Ellipsoid<T, N>& a_
       angular_velocity = gw.template cast<T>();
     }
   };
-  body(-1, sa, wa, out.a, out.velocity_a, out.angular_velocity_a, out.point.a, out.point.velocity_a,
+  body(0, wa, out.a, out.velocity_a, out.angular_velocity_a, out.point.a, out.point.velocity_a,
        out.point.angular_velocity_a);
-  body(+1, sb, wb, out.b, out.velocity_b, out.angular_velocity_b, out.point.b, out.point.velocity_b,
+  body(P, wb, out.b, out.velocity_b, out.angular_velocity_b, out.point.b, out.point.velocity_b,
        out.point.angular_velocity_b);
 }
 
