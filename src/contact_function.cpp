@@ -18,6 +18,10 @@
 #include "detail/instantiate.hpp"
 #include "detail/scale.hpp"
 
+#include <Eigen/QR>
+
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -64,21 +68,54 @@ Terms<R> terms(const Vec<R, N>& e2, const Vec<R, N>& k2, R u, R v) noexcept {
   return {u * v * s, qs - qo, R(-2) * c, R(8) * std::numeric_limits<R>::epsilon() * (qs + qo)};
 }
 
-// Newton on F' from the maximizer for two balls, v = rho_S / (rho_S + rho_O) with the support
-// radii rho_S = |k|, rho_O = |e k|; a step that leaves the bracket of the root is replaced by
+// Newton on F' (terms(u, v) gives F, F', F'' and the rounding of F' at the weights u, v) from
+// the maximizer for two balls of the bodies' support radii rho_S, rho_O along the direction,
+// v = rho_S / (rho_S + rho_O); a step that leaves the bracket of the root is replaced by
 // bisection. Converged when F' vanishes to its rounding or the step is below the weights'
 // rounding.
-template <class R, int N>
-Maximum<R> maximize(const Vec<R, N>& e, const Vec<R, N>& k, int max_iterations) noexcept {
+template <class R, class Terms_at>
+Maximum<R> maximize(R rho_s, R rho_o, Terms_at&& terms_at, int max_iterations) noexcept {
   constexpr R eps = std::numeric_limits<R>::epsilon();
-  const Vec<R, N> e2 = e.cwiseAbs2(), k2 = k.cwiseAbs2();
-  const R rho_s = k.norm(), rho_o = e.cwiseProduct(k).norm();
   Maximum<R> m;
   m.u = rho_o / (rho_s + rho_o);
   m.v = rho_s / (rho_s + rho_o);
   R u_lo = 1, v_lo = 0, u_hi = 0, v_hi = 1;  // F' > 0 at v_lo, < 0 at v_hi
+  int outward = 0;  // bisections in a row
+  R fp_last = 0;    // F' at the previous iterate (0: none)
+  // The bracket of the weight that is small across it, (lo, hi), and whether it is u.
+  const auto small_side = [&](R& lo, R& hi) {
+    if (v_hi <= R(0.5)) {
+      lo = v_lo;
+      hi = v_hi;
+      return false;
+    }
+    lo = u_hi;
+    hi = u_lo;
+    return hi <= R(0.5);
+  };
+  // A bisection on the scale of that weight: the root can lie many orders of magnitude below
+  // where F' starts to change (needles of aspect ratio 1e8: F' constant from 0.3 down to
+  // 1e-8, where Newton's steps leave the bracket, and halving took 25 steps; then Newton from
+  // the far side gained a factor 1.5 a step). Where its bracket reaches 0, the k-th bisection
+  // in a row (k = 0, 1, ...) puts it at 2^-(2^k) times the bracket's other end; where the ends
+  // differ by more than a factor 4, at their geometric mean; otherwise both weights go to their
+  // midpoints.
+  const auto bisect = [&](R& u, R& v) {
+    R lo, hi;
+    const bool is_u = small_side(lo, hi);
+    if (hi > R(0.5)) {
+      u = (u_lo + u_hi) / 2;
+      v = (v_lo + v_hi) / 2;
+      return;
+    }
+    R x = lo == R(0) ? hi * std::ldexp(R(1), -(1 << std::min(outward, 9)))
+                     : (hi > R(4) * lo ? std::sqrt(lo) * std::sqrt(hi) : (lo + hi) / 2);
+    if (!(x > R(0))) x = hi / 2;
+    (is_u ? u : v) = x;
+    (is_u ? v : u) = R(1) - x;
+  };
   for (;;) {
-    const Terms<R> t = terms<R, N>(e2, k2, m.u, m.v);
+    const Terms<R> t = terms_at(m.u, m.v);
     m.f = t.f;
     ++m.iterations;
     if (t.fp > 0) {
@@ -97,12 +134,21 @@ Maximum<R> maximize(const Vec<R, N>& e, const Vec<R, N>& k, int max_iterations) 
       m.f_upper = t.f + (t.fp > 0 ? t.fp * (v_hi - m.v) : t.fp * (v_lo - m.v));
       return m;
     }
-    // The Newton step, judged on the smaller weight (the other may not change at all).
+    // The Newton step, judged on the smaller weight (the other may not change at all); a
+    // bisection instead where it leaves the bracket, or where Newton is slow (F' of the same
+    // sign, down by less than 4 times) across a bracket of more than 16 times.
     const R step = t.fp / t.fpp;
     R u = m.u + step, v = m.v - step;
-    if (!(v <= u ? v > v_lo && v < v_hi : u > u_hi && u < u_lo)) {
-      u = (u_lo + u_hi) / 2;
-      v = (v_lo + v_hi) / 2;
+    R lo, hi;
+    small_side(lo, hi);
+    const bool slow = (t.fp > 0) == (fp_last > 0) && fp_last != R(0) && std::abs(t.fp) > std::abs(fp_last) / 4 &&
+                      hi <= R(0.5) && hi > R(16) * lo;
+    fp_last = t.fp;
+    if (slow || !(v <= u ? v > v_lo && v < v_hi : u > u_hi && u < u_lo)) {
+      bisect(u, v);
+      ++outward;
+    } else {
+      outward = 0;
     }
     const bool small = (v <= u ? std::abs(v - m.v) : std::abs(u - m.u)) <= R(4) * eps * std::min(u, v);
     m.u = u;
@@ -116,23 +162,118 @@ Maximum<R> maximize(const Vec<R, N>& e, const Vec<R, N>& k, int max_iterations) 
   return m;
 }
 
-// The reduction and the maximum for the world direction `dir` of O's center from S's (unit).
+// C(v) = u P_S + v P_O (P_X = B_X^T B_X, B_X = diag(r_X) A_X^T) applied through the
+// Householder QR, with column pivoting, of the stacked factors [sqrt(u) B_S; sqrt(v) B_O]
+// (C = Q^T Q), rows sorted by decreasing norm: row-wise backward stable (Cox and Higham), so
+// every computed quantity is that of bodies whose axes and radii are moved by a few units of
+// their last bit, whatever the spread of the radii. half(x) = R^-T Pi^T x, with x^T C^-1 x =
+// |half(x)|^2 and C^-1 x = Pi R^-1 half(x).
+template <class R, int N>
+class WeightedInverse {
+public:
+  WeightedInverse(const Mat<R, N>& bs, const Mat<R, N>& bo, R u, R v) noexcept {
+    Eigen::Matrix<R, 2 * N, N> rows;
+    rows.template topRows<N>() = std::sqrt(u) * bs;
+    rows.template bottomRows<N>() = std::sqrt(v) * bo;
+    std::array<int, 2 * N> order;
+    std::array<R, 2 * N> norm;
+    for (int i = 0; i < 2 * N; ++i) {
+      order[std::size_t(i)] = i;
+      norm[std::size_t(i)] = rows.row(i).squaredNorm();
+    }
+    std::sort(order.begin(), order.end(), [&](int x, int y) { return norm[std::size_t(x)] > norm[std::size_t(y)]; });
+    Eigen::Matrix<R, 2 * N, N> sorted;
+    for (int i = 0; i < 2 * N; ++i) sorted.row(i) = rows.row(order[std::size_t(i)]);
+    qr_.compute(sorted);
+  }
+  Vec<R, N> half(const Vec<R, N>& x) const noexcept {
+    const Vec<R, N> p = qr_.colsPermutation().transpose() * x;
+    return qr_.matrixR().template topLeftCorner<N, N>().template triangularView<Eigen::Upper>().transpose().solve(p);
+  }
+  Vec<R, N> full(const Vec<R, N>& h) const noexcept {
+    const Vec<R, N> y = qr_.matrixR().template topLeftCorner<N, N>().template triangularView<Eigen::Upper>().solve(h);
+    return qr_.colsPermutation() * y;
+  }
+
+private:
+  Eigen::ColPivHouseholderQR<Eigen::Matrix<R, 2 * N, N>> qr_;
+};
+
+// The maximizer's vectors, per unit of |r| (world frame): y = C(lambda)^-1 r, M_S^-1 y and
+// M_O^-1 y, and `level`, the factor that puts M_S^-1 y on S's boundary (|B_S y|).
+template <class R, int N>
+struct Maximizer {
+  Vec<R, N> y, ms_y, mo_y;
+  R level;
+};
+
+// F along the unit direction `dir` in the world frame, where C's factors keep every radius:
+// y = C^-1 dir, F = u v dir . y, and with S = |B_S y|^2, O = |B_O y|^2 (so that
+// dir . y = u S + v O), F' = u^2 S - v^2 O (qs - qo above) and
+// F'' = -2 (P_S y)^T C^-1 (P_O y) (derivatives in v).
+template <class R, int N>
+struct WorldFrame {
+  Mat<R, N> bs, bo;
+  Vec<R, N> dir;
+  R aspect;  // the larger aspect ratio: F' is computed to about eps times it
+  Terms<R> terms(R u, R v, Maximizer<R, N>* at = nullptr) const noexcept {
+    const WeightedInverse<R, N> c(bs, bo, u, v);
+    const Vec<R, N> h = c.half(dir), y = c.full(h);
+    const Vec<R, N> sy = bs * y, oy = bo * y;
+    const Vec<R, N> ms_y = bs.transpose() * sy, mo_y = bo.transpose() * oy;
+    if (at != nullptr) *at = {y, ms_y, mo_y, detail::stable_norm<R, N>(sy)};
+    const R qs = u * u * sy.squaredNorm(), qo = v * v * oy.squaredNorm();
+    return {u * v * h.squaredNorm(), qs - qo, R(-2) * c.half(ms_y).dot(c.half(mo_y)),
+            R(8) * std::numeric_limits<R>::epsilon() * aspect * (qs + qo)};
+  }
+};
+
+template <class R, class T, int N>
+Mat<R, N> factor(const Ellipsoid<T, N>& x) noexcept {
+  return x.radii().template cast<R>().asDiagonal() * detail::work_axes<R>(x).transpose();
+}
+
+// Pairs whose aspect ratios multiply beyond this are solved in the world frame: in the
+// reduced frame O's semi-axes spread over up to that product, and its rounding, relative to
+// the largest, reached the thinnest (two needles of aspect ratio 1e8: F off by 28%, where
+// the world frame's error is 5e-10).
+inline constexpr double reduced_frame_aspect_limit = 1e12;
+
+// The maximum for the world direction `dir` of O's center from S's (unit), and its vectors.
 template <class R, int N>
 struct Solved {
-  detail::Reduced<R, N> red;
-  Vec<R, N> k;  // the direction in the reduced frame
   Maximum<R> max;
-  R rounding;  // relative rounding of F from the reduction: the map's condition is S's aspect
+  Maximizer<R, N> at;
+  R rounding;  // relative rounding of F from the frame: S's aspect (reduced), both (world)
 };
 
 template <class R, class T, int N>
 Solved<R, N> solve(const Ellipsoid<T, N>& s, const Ellipsoid<T, N>& o, const Vec<R, N>& dir,
                    const Options& options) noexcept {
-  Solved<R, N> out{detail::reduce<R>(s, o), {}, {}, {}};
-  out.k = out.red.to_z * dir;
-  out.max = maximize<R, N>(out.red.e, out.k, options.max_iterations);
-  const R aspect = R(s.radii().maxCoeff()) / R(s.radii().minCoeff());
-  out.rounding = R(4 * detail::reduced_frame_ulps) * std::numeric_limits<R>::epsilon() * aspect;
+  constexpr R eps = std::numeric_limits<R>::epsilon();
+  Solved<R, N> out;
+  const R aspect_s = R(s.radii().maxCoeff()) / R(s.radii().minCoeff());
+  const R aspect_o = R(o.radii().maxCoeff()) / R(o.radii().minCoeff());
+  if (aspect_s * aspect_o > R(reduced_frame_aspect_limit)) {
+    const WorldFrame<R, N> world{factor<R>(s), factor<R>(o), dir, std::max(aspect_s, aspect_o)};
+    out.max = maximize<R>((world.bs * dir).norm(), (world.bo * dir).norm(),
+                          [&](R u, R v) { return world.terms(u, v); }, options.max_iterations);
+    world.terms(out.max.u, out.max.v, &out.at);
+    out.rounding = R(4 * detail::reduced_frame_ulps) * eps * std::max(aspect_s, aspect_o);
+    return out;
+  }
+  const detail::Reduced<R, N> red = detail::reduce<R>(s, o);
+  const Vec<R, N> k = red.to_z * dir;
+  const Vec<R, N> e2 = red.e.cwiseAbs2(), k2 = k.cwiseAbs2();
+  out.max = maximize<R>(k.norm(), red.e.cwiseProduct(k).norm(), [&](R u, R v) { return terms<R, N>(e2, k2, u, v); },
+                        options.max_iterations);
+  // In the Z frame y = k / D (D_i = u + v e_i^2); in the world y = to_z^T (k / D),
+  // M_S^-1 y = to_world (k / D), M_O^-1 y = to_world (e^2 k / D), and |k / D| is S's level.
+  Vec<R, N> z;
+  for (int i = 0; i < N; ++i) z[i] = k[i] / (out.max.u + out.max.v * e2[i]);
+  out.at = {red.to_z.transpose() * z, red.to_world * z, red.to_world * Vec<R, N>(e2.cwiseProduct(z)),
+            detail::stable_norm<R, N>(z)};
+  out.rounding = R(4 * detail::reduced_frame_ulps) * eps * aspect_s;
   return out;
 }
 
@@ -171,9 +312,8 @@ ContactFunction<T> contact_function(const Ellipsoid<T, N>& s, const Ellipsoid<T,
   return value_of<T>(solve<R>(s, o, direction, options), a_is_s, norm);
 }
 
-// F and its gradient (contact_function.hpp) for the pair scaled by 2^-e. In the Z frame, per
-// unit of |r|, y = k / D; in the world frame y = to_z^T (k / D), M_S^-1 y = to_world (k / D)
-// and M_O^-1 y = to_world (e^2 k / D).
+// F and its gradient (contact_function.hpp) for the pair scaled by 2^-e, from the
+// maximizer's y, M_S^-1 y and M_O^-1 y (per unit of |r|).
 template <class R, class T, int N>
 ContactFunctionGradient<T, N> contact_function_gradient(const Ellipsoid<T, N>& s, const Ellipsoid<T, N>& o,
                                                         bool a_is_s, const Vec<R, N>& direction, R norm, int e,
@@ -183,12 +323,7 @@ ContactFunctionGradient<T, N> contact_function_gradient(const Ellipsoid<T, N>& s
   ContactFunctionGradient<T, N> out{value_of<T>(sol, a_is_s, norm), unknown, unknown};
   const Maximum<R>& m = sol.max;
   if (!m.converged) return out;
-  Vec<R, N> z, ez;
-  for (int i = 0; i < N; ++i) {
-    z[i] = sol.k[i] / (m.u + m.v * sol.red.e[i] * sol.red.e[i]);
-    ez[i] = sol.red.e[i] * sol.red.e[i] * z[i];
-  }
-  const Vec<R, N> y = sol.red.to_z.transpose() * z;
+  const Vec<R, N>& y = sol.at.y;
   const R uv2 = R(2) * m.u * m.v * norm;  // 2 lambda (1 - lambda) |r|
   // The body X with weight w and M_X^-1 y = my: d/d radii and d/d phi, in the scaled frame.
   auto body = [&](const Ellipsoid<T, N>& x, R w, const Vec<R, N>& my, const Vec<R, N>& center) {
@@ -199,8 +334,8 @@ ContactFunctionGradient<T, N> contact_function_gradient(const Ellipsoid<T, N>& s
     g.orientation = detail::times<R, N>(detail::turn_rate<R, N>(my, y), -uv2 * norm * w);
     return g;
   };
-  BodyGradient<R, N> gs = body(s, m.u, Vec<R, N>(sol.red.to_world * z), Vec<R, N>(-uv2 * y));
-  BodyGradient<R, N> go = body(o, m.v, Vec<R, N>(sol.red.to_world * ez), Vec<R, N>(uv2 * y));
+  BodyGradient<R, N> gs = body(s, m.u, sol.at.ms_y, Vec<R, N>(-uv2 * y));
+  BodyGradient<R, N> go = body(o, m.v, sol.at.mo_y, Vec<R, N>(uv2 * y));
   // Lengths of the pair scaled by 2^-e: the derivatives by a length scale by 2^-e.
   for (BodyGradient<R, N>* g : {&gs, &go}) {
     g->center = detail::times_pow2(g->center, -e);
@@ -222,14 +357,11 @@ ClosestApproach<T, N> approach(const Ellipsoid<T, N>& s, const Ellipsoid<T, N>& 
   out.iterations = m.iterations;
   out.lambda = T(a_is_s ? m.v : m.u);
   const R sigma = R(1) / std::sqrt(m.f);
-  // The contact point z = u k / D on S's boundary (normalized: |z| = 1 at the maximizer).
-  Vec<R, N> z;
-  for (int i = 0; i < N; ++i) z[i] = sol.k[i] / (m.u + m.v * sol.red.e[i] * sol.red.e[i]);
-  z = detail::unit_vector<R, N>(z);
+  // The contact point M_S^-1 y brought to S's boundary, where S's outward normal is along y.
   const Vec<R, N> center_s = a_is_s ? Vec<R, N>(s.center().template cast<R>())
                                     : Vec<R, N>(o.center().template cast<R>() + sigma * u);
-  out.point = (center_s + sol.red.to_world * z).template cast<T>();
-  const Vec<R, N> n = detail::unit_vector<R, N>(sol.red.normal_map * z);
+  out.point = (center_s + sol.at.ms_y / sol.at.level).template cast<T>();
+  const Vec<R, N> n = detail::unit_vector<R, N>(sol.at.y);
   out.normal = (a_is_s ? n : Vec<R, N>(-n)).template cast<T>();
   if (m.converged) {
     out.status = ContactFunctionStatus::ok;

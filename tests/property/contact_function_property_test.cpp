@@ -24,6 +24,10 @@
 #include "tests/reference/contact_function_reference.hpp"
 
 #include <cmath>
+#include <cstdio>
+#include <map>
+#include <sstream>
+#include <string>
 
 namespace {
 namespace ELLIPSECT_UNITY_ID {
@@ -212,6 +216,72 @@ void near_contact(int count) {
 
 TEST(ContactFunctionProperty, NearContact2D) { near_contact<2>(cases(60)); }
 TEST(ContactFunctionProperty, NearContact3D) { near_contact<3>(cases(60)); }
+
+// Needles and discs of aspect ratio A = 1e4..1e8 (the largest accepted), every pair of the
+// two shapes, touching (relative gaps 1e-9..1e-1 either way) or placed at random: F and
+// sigma (along a random direction) within 1e-12 + 2 eps A relative (A the larger aspect
+// ratio of the two), lambda within 1e-10 min(lambda, 1 - lambda) + 1e-12 up to A = 1e4 and
+// 1e-12 A min(lambda, 1 - lambda) + 1e-12 beyond; F bit for bit under swapping
+// (contact_function.hpp).
+template <int N>
+void high_aspect(int per_aspect) {
+  constexpr double eps = std::numeric_limits<double>::epsilon();
+  std::map<std::string, double> worst;
+  for (const double aspect : {1e4, 1e5, 1e6, 1e7, 1e8}) {
+    const double A = aspect * 0.99;  // within max_aspect_ratio after the draws below
+    for (int i = 0; i < per_aspect; ++i) {
+      scenarios::detail::Rng rng(static_cast<std::uint64_t>(i) * 131 + static_cast<std::uint64_t>(std::log10(aspect)));
+      auto shape = [&](int kind) {
+        const double size = scenarios::detail::log_uniform(rng, 0.3, 3);
+        Vec<double, N> r = Vec<double, N>::Constant(size);
+        r[N - 1] = size / A;  // a disc (3D) or a needle (2D)
+        if (kind == 1) r.template head<N - 1>().template tail<1>()[0] = size * 1.001 / A;  // a needle (3D)
+        if (kind == 0) r[0] = size * scenarios::detail::log_uniform(rng, 1, 1.0 / 0.99);
+        return r;
+      };
+      const Vec<double, N> ra = shape(i % 2), rb = shape((i / 2) % 2);
+      const auto a = Ellipsoid<double, N>::from_axes(scenarios::detail::unit_vector<N>(rng),
+                                                     scenarios::detail::rotation<N>(rng), ra);
+      const Mat<double, N> axes_b = scenarios::detail::rotation<N>(rng);
+      const double gap = (i % 4 < 2 ? -1 : 1) * scenarios::detail::log_uniform(rng, 1e-9, 1e-1);
+      const Vec<double, N> cb =
+          i % 3 != 0 ? scenarios::detail::tangent_center<N>(a, scenarios::detail::unit_vector<N>(rng), axes_b, rb, gap)
+                     : Vec<double, N>(a.center() + scenarios::detail::unit_vector<N>(rng) * (ra.maxCoeff() + rb.maxCoeff()) *
+                                                       scenarios::detail::uniform(rng, 0, 1));
+      const auto b = Ellipsoid<double, N>::from_axes(cb, axes_b, rb);
+      const double largest = std::max(ra.maxCoeff() / ra.minCoeff(), rb.maxCoeff() / rb.minCoeff());
+      const double bound = 1e-12 + 2 * eps * largest;
+      std::ostringstream what;
+      what.precision(17);
+      what << "high aspect " << aspect << " case " << i << " (rerun with its seed)\n  a: c=" << a.center().transpose()
+           << " r=" << ra.transpose() << "\n  b: c=" << cb.transpose() << " r=" << rb.transpose();
+      const auto got = perram_wertheim(a, b);
+      ASSERT_EQ(got.status, ContactFunctionStatus::ok) << what.str();
+      const auto want = ref::contact_function<N>(to_ref(a), to_ref(b));
+      const double f = ref::to_double(want.f), lambda = ref::to_double(want.lambda);
+      ASSERT_LE(std::abs(got.f - f), bound * f) << what.str();
+      const double lambda_bound = (largest <= 1e4 ? 1e-10 : 1e-12 * largest) * std::min(lambda, 1 - lambda) + 1e-12;
+      ASSERT_LE(std::abs(got.lambda - lambda), lambda_bound) << what.str();
+      const auto swapped = perram_wertheim(b, a);
+      ASSERT_EQ(swapped.f, got.f) << what.str();
+      const Vec<double, N> u = scenarios::detail::unit_vector<N>(rng);
+      const auto ca = closest_approach(a, b, u);
+      const double sigma = ref::to_double(ref::closest_approach<N>(to_ref(a), to_ref(b), u));
+      ASSERT_EQ(ca.status, ContactFunctionStatus::ok) << what.str();
+      ASSERT_LE(std::abs(ca.distance - sigma), bound * sigma) << what.str();
+      const std::string bin = "aspect 1e" + std::to_string(int(std::lround(std::log10(aspect))));
+      worst[bin + " F"] = std::max(worst[bin + " F"], std::abs(got.f - f) / f);
+      worst[bin + " sigma"] = std::max(worst[bin + " sigma"], std::abs(ca.distance - sigma) / sigma);
+      worst[bin + " lambda"] = std::max(worst[bin + " lambda"], std::abs(got.lambda - lambda) / std::min(lambda, 1 - lambda));
+    }
+  }
+  std::printf("high aspect %dD, largest relative errors:", N);
+  for (const auto& [what, e] : worst) std::printf(" %s %.2g;", what.c_str(), e);
+  std::printf("\n");
+}
+
+TEST(ContactFunctionProperty, HighAspect2D) { high_aspect<2>(cases(40)); }
+TEST(ContactFunctionProperty, HighAspect3D) { high_aspect<3>(cases(40)); }
 
 // float bodies: computed in double from the float data, so against the reference of the
 // float bodies (converted exactly), to the rounding of float axes (orthonormal to ~1e-7).
