@@ -2,6 +2,8 @@
 // (along a fixed direction), 2D and 3D, on the seeded scenario
 // mix of the tests (scenarios/scenarios.hpp): every category in equal parts, or one
 // category alone (the /category argument is its index in all_categories; -1 = the mix).
+// BM_perram_wertheim_needles/k: touching needles and discs of aspect ratio 10^k.
+// BM_classify_moved is classify on the same pairs moved 1e6 sizes from the origin.
 // BM_overlap_from_pose/3 builds both bodies from their poses (bench_support.hpp: center,
 // quaternion, radii) inside the timed query; BM_make_* and BM_from_axes time one factory
 // call on the bodies of the mix (both bodies of every case).
@@ -14,6 +16,7 @@
 
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <cmath>
 #include <utility>
 #include <vector>
@@ -56,6 +59,48 @@ template <int N>
 void BM_classify(benchmark::State& state) {
   bench::time_cases(state, cases<N>(static_cast<int>(state.range(0))), [](const auto& c) { return classify(c.a, c.b); });
   label(state);
+}
+
+// The same pairs moved together 1e6 sizes from the origin (along a fixed direction; the
+// moved coordinates round): classify's cost should not depend on where the pair lies.
+template <int N>
+std::vector<scenarios::Case<N>> moved_cases(int category) {
+  std::vector<scenarios::Case<N>> out = cases<N>(category);
+  const Vec<double, N> direction = Vec<double, N>::Ones().normalized();
+  for (auto& c : out) {
+    const Vec<double, N> offset = direction * (1e6 * std::max(c.a.radii().maxCoeff(), c.b.radii().maxCoeff()));
+    c.a = c.a.translated(offset);
+    c.b = c.b.translated(offset);
+  }
+  return out;
+}
+
+template <int N>
+void BM_classify_moved(benchmark::State& state) {
+  bench::time_cases(state, moved_cases<N>(static_cast<int>(state.range(0))), [](const auto& c) { return classify(c.a, c.b); });
+  label(state);
+}
+
+// perram_wertheim on touching needles (or, in 3D, needle against disc) of aspect ratio 10^k
+// (state.range(0) = k): from k = 6 on the pair's aspect ratios multiply beyond 1e12 and it
+// is solved in the world frame (contact_function.hpp).
+template <int N>
+void BM_perram_wertheim_needles(benchmark::State& state) {
+  using namespace scenarios::detail;
+  const double aspect = std::pow(10.0, double(state.range(0))) * 0.99;
+  std::vector<std::pair<Ellipsoid<double, N>, Ellipsoid<double, N>>> pairs;
+  for (int i = 0; i < cases_per_category; ++i) {
+    Rng rng(static_cast<std::uint64_t>(i) + 4400);
+    Vec<double, N> ra = Vec<double, N>::Constant(1), rb = Vec<double, N>::Constant(1.5);
+    ra[N - 1] = 1.001 / aspect;
+    rb[0] = 1.5 / aspect;
+    if constexpr (N == 3) ra[1] = 1 / aspect;
+    const auto a = Ellipsoid<double, N>::from_axes(unit_vector<N>(rng), rotation<N>(rng), ra);
+    const Mat<double, N> axes_b = rotation<N>(rng);
+    const Vec<double, N> cb = tangent_center<N>(a, unit_vector<N>(rng), axes_b, rb, 1e-6);
+    pairs.emplace_back(a, Ellipsoid<double, N>::from_axes(cb, axes_b, rb));
+  }
+  bench::time_cases(state, pairs, [](const auto& p) { return perram_wertheim(p.first, p.second).f; });
 }
 
 template <int N>
@@ -141,10 +186,14 @@ BENCHMARK(BM_overlap<2>)->Apply(categories);
 BENCHMARK(BM_overlap<3>)->Apply(categories);
 BENCHMARK(BM_classify<2>)->Apply(categories);
 BENCHMARK(BM_classify<3>)->Apply(categories);
+BENCHMARK(BM_classify_moved<2>)->Apply(categories);
+BENCHMARK(BM_classify_moved<3>)->Apply(categories);
 BENCHMARK(BM_first_contact<2>)->Apply(categories);
 BENCHMARK(BM_first_contact<3>)->Apply(categories);
 BENCHMARK(BM_perram_wertheim<2>)->Apply(categories);
 BENCHMARK(BM_perram_wertheim<3>)->Apply(categories);
+BENCHMARK(BM_perram_wertheim_needles<2>)->DenseRange(2, 8, 2);
+BENCHMARK(BM_perram_wertheim_needles<3>)->DenseRange(2, 8, 2);
 BENCHMARK(BM_closest_approach<2>)->Apply(categories);
 BENCHMARK(BM_closest_approach<3>)->Apply(categories);
 BENCHMARK(BM_overlap_from_pose<3>)->Apply(categories);

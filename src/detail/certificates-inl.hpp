@@ -21,9 +21,10 @@
 //   evaluated at the two-ball maximizer l = rho_a / (rho_a + rho_b) (rho: support radii
 //   along r), then at Newton iterates while a lane is open. cond(C) <= (largest aspect
 //   ratio)^2; C is solved in closed form up to aspect 100 (rounding ~ eps cond(C)^2 <=
-//   1e8 eps) and by L D L^T beyond (~ eps cond(C) <= 1e8 eps), plus eps |c| / r_min from
-//   the world coordinates. F is used for aspect ratios up to 1e4, with margin = 1e-6 +
-//   1024 eps (1e8 + |c| / r_min), about 2.4e-5.
+//   1e8 eps) and by L D L^T beyond (~ eps cond(C) <= 1e8 eps), plus eps |r| / r_min from
+//   the centers' offset (rounded once; where the pair lies does not count). F is used for
+//   aspect ratios up to 1e4, with margin = 1e-6 + 1024 eps (1e8 + |r| / r_min), about
+//   2.4e-5.
 //   a's support point away from b, c_a - Sa r / rho_a, has b's quadric >= 1.02 and b's away
 //   from a has a's quadric >= 1.02            -> neither body inside the other
 //   sqrt(qa(c_b)) + sqrt(tr(Ma Sb)) <= 1 - margin  -> a contains b (and the same for b)
@@ -345,7 +346,8 @@ ELLIPSECT_LANE auto ball_tests(const BodyLanes<V, N>& a, const BodyLanes<V, N>& 
 }
 
 // F is used for aspect ratios up to 1e4, so cond(C) <= 1e8; its margin is 1e-6 above
-// 1024 times the rounding estimate eps (cond(C) + |c| / r_min) of F and the quadrics.
+// 1024 times the rounding estimate eps (cond(C) + |r| / r_min) of F and the quadrics, r the
+// centers' offset.
 template <class V, int N>
 ELLIPSECT_LANE auto aspect_gate(const BodyLanes<V, N>& a, const BodyLanes<V, N>& b) {
   const V aspect = Splat<V>(1e4);
@@ -353,12 +355,12 @@ ELLIPSECT_LANE auto aspect_gate(const BodyLanes<V, N>& a, const BodyLanes<V, N>&
 }
 
 template <class V, int N>
-ELLIPSECT_LANE V certificate_margin(const BodyLanes<V, N>& a, const BodyLanes<V, N>& b) {
-  V world = Splat<V>(0);
-  for (int i = 0; i < N; ++i) world = world + (Abs(a.c[i]) + Abs(b.c[i]));
-  world = world / Min(a.rmin, b.rmin);
+ELLIPSECT_LANE V certificate_margin(const BodyLanes<V, N>& a, const BodyLanes<V, N>& b, const V* r) {
+  V offset = Splat<V>(0);
+  for (int i = 0; i < N; ++i) offset = offset + Abs(r[i]);
+  offset = offset / Min(a.rmin, b.rmin);
   constexpr double ulp_scale = 1024 * std::numeric_limits<double>::epsilon();
-  return Splat<V>(1e-6 + ulp_scale * 1e8) + Splat<V>(ulp_scale) * world;
+  return Splat<V>(1e-6 + ulp_scale * 1e8) + Splat<V>(ulp_scale) * offset;
 }
 
 // classify's code from its certified masks, first that holds: -1 separated, +1 overlapping
@@ -392,7 +394,7 @@ ELLIPSECT_LANE V certify(const BodyLanes<V, N>& a, const BodyLanes<V, N>& b, V t
   }
   const auto aspect_ok = aspect_gate<V, N>(a, b);
   auto gate = aspect_ok;
-  const V margin = certificate_margin<V, N>(a, b);
+  const V margin = certificate_margin<V, N>(a, b, r);
 
   const auto& sa = a.s;
   const auto& sb = b.s;
@@ -512,7 +514,7 @@ bool centre_line_meets(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b, const
     return 1 / std::sqrt(q);  // concentric: infinite
   };
   const double t = reach(a) + reach(b);
-  return aspect_gate<double, N>(la, lb) && t * t * (1 - certificate_margin<double, N>(la, lb)) >= 1;
+  return aspect_gate<double, N>(la, lb) && t * t * (1 - certificate_margin<double, N>(la, lb, r)) >= 1;
 }
 
 template <bool containment, class T, int N>

@@ -94,14 +94,15 @@ ReducedRelation classify_reduced(const Vec<R, N>& e, const Vec<R, N>& k, R tol, 
 }
 
 // Rounding of reduced-frame distances: the SVD and the frame change carry about `ulps`
-// ulps relative to |k|, O's largest semi-axis and the world positions in S units.
+// ulps relative to |k|, O's largest semi-axis and the centers' offset in S units (k =
+// to_z (c_o - c_s), the offset rounded once: the pair's place in the world does not count).
 inline constexpr int reduced_frame_ulps = 32;
 
 template <class R, int N, class T>
 R reduced_rounding(const Ellipsoid<T, N>& s, const Ellipsoid<T, N>& o, const Vec<R, N>& e, const Vec<R, N>& k) noexcept {
-  const R world = R(s.center().norm()) + R(o.center().norm());
+  const R offset = Vec<R, N>(o.center().template cast<R>() - s.center().template cast<R>()).norm();
   return R(reduced_frame_ulps) * std::numeric_limits<R>::epsilon() *
-         (k.norm() + e.maxCoeff() + world / R(s.radii().minCoeff()));
+         (k.norm() + e.maxCoeff() + offset / R(s.radii().minCoeff()));
 }
 
 }  // namespace ellipsect::detail
