@@ -3,8 +3,6 @@
 #include "common.hpp"
 #include "mesh_file.hpp"
 
-#include <Eigen/SVD>
-
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
@@ -121,9 +119,8 @@ Mat<double, N> checked_rotation(const Orientation& o) {
     fail(o.where(), "not a rotation matrix: max |R^T R - I| = " + number_string(dev) + " exceeds " +
                       number_string(orientation_tolerance));
   if (R.determinant() < 0) fail(o.where(), "is a reflection (determinant -1), not a rotation");
-  // Nearest orthonormal matrix (polar factor), so tiny input rounding is removed.
-  Eigen::JacobiSVD<Mat<double, N>> svd(R, Eigen::ComputeFullU | Eigen::ComputeFullV);
-  return svd.matrixU() * svd.matrixV().transpose();
+  // Made exact by the library's normalization (shapes.hpp: the polar factor), as Python's.
+  return normalized_rotation<double, N>(R);
 }
 
 template <int N>
@@ -156,8 +153,7 @@ Ellipsoid<double, N> build_shape(const Vec<double, N>& center, const Vec<double,
             fail(o.where(), "not a unit quaternion: |q| = " + number_string(norm) +
                               " (quaternions are rejected unless | |q| - 1 | <= 1e-6; write them with more digits, "
                               "or use a rotation matrix)");
-          const Eigen::Vector4d u = q / norm;
-          return make_ellipsoid<double>(center, Eigen::Quaterniond(u[0], u[1], u[2], u[3]), radii);
+          return make_ellipsoid<double>(center, normalized_quaternion<double>(Quat<double>(q[0], q[1], q[2], q[3])), radii);
         }
         case Orientation::rotation: return make_ellipsoid<double>(center, checked_rotation<3>(o), radii);
         case Orientation::angle: fail(o.where(), "an angle orients a 2D body; this scene is 3D (use quaternion or rotation)");
