@@ -17,7 +17,8 @@
 //   closest_point           within 1e-14 scale of the untranslated distance, the point the
 //                           untranslated point plus the offset to 1e-14 scale and the
 //                           rounding of its coordinates;
-//   first_contact           linear and rigid (contact.hpp, "Rigid motion against shapes"):
+//   first_contact           linear and rigid, turning and turning while growing (contact.hpp,
+//                           "Rigid motion against shapes"):
 //                           the untranslated status, and the untranslated time to 1e-12
 //                           of scale / closing speed for head-on approaches (the contact
 //                           is transversal);
@@ -115,29 +116,33 @@ double scale_of(const Ellipsoid<double, N>& a, const std::vector<ref::DVec<N>>& 
   return s;
 }
 
-// Linear and rigid first contact, translated against untranslated, for head-on motion.
+// Linear and rigid first contact (turning, and turning while growing), translated against
+// untranslated, for head-on motion.
 template <int N, class Shape, class Query>
 void check_contacts(const std::string& what, double scale, const Vec<double, N>& w, const Query& query) {
-  const Contact<double, N> c0 = query(false, false), c1 = query(true, false);
+  const Contact<double, N> c0 = query(false, false, 0.0), c1 = query(true, false, 0.0);
   ASSERT_EQ(c1.status, c0.status) << what;
   if (c0.status == ContactStatus::hit) {
     ASSERT_NEAR(c1.time, c0.time, 1e-12 * scale / w.norm()) << what;
   }
-  const Contact<double, N> r0 = query(false, true), r1 = query(true, true);
-  if (r0.status == ContactStatus::did_not_converge || r1.status == ContactStatus::did_not_converge) return;
-  ASSERT_EQ(r1.status, r0.status) << what << " (rigid)";
-  // The rigid query against a shape runs in the body's frame (contact.hpp); it formed the
-  // body and the shape's vertices in world coordinates, whose times moved by up to 4.7e-9 of
-  // size / speed 1e6 sizes out.
-  if (r0.status == ContactStatus::hit) {
-    ASSERT_NEAR(r1.time, r0.time, 1e-12 * scale / w.norm()) << what << " (rigid)";
+  for (const double growth : {0.0, 0.2}) {
+    const Contact<double, N> r0 = query(false, true, growth), r1 = query(true, true, growth);
+    if (r0.status == ContactStatus::did_not_converge || r1.status == ContactStatus::did_not_converge) continue;
+    ASSERT_EQ(r1.status, r0.status) << what << " (rigid, growth " << growth << ")";
+    // The rigid query against a shape runs in the body's frame (contact.hpp); it formed the
+    // body and the shape's vertices in world coordinates, whose times moved by up to 4.7e-9
+    // of size / speed 1e6 sizes out.
+    if (r0.status == ContactStatus::hit) {
+      ASSERT_NEAR(r1.time, r0.time, 1e-12 * scale / w.norm()) << what << " (rigid, growth " << growth << ")";
+    }
   }
 }
 
 template <int N>
-RigidMotion<double, N> spinning(const Vec<double, N>& velocity) {
+RigidMotion<double, N> spinning(const Vec<double, N>& velocity, double growth) {
   RigidMotion<double, N> m;
   m.velocity = velocity;
+  m.growth = growth;
   if constexpr (N == 2) {
     m.angular_velocity = 0.3;
   } else {
@@ -173,10 +178,10 @@ void check_polytope(const std::string& kind, int seed, const Ellipsoid<double, N
   Vec<double, N> centroid = Vec<double, N>::Zero();
   for (const auto& v : vertices) centroid += v / double(vertices.size());
   const Vec<double, N> w = (a.center() - centroid).normalized();
-  check_contacts<N, Shape>(what, scale, w, [&](bool moved, bool rigid) {
+  check_contacts<N, Shape>(what, scale, w, [&](bool moved, bool rigid, double growth) {
     const auto& a_ = moved ? a1 : a;
     const auto& b_ = moved ? b1 : b;
-    if (rigid) return first_contact(a_, spinning<N>(Vec<double, N>::Zero()), b_, w, inf);
+    if (rigid) return first_contact(a_, spinning<N>(Vec<double, N>::Zero(), growth), b_, w, inf);
     return first_contact(a_, Vec<double, N>::Zero(), b_, w, inf);
   });
 }
@@ -247,10 +252,10 @@ void run_half_spaces_and_points(int cases) {
       tally["half-space " + std::string(to_string(r1))]++;
       ASSERT_NEAR(signed_distance(a1, h1).distance, lower, 1e-14 * (R + std::abs(lower))) << what;
       const Vec<double, N> w = -h.normal();
-      check_contacts<N, HalfSpace<double, N>>(what, R + std::abs(lower), w, [&](bool moved, bool rigid) {
+      check_contacts<N, HalfSpace<double, N>>(what, R + std::abs(lower), w, [&](bool moved, bool rigid, double growth) {
         const auto& a_ = moved ? a1 : a;
         const auto& h_ = moved ? h1 : h;
-        if (rigid) return first_contact(a_, spinning<N>(Vec<double, N>::Zero()), h_, w, inf);
+        if (rigid) return first_contact(a_, spinning<N>(Vec<double, N>::Zero(), growth), h_, w, inf);
         return first_contact(a_, Vec<double, N>::Zero(), h_, w, inf);
       });
       if (::testing::Test::HasFatalFailure()) return;
@@ -312,10 +317,10 @@ void run_meshes_and_slides(int cases) {
     tally["mesh " + std::string(to_string(r1.relation))]++;
     ASSERT_NEAR(signed_distance(a1, m1).distance.distance, least, 1e-12 * scale) << what;
     const Vec<double, N> w = (a.center() - at).normalized();
-    check_contacts<N, TriangleMesh<double, N>>(what, scale, w, [&](bool moved, bool rigid) {
+    check_contacts<N, TriangleMesh<double, N>>(what, scale, w, [&](bool moved, bool rigid, double growth) {
       const auto& a_ = moved ? a1 : a;
       const auto& m_ = moved ? m1 : m;
-      if (rigid) return first_contact(a_, spinning<N>(Vec<double, N>::Zero()), m_, w, inf).contact;
+      if (rigid) return first_contact(a_, spinning<N>(Vec<double, N>::Zero(), growth), m_, w, inf).contact;
       return first_contact(a_, Vec<double, N>::Zero(), m_, w, inf).contact;
     });
     if (::testing::Test::HasFatalFailure()) return;
