@@ -72,7 +72,7 @@ double dot_spin(const Spin<N>& x, const Spin<N>& y) {
 // Velocity of the material point at r from the center.
 template <int N>
 Vec<double, N> point_velocity(const RigidMotion<double, N>& m, const Vec<double, N>& r) {
-  return m.velocity + detail::rigid::cross<N>(m.angular_velocity, r);
+  return m.velocity + detail::rigid::spin_cross<N>(m.angular_velocity, r);
 }
 
 template <int N>

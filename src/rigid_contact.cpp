@@ -82,7 +82,7 @@ struct BodyParty {
     return slab_step<T, N>(between / apart);
   }
   Distance<T, N> exact(const Ellipsoid<T, N>& body_a) const noexcept { return signed_distance(body_a, body_b, options); }
-  Side side(const Vec<R, N>& n, const Ellipsoid<T, N>&) const noexcept {
+  Party side(const Vec<R, N>& n, const Ellipsoid<T, N>&) const noexcept {
     Vec<R, N> offset;
     const R rho = support(body_b, n, offset);
     const R center = n.dot(body_b.center().template cast<R>());
@@ -187,7 +187,7 @@ T refined(T time, const Vec<T, N>& normal, const Ellipsoid<T, N>& a, const Rigid
     const Vec<L, N> radii = x.radii().template cast<L>();
     const Vec<L, N> w = radii.cwiseProduct(axes.transpose() * n);
     const L rho = w.norm(), scale = 1 + g * t;
-    turned = scale * n.dot(cross<N>(m.angular_velocity, Vec<L, N>(axes * radii.cwiseProduct(w) / rho)));
+    turned = scale * n.dot(spin_cross<N>(m.angular_velocity, Vec<L, N>(axes * radii.cwiseProduct(w) / rho)));
     rate = turned + g * rho;
     return scale * rho;
   };
@@ -224,7 +224,8 @@ T refined(T time, const Vec<T, N>& normal, const Ellipsoid<T, N>& a, const Rigid
   const L speed = u.norm(), apart = r0.norm();
   // The bounds of advance (detail/rigid_motion.hpp, Turning) at t, with |omega x n| in L and
   // the factors computed in double (sweep, spin) widened by far more than their rounding.
-  const L across_a = cross<N>(wa.angular_velocity, n).norm(), across_b = cross<N>(wb.angular_velocity, n).norm();
+  const L across_a = spin_cross<N>(wa.angular_velocity, n).norm();
+  const L across_b = spin_cross<N>(wb.angular_velocity, n).norm();
   auto bend = [](const Turning<T, N>& x, L across) {
     return L(x.big) * L(x.big) * across * across / L(x.small) + L(x.big) * L(x.spin) * across;
   };

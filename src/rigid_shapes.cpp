@@ -120,7 +120,7 @@ struct ShapeParty {
     return distance(body, shape, options);
   }
   Distance<T, N> exact(const Ellipsoid<T, N>& body) const noexcept { return signed_distance(body, shape, options); }
-  Side side(const Vec<R, N>& n, const Ellipsoid<T, N>&) const noexcept {
+  Party side(const Vec<R, N>& n, const Ellipsoid<T, N>&) const noexcept {
     const Lowest l = lowest_of<T, N>(n, shape);
     return {l.low, 0, 0, 0, 0, l.magnitude, 0, 0};
   }

@@ -63,7 +63,9 @@ struct Mesh {
   }
   // The hierarchy is in world coordinates: the body's center there, and its half-extents
   // grown by that center's rounding.
-  Vec<W, N> center(const Ellipsoid<T, N>& body) const { return body.center().template cast<W>() + origin.template cast<W>(); }
+  Vec<W, N> center(const Ellipsoid<T, N>& body) const {
+    return body.center().template cast<W>() + origin.template cast<W>();
+  }
   Vec<W, N> extents(const Ellipsoid<T, N>& body, const Vec<W, N>& c) const {
     return detail::half_extents(body, tolerance).array() + W(2) * std::numeric_limits<W>::epsilon() * c.cwiseAbs().maxCoeff();
   }

@@ -21,7 +21,7 @@ using Omega = decltype(RigidMotion<T, N>::angular_velocity);
 
 // omega x v; in 2D omega is the rate about the normal of the plane.
 template <int N, class W, class S>
-Vec<S, N> cross(const W& omega, const Vec<S, N>& v) noexcept {
+Vec<S, N> spin_cross(const W& omega, const Vec<S, N>& v) noexcept {
   if constexpr (N == 2) {
     return Vec<S, 2>(-S(omega) * v[1], S(omega) * v[0]);
   } else {
@@ -128,10 +128,10 @@ struct Turning {
   R configuration(R t) const noexcept {
     return t == R(0) ? R(0) : 4 * (center + t * speed + big * scale(t) * (8 + spin * t));
   }
-  R across(const Vec<R, N>& n) const noexcept { return cross<N>(motion.angular_velocity, n).stableNorm(); }
+  R across(const Vec<R, N>& n) const noexcept { return spin_cross<N>(motion.angular_velocity, n).stableNorm(); }
   // (omega x s) . n: the turn's part of the support radius's rate.
   R turn(const Vec<R, N>& n, const Vec<R, N>& offset) const noexcept {
-    return n.dot(cross<N>(motion.angular_velocity, offset));
+    return n.dot(spin_cross<N>(motion.angular_velocity, offset));
   }
   // The support radius's rate at t, its rise rate bound and its curvature bound (above).
   R rate(R t, R rho, R turned) const noexcept { return growth == R(0) ? turned : turned + growth / scale(t) * rho; }
@@ -165,7 +165,7 @@ Distance<T, N> slab_step(const Vec<R, N>& u) noexcept {
 // rounding: `configuration` in units of T's epsilon, `magnitude` the size of what low is
 // computed from (for the gap's own rounding), `speed` for the rates' rounding, `small` its
 // smallest radius (0 for a shape).
-struct Side {
+struct Party {
   R low, rate, falling, curvature, configuration, magnitude, speed, small;
   R reach = std::numeric_limits<R>::infinity();
 };
@@ -177,7 +177,7 @@ struct Side {
 //                                         slab_step; never with touched, which asks for the
 //                                         distance itself);
 //   Distance<T, N> exact(body)            the signed distance at t (for a hit found overlapping);
-//   Side side(n, body)                    as above;
+//   Party side(n, body)                   as above;
 //   bool never(n, body, margin)           certifies that the two never meet from t on.
 template <class T, int N, class Other>
 Contact<T, N> advance(const Ellipsoid<T, N>& a, const RigidMotion<T, N>& motion, T t_max, const Options& options,
@@ -226,7 +226,7 @@ Contact<T, N> advance(const Ellipsoid<T, N>& a, const RigidMotion<T, N>& motion,
     Vec<R, N> offset;
     const R rho = support(body, n, offset);
     const R along = n.dot(body.center().template cast<R>());
-    const Side b = other.side(n, body);
+    const Party b = other.side(n, body);
     // The gap g_n = low - n . c - rho, less the rounding of this step's bodies and its own.
     const R margin = ulp * (turning.configuration(t) + b.configuration) + 8 * eps * (std::abs(along) + rho + b.magnitude);
     const R gap = b.low - along - rho - margin;

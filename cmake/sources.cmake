@@ -1,0 +1,10 @@
+# The library's sources and their per-file settings, for every build that compiles them: the
+# library (../CMakeLists.txt) and the demo page's module (../web/CMakeLists.txt).
+get_filename_component(ellipsect_source_root ${CMAKE_CURRENT_LIST_DIR}/../src ABSOLUTE)
+# ellipsect_sources: every .cpp under src/, subfolders included.
+file(GLOB_RECURSE ellipsect_sources CONFIGURE_DEPENDS ${ellipsect_source_root}/*.cpp)
+# Every SIMD lane must round as the scalar code does (batch = scalar bit for bit), and the
+# error-free products of detail/compensated.hpp stay error-free: no fused multiply-adds.
+# (A unity build compiles files with options of their own alone.)
+set_source_files_properties(${ellipsect_source_root}/batch_kernels.cpp ${ellipsect_source_root}/half_space.cpp
+                            ${ellipsect_source_root}/triangle.cpp PROPERTIES COMPILE_OPTIONS -ffp-contract=off)
