@@ -342,9 +342,9 @@ struct Cholesky {
       }
     }
   }
-  // Every column of b at once.
-  template <int M>
-  Eigen::Matrix<R, N, M> solve(Eigen::Matrix<R, N, M> b) const noexcept {
+  // Every column of b (N rows) at once.
+  template <class B>
+  B solve(B b) const noexcept {
     for (int i = 0; i < N; ++i) {
       for (int k = 0; k < i; ++k) b.row(i) -= l(i, k) * b.row(k);
       b.row(i) /= l(i, i);
