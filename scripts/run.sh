@@ -6,7 +6,8 @@
 #                                 (Release build, the demo page's browser test, the Python
 #                                 package's tests, then the sanitized build's tests and
 #                                 every fuzz target on its kept inputs and corpus and a
-#                                 short seeded mutation run)
+#                                 short seeded mutation run, then the suites on the
+#                                 emulated wide type of narrow-long-double platforms)
 #   bash scripts/run.sh fuzz [NAME [SECONDS]]   the long run of one fuzz target or all
 #                                 (default 600 s each; docs/fuzzing.md)
 #   bash scripts/run.sh bench [NAME [ARGS]]   install what is missing, build, run
@@ -230,6 +231,13 @@ case "${1:-}" in
     (cd build/sanitize && ELLIPSECT_CASE_SCALE=0.05 ctest --output-on-failure --no-tests=error -j "$(nproc)")
     step "fuzz targets: kept inputs, then corpus and seeded mutation run"
     fuzz_all
+    # The certified fallbacks as platforms whose long double is double compute them
+    # (src/detail/wide.hpp): the unit, property and reference suites in build/narrow.
+    step "emulated wide type: build and tests"
+    build build/narrow --target unit_tests --target property_tests --target reference_selftest \
+      -DCMAKE_BUILD_TYPE=Release -DELLIPSECT_BUILD_TESTS=ON -DELLIPSECT_BUILD_BENCH=OFF -DELLIPSECT_BUILD_TOOLS=OFF \
+      -DELLIPSECT_EMULATED_WIDE=ON -DELLIPSECT_CUDA=OFF -DELLIPSECT_UNITY_LIBRARY=ON
+    (cd build/narrow && ctest --output-on-failure --no-tests=error -j "$(nproc)" -E consumer_project)
     step "all passed"
     ;;
   fuzz)

@@ -6,6 +6,7 @@
 #include "detail/gradient.hpp"
 #include "detail/instantiate.hpp"
 #include "detail/polytope_distance.hpp"
+#include "detail/math.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -79,7 +80,7 @@ std::pair<Relation, int> relation_of(const Ellipsoid<T, N>& a, const Box<T, N>& 
   if (contained == int(triangles.size())) return {Relation::a_contains_b, -1};
   bool center_inside = true;
   const Vec<T, N> local = b.axes().transpose() * Vec<T, N>(a.center() - b.center());
-  for (int i = 0; i < N; ++i) center_inside = center_inside && std::abs(local[i]) <= b.half_extents()[i];
+  for (int i = 0; i < N; ++i) center_inside = center_inside && abs(local[i]) <= b.half_extents()[i];
   if (overlapping < 0 && !center_inside) return {touching < 0 ? Relation::separated : Relation::touching, touching};
   // The body meets the box: inside it when inside each face's half-space.
   for (int i = 0; i < N; ++i)
@@ -119,7 +120,7 @@ detail::Near near_features(const Ellipsoid<T, N>& a, const Box<T, N>& b, const s
   std::array<unsigned, N> allowed{};
   for (int i = 0; i < N; ++i) {
     const W rho = r.cwiseProduct(body.transpose() * box.col(i)).norm();
-    const W margin = W(1e-9) * (std::abs(c[i]) + rho + reach + h[i]) + corners;
+    const W margin = W(1e-9) * (abs(c[i]) + rho + reach + h[i]) + corners;
     const W lo = c[i] - rho - reach - margin, hi = c[i] + rho + reach + margin;
     if (!(lo <= hi)) return {};  // not finite: no certificate
     allowed[i] = unsigned(lo <= -h[i] && -h[i] <= hi) | unsigned(lo <= h[i] && h[i] <= hi) << 1 |
@@ -184,7 +185,7 @@ Settled settled_relation(const InBoxFrame<T, N>& f) noexcept {
   const Vec<W, N> in_body = f.to_body * to_q;
   if (in_body.cwiseQuotient(f.r).norm() < 1 - f.band / f.r.maxCoeff()) return Settled::overlapping;
   for (int i = 0; i < N; ++i)
-    if (std::abs(f.c[i]) - f.h[i] - f.rho[i] > f.band) return Settled::separated;
+    if (abs(f.c[i]) - f.h[i] - f.rho[i] > f.band) return Settled::separated;
   const W gap = to_q.norm();  // > 0 here: c is outside the box
   if (gap - f.r.cwiseProduct(in_body).norm() / gap > f.band) return Settled::separated;
   return Settled::unsettled;
@@ -351,7 +352,7 @@ DistanceGradient<T, N, BoxGradient<T, N>> signed_distance_gradient(const Ellipso
       const Vec<R, 3> u = local(n, p, d);
       int free = -1;
       for (int i = 0; i < 3; ++i) {
-        if (std::abs(u[i]) < R(b.half_extents()[i]) * R(1 - 1e-9)) {
+        if (abs(u[i]) < R(b.half_extents()[i]) * R(1 - 1e-9)) {
           free = free == -1 ? i : 3;
           continue;
         }

@@ -3,6 +3,7 @@
 #include "detail/axes.hpp"
 #include "detail/instantiate.hpp"
 #include "detail/shape_access.hpp"
+#include "detail/math.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -65,14 +66,14 @@ Aabb<N> box_of(const Ellipsoid<T, N>& body, const Vec<T, N>& velocity, bool turn
         const double e = A(k, j) * (double(r[j]) * scale / r_max);
         h2 += e * e;
       }
-      h = std::min(r_max, r_max * std::sqrt(h2));
+      h = std::min(r_max, r_max * sqrt(h2));
     }
     const double start = at_time(double(c[k]), double(velocity[k]), t0);
     const double end = at_time(double(c[k]), double(velocity[k]), t1);
     const double lo = std::min(start, end), hi = std::max(start, end);
     const double pad = 1e-9 * r_max +
-                       1e-14 * (std::abs(double(c[k])) + (std::isfinite(lo) ? std::abs(lo) : 0.0) +
-                                (std::isfinite(hi) ? std::abs(hi) : 0.0)) +
+                       1e-14 * (abs(double(c[k])) + (isfinite(lo) ? abs(lo) : 0.0) +
+                                (isfinite(hi) ? abs(hi) : 0.0)) +
                        8 * std::numeric_limits<double>::denorm_min();  // subnormal coordinates and radii
     box.lo[k] = lo - h - pad;
     box.hi[k] = hi + h + pad;
@@ -88,7 +89,7 @@ std::vector<Aabb<N>> boxes_of(std::span<const Ellipsoid<T, N>> bodies, std::span
   std::vector<Aabb<N>> boxes;
   boxes.reserve(bodies.size());
   for (std::size_t i = 0; i < bodies.size(); ++i)
-    if (!(motions[i].growth >= T(0)) || !std::isfinite(motions[i].growth) || (motions[i].growth > T(0) && !(t0 >= 0.0)))
+    if (!(motions[i].growth >= T(0)) || !isfinite(motions[i].growth) || (motions[i].growth > T(0) && !(t0 >= 0.0)))
       throw InputError("motions[" + std::to_string(i) + "].growth",
                        "must be finite and >= 0, and the window must start at t0 >= 0 where it is not 0");
   for (std::size_t i = 0; i < bodies.size(); ++i)
@@ -138,7 +139,7 @@ void find_meeting(const std::vector<Entry<N>>& entries, Meet&& meet) {
   for (const Entry<N>& e : entries)
     for (int k = 0; k < N; ++k) {
       extent = std::max(extent, e.box.hi[k] - e.box.lo[k]);
-      largest = std::max({largest, std::abs(e.box.lo[k]), std::abs(e.box.hi[k])});
+      largest = std::max({largest, abs(e.box.lo[k]), abs(e.box.hi[k])});
       origin[k] = std::min(origin[k], e.box.lo[k]);
       top[k] = std::max(top[k], e.box.lo[k]);
     }
@@ -146,12 +147,12 @@ void find_meeting(const std::vector<Entry<N>>& entries, Meet&& meet) {
   std::int64_t cells[N];
   double total = 1.0;
   for (int k = 0; k < N; ++k) {
-    const double n = std::floor((top[k] - origin[k]) / cell) + 1.0;
+    const double n = floor((top[k] - origin[k]) / cell) + 1.0;
     const bool fits = n <= 0x1p31;  // false for NaN and infinity too
     cells[k] = fits ? std::int64_t(n) : 0;
     total *= fits ? n : std::numeric_limits<double>::infinity();
   }
-  if (entries.size() < 2 || !(std::isfinite(largest) && cell > 0.0 && total < 0x1p62))
+  if (entries.size() < 2 || !(isfinite(largest) && cell > 0.0 && total < 0x1p62))
     return sweep(entries, meet);
 
   auto key_of = [&](const std::int64_t (&c)[N]) {
@@ -233,7 +234,7 @@ std::vector<IndexPair> open_pairs(const std::vector<Aabb<N>>& boxes) {
 template <int N>
 void check_box(const PeriodicBox<N>& box) {
   for (int k = 0; k < N; ++k)
-    if (!(std::isfinite(box.size[k]) && box.size[k] > 0.0))
+    if (!(isfinite(box.size[k]) && box.size[k] > 0.0))
       throw InputError("box.size", "must be finite and > 0 (got " + std::to_string(box.size[k]) + ")");
 }
 
@@ -244,7 +245,7 @@ template <int N>
 std::vector<ImagePair<N>> periodic_pairs(const std::vector<Aabb<N>>& boxes,
                                          const std::vector<std::array<double, N>>& anchors, const PeriodicBox<N>& box) {
   check_box(box);
-  const double limit = std::ldexp(1.0, 30);
+  const double limit = ldexp(1.0, 30);
   std::vector<std::array<std::int32_t, N>> wrap(boxes.size());
   std::vector<Entry<N>> entries;
   entries.reserve(boxes.size() * 2);
@@ -253,8 +254,8 @@ std::vector<ImagePair<N>> periodic_pairs(const std::vector<Aabb<N>>& boxes,
     int crossing[N];
     for (int k = 0; k < N; ++k) {
       const double L = box.size[k];
-      const double cells = std::floor(anchors[i][k] / L);
-      if (!(std::abs(cells) < limit))
+      const double cells = floor(anchors[i][k] / L);
+      if (!(abs(cells) < limit))
         throw InputError("bodies[" + std::to_string(i) + "].center",
                          "must lie within 2^30 box sides of the periodic box");
       if (!(b.hi[k] - b.lo[k] < 0.5 * L))
@@ -264,7 +265,7 @@ std::vector<ImagePair<N>> periodic_pairs(const std::vector<Aabb<N>>& boxes,
       // Moving the box by whole sides, and its copies by one more, rounds at the scale of
       // the sides: widen it by that much (a side far larger than the bodies then makes
       // boxes near the faces candidates of every body there, never misses one).
-      const double rounding = 0x1p-50 * ((std::abs(cells) + 2.0) * L + std::max(std::abs(b.lo[k]), std::abs(b.hi[k])));
+      const double rounding = 0x1p-50 * ((abs(cells) + 2.0) * L + std::max(abs(b.lo[k]), abs(b.hi[k])));
       b.lo[k] = b.lo[k] - cells * L - rounding;
       b.hi[k] = b.hi[k] - cells * L + rounding;
       crossing[k] = b.lo[k] <= 0.0 ? 1 : b.hi[k] >= L ? -1 : 0;
@@ -330,11 +331,11 @@ void check_motions(std::span<const Ellipsoid<T, N>> bodies, std::span<const Rigi
       throw InputError("motions[" + std::to_string(i) + "].velocity", "must be finite");
     bool finite;
     if constexpr (N == 2)
-      finite = std::isfinite(motions[i].angular_velocity);
+      finite = isfinite(motions[i].angular_velocity);
     else
       finite = motions[i].angular_velocity.allFinite();
     if (!finite) throw InputError("motions[" + std::to_string(i) + "].angular_velocity", "must be finite");
-    if (!(motions[i].growth >= T(0)) || !std::isfinite(motions[i].growth))
+    if (!(motions[i].growth >= T(0)) || !isfinite(motions[i].growth))
       throw InputError("motions[" + std::to_string(i) + "].growth", "must be finite and >= 0");
   }
 }
@@ -379,7 +380,7 @@ PairContact<T, N> earliest(std::span<const Ellipsoid<T, N>> bodies, std::span<co
                                       (t0 > 0.0 ? " grows beyond a quarter of the box side by time " + std::to_string(t0)
                                                 : std::string(" must be smaller than a quarter of the box side")) +
                                       " on some axis");
-        const double rate = std::abs(double(motions[i].velocity[k])) + (still.hi[k] - still.lo[k]) * growth;
+        const double rate = abs(double(motions[i].velocity[k])) + (still.hi[k] - still.lo[k]) * growth;
         if (rate > 0.0) slab = std::min(slab, (0.45 * box->size[k] - extent) / rate);
       }
     }

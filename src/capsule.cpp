@@ -8,6 +8,7 @@
 #include "detail/instantiate.hpp"
 #include "detail/polytope_distance.hpp"
 #include "detail/scale.hpp"
+#include "detail/math.hpp"
 
 #include <algorithm>
 #include <array>
@@ -43,7 +44,7 @@ int by_spheres(const Ellipsoid<T, N>& a, const Capsule<T, N>& b) noexcept {
   Vec<W, N> w = a.center().template cast<W>() - p0, e = b.point(1).template cast<W>() - p0;
   W r_max = W(a.radii().maxCoeff()), r_min = W(a.radii().minCoeff()), R = W(b.radius());
   const W size = std::max({w.cwiseAbs().maxCoeff(), e.cwiseAbs().maxCoeff(), r_max, R});
-  if (!(size > W(0)) || !std::isfinite(size)) return 0;
+  if (!(size > W(0)) || !isfinite(size)) return 0;
   const W unit = detail::unit_scale(size);
   w *= unit;
   e *= unit;
@@ -69,7 +70,7 @@ Relation relation_of(const Ellipsoid<T, N>& a, const Capsule<T, N>& b, const det
                      const Options& options) noexcept {
   if (options.tolerance < 1e-9 && by_spheres(a, b) > 0) return Relation::separated;
   const T radius = b.radius();
-  const T band = T(options.tolerance) * s.radius;
+  const T band = T(double(options.tolerance)) * s.radius;
   const T gap = s.gap - radius;
   if (gap > band) return Relation::separated;
   if (gap >= -band) return Relation::touching;

@@ -67,10 +67,10 @@ Relation classify(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b, const Opti
   const auto [s, o, a_is_s] = detail::order_pair(a, b);
   // Exact: every comparison against 1 itself, and one within its rounding plus the
   // narrowest band (relative to the reduced frame's lengths: the rounding model is an
-  // estimate, which this covers 3000 times over in long double) of a threshold is settled
+  // estimate, which this covers 3000 times over in the wide type) of a threshold is settled
   // in rational arithmetic.
   const bool exact = options.tolerance.is_exact();
-  const R tol = exact ? R(0) : R(options.tolerance), slack = exact ? R(Tolerance::min) : R(0);
+  const R tol = exact ? R(0) : R(double(options.tolerance)), slack = exact ? R(Tolerance::min) : R(0);
   bool sure;
   const auto rel = wide ? decide<W>(s, o, W(tol), W(slack), sure) : decide<R>(s, o, tol, slack, sure);
   if (exact && !sure) return detail::exact_relation(a, b);
@@ -98,13 +98,13 @@ bool overlap(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b, const Options& 
   if (scale.range == detail::Range::wide) {
     if (exact) return classify(a, b, options) != Relation::separated;
     const auto pair = detail::order_pair(a, b);
-    return decide<W>(pair.s, pair.o, W(options.tolerance)) != detail::ReducedRelation::separated;
+    return decide<W>(pair.s, pair.o, W(double(options.tolerance))) != detail::ReducedRelation::separated;
   }
   namespace hw = detail::HWY_NAMESPACE;
   const double code = hw::certificate_code<false>(a, b, options.tolerance);
   if (code != 0) return code > 0;
   const auto [s, o, a_is_s] = detail::order_pair(a, b);
-  const R tol = R(options.tolerance);
+  const R tol = R(double(options.tolerance));
   const auto red = detail::reduce_settled<R>(s, o);
   // Exact: the gap decides against 0 where rounding allows, classify otherwise.
   if (const int sure = detail::overlap_reduced<R, N>(red.e, red.k, exact ? R(0) : tol,

@@ -22,6 +22,7 @@
 #include "detail/gradient.hpp"
 #include "detail/instantiate.hpp"
 #include "detail/scale.hpp"
+#include "detail/math.hpp"
 
 #include <cmath>
 #include <limits>
@@ -55,9 +56,9 @@ template <class R, class T, int N>
 Contact<T, N> solve_contact(const Ellipsoid<T, N>& s, const Ellipsoid<T, N>& o, const Vec<T, N>& vs_in,
                             const Vec<T, N>& vo_in, R tmax, bool a_is_s, const Options& options, R& doubt,
                             R& resume, R from = 0) noexcept {
-  constexpr R nan = std::numeric_limits<R>::quiet_NaN();
-  constexpr R eps = std::numeric_limits<R>::epsilon();
-  const R tol = R(options.tolerance);
+  const R nan = std::numeric_limits<R>::quiet_NaN();
+  const R eps = std::numeric_limits<R>::epsilon();
+  const R tol = R(double(options.tolerance));
   Contact<T, N> out;
   out.time = T(nan);
   out.point.setConstant(T(nan));
@@ -89,8 +90,8 @@ Contact<T, N> solve_contact(const Ellipsoid<T, N>& s, const Ellipsoid<T, N>& o, 
     d_norm += d[i].hi * d[i].hi;
     u_norm += u[i].hi * u[i].hi;
   }
-  d_norm = std::sqrt(d_norm);
-  u_norm = std::sqrt(u_norm);
+  d_norm = sqrt(d_norm);
+  u_norm = sqrt(u_norm);
   const R e_max = red.e.maxCoeff();
   const R inv_a_min = R(1) / R(s.radii().minCoeff());
   // The reduced frame's rounding: 32 ulps of |k|, of O's largest semi-axis and of the
@@ -130,7 +131,7 @@ Contact<T, N> solve_contact(const Ellipsoid<T, N>& s, const Ellipsoid<T, N>& o, 
   // A decision "delta versus +-tol" that rounding could flip.
   auto near_band_edge = [&](R delta, R t) {
     const R r = rounding(t);
-    return std::abs(delta - tol) <= r || std::abs(delta + tol) <= r;
+    return abs(delta - tol) <= r || abs(delta + tol) <= r;
   };
   // The closest point of O(t) to the origin, or false when the origin is inside O(t).
   // `p` comes in holding a nearby solution whose multiplier warm-starts the solve.
@@ -178,8 +179,8 @@ Contact<T, N> solve_contact(const Ellipsoid<T, N>& s, const Ellipsoid<T, N>& o, 
   auto hit = [&](R t, const detail::BranchPoint<R, N>& q) {
     const R r = rounding(t), slope = w.dot(q.point) / q.norm;
     const R scale = std::max(t, R(1) / w.norm());
-    doubt = std::max({doubt, r / (std::abs(slope) * scale) / R(2.5e-13), r * aspect_s / R(2.5e-10)});
-    resume = std::max(R(0), t - 64 * r / std::abs(slope));
+    doubt = std::max({doubt, r / (abs(slope) * scale) / R(2.5e-13), r * aspect_s / R(2.5e-10)});
+    resume = std::max(R(0), t - 64 * r / abs(slope));
     return finish(ContactStatus::hit, t, &q);
   };
 
@@ -263,7 +264,7 @@ Contact<T, N> first_contact(const Ellipsoid<T, N>& a, const VecArg<T, N>& veloci
   const bool wide = scale.range == detail::Range::wide;
   const int f = detail::time_exponent(scale, velocity_a, velocity_b);
   auto beyond_window = [](Contact<T, N>& c) {
-    if (!std::isfinite(c.time)) {
+    if (!isfinite(c.time)) {
       c.status = ContactStatus::no_contact_in_window;
       c.time = std::numeric_limits<T>::quiet_NaN();
       c.point.setConstant(c.time);
@@ -280,15 +281,15 @@ Contact<T, N> first_contact(const Ellipsoid<T, N>& a, const VecArg<T, N>& veloci
     const Ellipsoid<T, N>& second = swap ? a : b;
     Contact<T, N> c = first_contact(detail::scaled(first, -e), detail::times_pow2(swap ? velocity_b : velocity_a, -e - f),
                                     detail::scaled(second, -e), detail::times_pow2(swap ? velocity_a : velocity_b, -e - f),
-                                    std::ldexp(t_max, f), options);
+                                    ldexp(t_max, f), options);
     if (swap) c.normal = -c.normal;
-    c.time = std::ldexp(c.time, -f);
+    c.time = ldexp(c.time, -f);
     c.point = detail::times_pow2(c.point, e);
     if (options.tolerance.is_exact() && !detail::scales_exactly(a, b, -e))
       exact_start(c, detail::exact_relation(a, b), Vec<T, N>(velocity_b - velocity_a), t_max);
     return c.status == ContactStatus::hit ? beyond_window(c) : c;
   }
-  if (wide) {  // long double throughout, without the double-precision quick out
+  if (wide) {  // the wide type throughout, without the double-precision quick out
     using W = detail::Wide<R>;
     const auto p = detail::order_pair(a, b);
     W doubt, resume;

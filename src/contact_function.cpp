@@ -17,6 +17,7 @@
 #include "detail/gradient.hpp"
 #include "detail/instantiate.hpp"
 #include "detail/scale.hpp"
+#include "detail/math.hpp"
 
 #include <Eigen/QR>
 
@@ -75,7 +76,7 @@ Terms<R> terms(const Vec<R, N>& e2, const Vec<R, N>& k2, R u, R v) noexcept {
 // rounding.
 template <class R, class Terms_at>
 Maximum<R> maximize(R rho_s, R rho_o, Terms_at&& terms_at, int max_iterations) noexcept {
-  constexpr R eps = std::numeric_limits<R>::epsilon();
+  const R eps = std::numeric_limits<R>::epsilon();
   Maximum<R> m;
   m.u = rho_o / (rho_s + rho_o);
   m.v = rho_s / (rho_s + rho_o);
@@ -108,8 +109,8 @@ Maximum<R> maximize(R rho_s, R rho_o, Terms_at&& terms_at, int max_iterations) n
       v = (v_lo + v_hi) / 2;
       return;
     }
-    R x = lo == R(0) ? hi * std::ldexp(R(1), -(1 << std::min(outward, 9)))
-                     : (hi > R(4) * lo ? std::sqrt(lo) * std::sqrt(hi) : (lo + hi) / 2);
+    R x = lo == R(0) ? hi * ldexp(R(1), -(1 << std::min(outward, 9)))
+                     : (hi > R(4) * lo ? sqrt(lo) * sqrt(hi) : (lo + hi) / 2);
     if (!(x > R(0))) x = hi / 2;
     (is_u ? u : v) = x;
     (is_u ? v : u) = R(1) - x;
@@ -125,7 +126,7 @@ Maximum<R> maximize(R rho_s, R rho_o, Terms_at&& terms_at, int max_iterations) n
       u_hi = m.u;
       v_hi = m.v;
     }
-    if (std::abs(t.fp) <= t.rounding) {
+    if (abs(t.fp) <= t.rounding) {
       m.converged = true;
       break;
     }
@@ -141,7 +142,7 @@ Maximum<R> maximize(R rho_s, R rho_o, Terms_at&& terms_at, int max_iterations) n
     R u = m.u + step, v = m.v - step;
     R lo, hi;
     small_side(lo, hi);
-    const bool slow = (t.fp > 0) == (fp_last > 0) && fp_last != R(0) && std::abs(t.fp) > std::abs(fp_last) / 4 &&
+    const bool slow = (t.fp > 0) == (fp_last > 0) && fp_last != R(0) && abs(t.fp) > abs(fp_last) / 4 &&
                       hi <= R(0.5) && hi > R(16) * lo;
     fp_last = t.fp;
     if (slow || !(v <= u ? v > v_lo && v < v_hi : u > u_hi && u < u_lo)) {
@@ -150,7 +151,7 @@ Maximum<R> maximize(R rho_s, R rho_o, Terms_at&& terms_at, int max_iterations) n
     } else {
       outward = 0;
     }
-    const bool small = (v <= u ? std::abs(v - m.v) : std::abs(u - m.u)) <= R(4) * eps * std::min(u, v);
+    const bool small = (v <= u ? abs(v - m.v) : abs(u - m.u)) <= R(4) * eps * std::min(u, v);
     m.u = u;
     m.v = v;
     if (small) {
@@ -173,8 +174,8 @@ class WeightedInverse {
 public:
   WeightedInverse(const Mat<R, N>& bs, const Mat<R, N>& bo, R u, R v) noexcept {
     Eigen::Matrix<R, 2 * N, N> rows;
-    rows.template topRows<N>() = std::sqrt(u) * bs;
-    rows.template bottomRows<N>() = std::sqrt(v) * bo;
+    rows.template topRows<N>() = sqrt(u) * bs;
+    rows.template bottomRows<N>() = sqrt(v) * bo;
     std::array<int, 2 * N> order;
     std::array<R, 2 * N> norm;
     for (int i = 0; i < 2 * N; ++i) {
@@ -250,7 +251,7 @@ struct Solved {
 template <class R, class T, int N>
 Solved<R, N> solve(const Ellipsoid<T, N>& s, const Ellipsoid<T, N>& o, const Vec<R, N>& dir,
                    const Options& options) noexcept {
-  constexpr R eps = std::numeric_limits<R>::epsilon();
+  const R eps = std::numeric_limits<R>::epsilon();
   Solved<R, N> out;
   const R aspect_s = R(s.radii().maxCoeff()) / R(s.radii().minCoeff());
   const R aspect_o = R(o.radii().maxCoeff()) / R(o.radii().minCoeff());
@@ -281,7 +282,7 @@ Solved<R, N> solve(const Ellipsoid<T, N>& s, const Ellipsoid<T, N>& o, const Vec
 template <class T, class R>
 T directed(R x, bool up) noexcept {
   T y = T(x);
-  if (up ? R(y) < x : R(y) > x) y = std::nextafter(y, up ? std::numeric_limits<T>::infinity() : -std::numeric_limits<T>::infinity());
+  if (up ? R(y) < x : R(y) > x) y = nextafter(y, up ? std::numeric_limits<T>::infinity() : -std::numeric_limits<T>::infinity());
   return y;
 }
 
@@ -356,7 +357,7 @@ ClosestApproach<T, N> approach(const Ellipsoid<T, N>& s, const Ellipsoid<T, N>& 
   const Maximum<R>& m = sol.max;
   out.iterations = m.iterations;
   out.lambda = T(a_is_s ? m.v : m.u);
-  const R sigma = R(1) / std::sqrt(m.f);
+  const R sigma = R(1) / sqrt(m.f);
   // The contact point M_S^-1 y brought to S's boundary, where S's outward normal is along y.
   const Vec<R, N> center_s = a_is_s ? Vec<R, N>(s.center().template cast<R>())
                                     : Vec<R, N>(o.center().template cast<R>() + sigma * u);
@@ -368,14 +369,14 @@ ClosestApproach<T, N> approach(const Ellipsoid<T, N>& s, const Ellipsoid<T, N>& 
     out.distance = out.distance_lower = T(sigma);
   } else {
     out.status = ContactFunctionStatus::did_not_converge;
-    out.distance = directed<T>(R(1) / std::sqrt(m.f * (R(1) - sol.rounding)), true);
-    out.distance_lower = directed<T>(R(1) / std::sqrt(m.f_upper * (R(1) + sol.rounding)), false);
+    out.distance = directed<T>(R(1) / sqrt(m.f * (R(1) - sol.rounding)), true);
+    out.distance_lower = directed<T>(R(1) / sqrt(m.f_upper * (R(1) + sol.rounding)), false);
   }
   return out;
 }
 
 // F is dimensionless: pairs outside the native range (detail/scale.hpp) run rescaled by a
-// power of two, or in long double. The sphere body is chosen before rescaling (rescaling
+// power of two, or in the wide type. The sphere body is chosen before rescaling (rescaling
 // can merge bodies that differ only below the smallest subnormal; swap symmetry needs the
 // order they had). `finish(s, o, a_is_s, direction, norm, e)` solves the pair in query order,
 // scaled by 2^-e, with r = norm * direction in the working type of direction.
@@ -399,7 +400,7 @@ auto at_scale(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b, Finish finish)
   }
   // Rescaled: the same arithmetic as at the native scale (answers equal bit for bit), unless
   // the rescaled centers are too close to keep the direction's digits (r subnormal or zero);
-  // then r comes from the given centers in long double.
+  // then r comes from the given centers in the wide type.
   const int e = scale.exponent;
   const Ellipsoid<T, N> s2 = detail::scaled(s, -e), o2 = detail::scaled(o, -e);
   Vec<R, N> r = difference(s2, o2, R());
@@ -407,7 +408,7 @@ auto at_scale(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b, Finish finish)
   if (!(norm >= std::numeric_limits<R>::min())) {
     const Vec<W, N> wide = difference(s, o, W());
     r = detail::unit_vector<W, N>(wide).template cast<R>();
-    norm = R(std::ldexp(detail::stable_norm<W, N>(wide), -e));
+    norm = R(ldexp(detail::stable_norm<W, N>(wide), -e));
   }
   return finish(s2, o2, a_is_s, detail::unit_vector<R, N>(r), norm, e);
 }
@@ -458,8 +459,8 @@ ClosestApproach<T, N> closest_approach(const Ellipsoid<T, N>& a, const Ellipsoid
   if (scale.range == detail::Range::native) return approach<R>(s, o, a_is_s, u, options);
   const int e = scale.exponent;
   ClosestApproach<T, N> out = approach<R>(detail::scaled(s, -e), detail::scaled(o, -e), a_is_s, u, options);
-  out.distance = std::ldexp(out.distance, e);
-  out.distance_lower = std::ldexp(out.distance_lower, e);
+  out.distance = ldexp(out.distance, e);
+  out.distance_lower = ldexp(out.distance_lower, e);
   out.point = detail::times_pow2(out.point, e);
   return out;
 }

@@ -27,6 +27,7 @@
 #include "detail/gradient.hpp"
 #include "detail/instantiate.hpp"
 #include "detail/scale.hpp"
+#include "detail/math.hpp"
 
 #include <algorithm>
 #include <array>
@@ -64,7 +65,7 @@ Start<R, N> start(const Ellipsoid<T, N>& s, const Ellipsoid<T, N>& o, W tol, boo
   const W q0 = detail::level_at_origin<W, N>(red.e, red.k);
   Start<R, N> st;
   st.normal.setZero();
-  doubt = std::abs(q0) <= rounding;
+  doubt = abs(q0) <= rounding;
   const auto p = q0 > W(0) ? detail::closest_from_outside<W, N>(red.e, red.k) : detail::closest_from_inside<W, N>(red.e, red.k);
   if (p.norm > W(0)) st.normal = detail::unit_vector<W, N>(red.normal_map * p.point).template cast<R>();
   if (q0 <= W(0)) {
@@ -72,7 +73,7 @@ Start<R, N> start(const Ellipsoid<T, N>& s, const Ellipsoid<T, N>& o, W tol, boo
     return st;
   }
   const W gap = p.norm - W(1);
-  doubt = doubt || std::abs(gap - tol) <= rounding || std::abs(gap + tol) <= rounding;
+  doubt = doubt || abs(gap - tol) <= rounding || abs(gap + tol) <= rounding;
   st.status = gap > tol ? DistanceStatus::separated : gap >= -tol ? DistanceStatus::touching : DistanceStatus::overlapping;
   return st;
 }
@@ -155,12 +156,12 @@ Distance<T, N> solve(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b, const O
   int count = 0;
   if (quick.status) {
     out.status = *quick.status;
-  } else if (best.converged && -best.at.phi > separation_margin<R>(s, o, g, R(options.tolerance))) {
+  } else if (best.converged && -best.at.phi > separation_margin<R>(s, o, g, R(double(options.tolerance)))) {
     out.status = DistanceStatus::separated;
   } else {
     bool doubt;
-    Start<R, N> st = start<R, R>(s, o, R(options.tolerance), doubt);
-    if (doubt) st = start<detail::Wide<R>, R>(s, o, detail::Wide<R>(options.tolerance), doubt);
+    Start<R, N> st = start<R, R>(s, o, R(double(options.tolerance)), doubt);
+    if (doubt) st = start<detail::Wide<R>, R>(s, o, detail::Wide<R>(double(options.tolerance)), doubt);
     if (st.status == DistanceStatus::touching && options.tolerance.is_exact()) {  // the exact relation decides
       st.status = exact_status(s, o);
     }
@@ -196,7 +197,7 @@ Distance<T, N> solve(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b, const O
     const R margin = R(16) * std::numeric_limits<R>::epsilon() * (g.r_norm + g.radii1.maxCoeff() + g.radii2.maxCoeff());
     const R lower = -(best.at.phi + margin);
     out.distance = T(lower);
-    if (R(out.distance) > lower) out.distance = std::nextafter(out.distance, -std::numeric_limits<T>::infinity());
+    if (R(out.distance) > lower) out.distance = nextafter(out.distance, -std::numeric_limits<T>::infinity());
   }
   // The status is certified; rounding within the stated accuracy may leave the distance on
   // the wrong side of 0 (or at -0), and clamping only moves it towards the true value.
@@ -209,7 +210,7 @@ Distance<T, N> solve(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b, const O
 }
 
 // The solve at the pair's scale (detail/scale.hpp): as given, rescaled by 2^-e with the
-// lengths scaled back, or in long double.
+// lengths scaled back, or in the wide type.
 template <class T, int N>
 Distance<T, N> solve_at_scale(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b, const Options& options,
                               bool penetration) noexcept {
@@ -227,7 +228,7 @@ Distance<T, N> solve_at_scale(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b
     std::swap(d.point_a, d.point_b);
     d.normal = -d.normal;
   }
-  d.distance = std::ldexp(d.distance, e);
+  d.distance = ldexp(d.distance, e);
   d.point_a = detail::times_pow2(d.point_a, e);
   d.point_b = detail::times_pow2(d.point_b, e);
   if (options.tolerance.is_exact() && d.status != DistanceStatus::did_not_converge &&

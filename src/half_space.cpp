@@ -7,6 +7,7 @@
 #include "detail/instantiate.hpp"
 #include "detail/reduce.hpp"
 #include "detail/scale.hpp"
+#include "detail/math.hpp"
 
 #include <algorithm>
 #include <array>
@@ -22,7 +23,7 @@ using detail::Double;
 // x times 2^e; most pairs run at e = 0, where this is free (std::ldexp is a library call).
 template <class F>
 F pow2(F x, int e) noexcept {
-  return e == 0 ? x : std::ldexp(x, e);
+  return e == 0 ? x : ldexp(x, e);
 }
 
 // The body against the plane in the working type F, every length times 2^-exponent
@@ -66,7 +67,7 @@ Gaps<F, N> gaps_in(const Ellipsoid<T, N>& a, const HalfSpace<T, N>& b, int expon
     for (int i = 0; i < N; ++i) {
       const F term = n[i] * g.offset[i];
       s += term;
-      spread += std::abs(term);
+      spread += abs(term);
     }
     g.q = axes.transpose() * n;
     t = r.cwiseProduct(g.q);
@@ -91,7 +92,7 @@ Gaps<F, N> gaps_in(const Ellipsoid<T, N>& a, const HalfSpace<T, N>& b, int expon
       t[k] = tk.hi;
       rho2 = detail::add(rho2, detail::square(tk));
     }
-    g.rho = std::sqrt(rho2.hi);
+    g.rho = sqrt(rho2.hi);
     // s^2 - rho^2 = (s - rho)(s + rho): L and U where they cancel, directly where they do not.
     const F q = detail::add(detail::square(s), Double<F>{-rho2.hi, -rho2.lo}).hi;
     g.lower = s.hi > F(0) ? q / (s.hi + g.rho) : s.hi - g.rho;
@@ -110,19 +111,19 @@ Gaps<F, N> gaps_in(const Ellipsoid<T, N>& a, const HalfSpace<T, N>& b, int expon
 // Whether the relation is certain: each gap farther than its error from the band's edges.
 template <class F, int N>
 bool decided(const Gaps<F, N>& g, const Options& options) noexcept {
-  const F band = F(options.tolerance) * g.rho;
-  const F margin = g.error * (F(1) + F(options.tolerance));
-  return std::abs(g.lower - band) > margin && std::abs(g.lower + band) > margin && std::abs(g.upper + band) > margin;
+  const F band = F(double(options.tolerance)) * g.rho;
+  const F margin = g.error * (F(1) + F(double(options.tolerance)));
+  return abs(g.lower - band) > margin && abs(g.lower + band) > margin && abs(g.upper + band) > margin;
 }
 
 // Calls then(gaps), the gaps computed at the pair's scale (detail/scale.hpp): in the working
-// type, rescaled by a power of two where needed, or in long double; in plain arithmetic
+// type, rescaled by a power of two where needed, or in the wide type; in plain arithmetic
 // where accept(gaps) holds, else compensated.
 template <class T, int N, class Accept, class Then>
 auto with_gaps(const Ellipsoid<T, N>& a, const HalfSpace<T, N>& b, Accept&& accept, Then&& then) noexcept {
   const detail::Scale scale = detail::scale_of<T>(a.radii().maxCoeff(), a.radii().minCoeff(),
                                                   std::max(detail::max_abs(a.center()), detail::max_abs(b.point())));
-  if (scale.range == detail::Range::wide) return then(gaps_in<long double>(a, b, 0, true));
+  if (scale.range == detail::Range::wide) return then(gaps_in<detail::WideFloat>(a, b, 0, true));
   using F = detail::Work<T>;
   const Gaps<F, N> quick = gaps_in<F>(a, b, scale.exponent, false);
   return then(accept(quick) ? quick : gaps_in<F>(a, b, scale.exponent, true));
@@ -132,12 +133,12 @@ auto with_gaps(const Ellipsoid<T, N>& a, const HalfSpace<T, N>& b, Accept&& acce
 // are kept where their error bound is below 5e-15 of scale.
 template <class F, int N>
 bool accurate(const Gaps<F, N>& g, F length) noexcept {
-  return g.error <= F(5e-15) * (g.size + std::abs(length));
+  return g.error <= F(5e-15) * (g.size + abs(length));
 }
 
 template <class F, int N>
 Relation relation_of(const Gaps<F, N>& g, const Options& options) noexcept {
-  const F band = F(options.tolerance) * g.rho;
+  const F band = F(double(options.tolerance)) * g.rho;
   if (g.lower > band) return Relation::separated;
   if (g.lower >= -band) return Relation::touching;
   if (g.upper >= -band) return Relation::b_contains_a;
@@ -284,7 +285,7 @@ Contact<T, N> first_contact(const Ellipsoid<T, N>& a, const VecArg<T, N>& veloci
     if (!(speed > T(0))) return out;
     // The velocities are rescaled only beyond 2^+-500, where their difference could overflow
     // or the error terms of its products underflow.
-    const int v = F(speed) >= F(0x1p-500) && F(speed) <= F(0x1p500) ? 0 : std::ilogb(speed);
+    const int v = F(speed) >= F(0x1p-500) && F(speed) <= F(0x1p500) ? 0 : ilogb(speed);
     CompensatedDot<F> sd;  // sigma = -n . (v_a - v_b)
     for (int i = 0; i < N; ++i) {
       const Double<F> w = detail::two_sum(pow2(F(velocity_a[i]), -v), -pow2(F(velocity_b[i]), -v));
@@ -294,7 +295,7 @@ Contact<T, N> first_contact(const Ellipsoid<T, N>& a, const VecArg<T, N>& veloci
     const F sigma = sd.value().hi;
     if (!(sigma > F(0))) return out;
     const F time = std::max(pow2(g.lower / sigma, g.exponent - v), F(std::numeric_limits<T>::denorm_min()));
-    if (!(std::isfinite(T(time)) && T(time) <= t_max)) return out;
+    if (!(isfinite(T(time)) && T(time) <= t_max)) return out;
     out.time = T(time);
     Vec<F, N> point;
     for (int i = 0; i < N; ++i) point[i] = pow2(g.lowest[i], g.exponent) + time * F(velocity_a[i]);

@@ -29,6 +29,7 @@
 #include "detail/gradient.hpp"
 #include "detail/instantiate.hpp"
 #include "detail/scale.hpp"
+#include "detail/math.hpp"
 
 #include <algorithm>
 #include <array>
@@ -59,7 +60,9 @@ std::string_view to_string(BoundaryStatus s) noexcept {
 namespace {
 
 template <class R>
-constexpr R two_pi = 2 * std::numbers::pi_v<R>;
+constexpr R two_pi() noexcept {
+  return 2 * detail::pi<R>();
+}
 
 // Insertion sort of the first n (at most 4) elements.
 template <class A, class Less>
@@ -80,13 +83,13 @@ struct Point {
 template <class R>
 Point<R> on_o(const Vec<R, 2>& e, const Vec<R, 2>& k, const Vec<R, 2>& u) noexcept {
   const Vec<R, 2> w = k + e.cwiseProduct(u);
-  return {std::atan2(u[1], u[0]), w, w.norm()};
+  return {atan2(u[1], u[0]), w, w.norm()};
 }
 
 template <class R>
 Point<R> from_branch(const Vec<R, 2>& e, const detail::BranchPoint<R, 2>& b) noexcept {
   const Vec<R, 2> u = b.offset.cwiseQuotient(e);
-  return {std::atan2(u[1], u[0]), b.point, b.norm};
+  return {atan2(u[1], u[0]), b.point, b.norm};
 }
 
 // Root of f on [lo, hi] where f is monotone (increasing when `increasing`) and changes
@@ -94,7 +97,7 @@ Point<R> from_branch(const Vec<R, 2>& e, const detail::BranchPoint<R, 2>& b) noe
 // below 2 eps (|x| + floor) end it.
 template <class R, class F>
 R monotone_root(F f, R lo, R hi, bool increasing, R floor) noexcept {
-  constexpr R eps = std::numeric_limits<R>::epsilon();
+  const R eps = std::numeric_limits<R>::epsilon();
   R x = lo + (hi - lo) / 2;
   for (int it = 0; it < detail::secular_newton_steps; ++it) {
     R fx, dfx;
@@ -103,7 +106,7 @@ R monotone_root(F f, R lo, R hi, bool increasing, R floor) noexcept {
     ((fx < R(0)) == increasing ? lo : hi) = x;
     R next = x - fx / dfx;
     if (!(next > lo && next < hi)) next = lo + (hi - lo) / 2;
-    if (std::abs(next - x) <= 2 * eps * (std::abs(next) + floor)) return next;
+    if (abs(next - x) <= 2 * eps * (abs(next) + floor)) return next;
     x = next;
   }
   for (;;) {  // terminates: the bracket shrinks to adjacent floats
@@ -140,16 +143,16 @@ int critical_points(const Vec<R, 2>& e, const Vec<R, 2>& k, std::array<Point<R>,
     out[m++] = on_o<R>(e, k, u);
   };
   if (c_lo != R(0) && c_hi != R(0)) {
-    const R ql = std::cbrt(std::abs(c_lo)), qh = std::cbrt(std::abs(c_hi));
+    const R ql = cbrt(abs(c_lo)), qh = cbrt(abs(c_hi));
     const R cl = ql * ql, ch = qh * qh;  // |c|^(2/3), without the underflow of c^2
-    if (!((cl + ch) * std::sqrt(cl + ch) < delta)) return m;  // S(a*) >= 1: no middle roots
+    if (!((cl + ch) * sqrt(cl + ch) < delta)) return m;  // S(a*) >= 1: no middle roots
     // The root on each side of a*, solved for the distance x of the multiplier from the nearer
     // pole (x = a on the left, delta - a on the right), where S = c_near^2 / x^2 +
     // c_far^2 / (delta - x)^2 is decreasing on [|c_near|, x*]. Near a pole x is tiny and
     // u_near = +-c_near / x keeps its digits; delta - a would cancel (a center 1e-16 off
     // left the right root's u with no correct digit, h far from the boundary).
     auto middle = [&](int near, R sign, R c_near, R c_far, R cl_near, R cl_far) {
-      const R x_star = delta * cl_near / (cl_near + cl_far), x_min = std::abs(c_near);
+      const R x_star = delta * cl_near / (cl_near + cl_far), x_min = abs(c_near);
       if (!(x_min < x_star)) return;
       auto s_minus_one = [&](R x, R& f, R& df) {
         const R y = delta - x, tn = c_near / x, tf = c_far / y;
@@ -163,12 +166,12 @@ int critical_points(const Vec<R, 2>& e, const Vec<R, 2>& k, std::array<Point<R>,
     middle(lo, R(1), c_lo, c_hi, cl, ch);
     middle(hi, R(-1), c_hi, c_lo, ch, cl);
   } else if (c_hi != R(0)) {  // c_lo = 0: the closest point is the hard case when |c_hi| < delta
-    if (std::abs(c_hi) < delta) {
+    if (abs(c_hi) < delta) {
       mirrored(out[0], lo);
       add(R(0), c_hi > R(0) ? R(-1) : R(1));
     }
   } else if (c_lo != R(0)) {  // c_hi = 0: the farthest point is the hard case when |c_lo| < delta
-    if (std::abs(c_lo) < delta) {
+    if (abs(c_lo) < delta) {
       mirrored(out[1], hi);
       add(c_lo > R(0) ? R(1) : R(-1), R(0));
     }
@@ -195,28 +198,28 @@ Common<R> common_points(const Ellipse2<T>& s, const Ellipse2<T>& o, R tol, bool&
   const Vec<R, 2>& e = out.red.e;
   const Vec<R, 2>& k = out.red.k;
   const R rounding = detail::reduced_rounding<R>(s, o, e, k);
-  doubt = std::abs(detail::level_at_origin<R, 2>(e, k)) <= rounding;
+  doubt = abs(detail::level_at_origin<R, 2>(e, k)) <= rounding;
   std::array<Point<R>, 4> crit;
   const int m = critical_points<R>(e, k, crit);
   const auto by_t = [](const Point<R>& x, const Point<R>& y) { return x.t < y.t; };
   sort_first(crit, m, by_t);
   for (int i = 0; i < m; ++i) {
     const R v = crit[i].h - R(1);
-    doubt = doubt || std::abs(v - tol) <= rounding || std::abs(v + tol) <= rounding;
+    doubt = doubt || abs(v - tol) <= rounding || abs(v + tol) <= rounding;
     // A tangent point (repeated critical points, e.g. a mirror image on the axis, once).
-    if (std::abs(v) <= tol && (i == 0 || crit[i].t != crit[i - 1].t)) out.points[out.count++] = crit[i];
+    if (abs(v) <= tol && (i == 0 || crit[i].t != crit[i - 1].t)) out.points[out.count++] = crit[i];
     const Point<R>& next = crit[(i + 1) % m];
     const R v1 = next.h - R(1);
     if (!((v < -tol && v1 > tol) || (v > tol && v1 < -tol))) continue;
-    const R t1 = next.t > crit[i].t ? next.t : next.t + two_pi<R>;
+    const R t1 = next.t > crit[i].t ? next.t : next.t + two_pi<R>();
     auto f = [&](R t, R& fx, R& dfx) {
-      const R c = std::cos(t), sn = std::sin(t);
+      const R c = cos(t), sn = sin(t);
       const Vec<R, 2> w(k[0] + e[0] * c, k[1] + e[1] * sn);
       fx = w.squaredNorm() - R(1);
       dfx = 2 * (w[1] * e[1] * c - w[0] * e[0] * sn);
     };
     const R t = monotone_root<R>(f, crit[i].t, t1, v < R(0), R(1));
-    Point<R> p = on_o<R>(e, k, Vec<R, 2>(std::cos(t), std::sin(t)));
+    Point<R> p = on_o<R>(e, k, Vec<R, 2>(cos(t), sin(t)));
     p.t = t;
     p.kind = CrossingKind::transverse;
     p.entering = v1 < R(0);
@@ -234,16 +237,16 @@ void with_common_points(const Ellipse2<T>& s, const Ellipse2<T>& o, const Option
   using W = detail::Wide<R>;
   bool doubt = detail::scale_of(s, o).range == detail::Range::wide;  // not representable in R
   if (!doubt) {
-    const auto c = common_points<R>(s, o, R(options.tolerance), doubt);
+    const auto c = common_points<R>(s, o, R(double(options.tolerance)), doubt);
     if (!doubt) return use(c);
   }
-  use(common_points<W>(s, o, W(options.tolerance), doubt));
+  use(common_points<W>(s, o, W(double(options.tolerance)), doubt));
 }
 
 // delta - sin(delta) for delta in [0, 2 pi], without cancellation for small delta.
 template <class R>
 R chord_gap(R d) noexcept {
-  if (d >= R(1)) return d - std::sin(d);
+  if (d >= R(1)) return d - sin(d);
   // d^3/3! - d^5/5! + ... ; nine terms reach 1/21! < eps for d < 1.
   const R d2 = d * d;
   R sum = 0;
@@ -254,7 +257,7 @@ R chord_gap(R d) noexcept {
 template <class R>
 R ccw_span(R from, R to) noexcept {
   const R d = to - from;
-  return d > R(0) ? d : d + two_pi<R>;
+  return d > R(0) ? d : d + two_pi<R>();
 }
 
 // Area of S inside O in the reduced frame from the transverse crossings.
@@ -273,7 +276,7 @@ R lens_area(const Common<R>& c) noexcept {
     if (p.entering)  // O's arc from p to q lies inside S
       area += c.red.e[0] * c.red.e[1] / 2 * chord_gap(ccw_span(p.t, q.t));
     else  // S's arc from p to q lies inside O
-      area += chord_gap(ccw_span(std::atan2(p.w[1], p.w[0]), std::atan2(q.w[1], q.w[0]))) / 2;
+      area += chord_gap(ccw_span(atan2(p.w[1], p.w[0]), atan2(q.w[1], q.w[0]))) / 2;
   }
   return area;
 }
@@ -314,7 +317,7 @@ BoundaryIntersection<T> intersect_boundaries(const Ellipse2<T>& a, const Ellipse
     for (int i = 0; i < count; ++i) {
       world[i] = s.center().template cast<R>() + c.red.to_world * c.points[use[i]].w;
       const Vec<R, 2> u = (axes_a.transpose() * (world[i] - ca)).cwiseQuotient(radii_a);
-      order[i] = {std::atan2(u[1], u[0]), i};
+      order[i] = {atan2(u[1], u[0]), i};
     }
     sort_first(order, count, std::less<>());
     out.count = count;
@@ -403,26 +406,26 @@ BodyGradient<R, 2> arc_gradient(const Ellipse2<T>& x, const std::array<Vec<R, 2>
   std::array<R, 4> phi;
   for (int i = 0; i < m; ++i) {
     const Vec<R, 2> u = (axes.transpose() * rel[i]).cwiseQuotient(r);
-    phi[i] = std::atan2(u[1], u[0]);
+    phi[i] = atan2(u[1], u[0]);
   }
   std::sort(phi.begin(), phi.begin() + m);
-  auto span = [&](int i) { return i + 1 < m ? phi[i + 1] - phi[i] : phi[0] + two_pi<R> - phi[i]; };
+  auto span = [&](int i) { return i + 1 < m ? phi[i + 1] - phi[i] : phi[0] + two_pi<R>() - phi[i]; };
   int longest = 0;
   for (int i = 1; i < m; ++i)
     if (span(i) > span(longest)) longest = i;
   const R middle = phi[longest] + span(longest) / 2;
   const bool longest_inside =
-      inside(Vec<R, 2>(axes * r.cwiseProduct(Vec<R, 2>(std::cos(middle), std::sin(middle)))));
+      inside(Vec<R, 2>(axes * r.cwiseProduct(Vec<R, 2>(cos(middle), sin(middle)))));
   BodyGradient<R, 2> g = detail::constant_gradient<R, 2>(R(0));
   Vec<R, 2> center = Vec<R, 2>::Zero();  // in x's axes
   const R handedness = axes.determinant() > R(0) ? R(1) : R(-1);
   for (int i = 0; i < m; ++i) {
     if (((i - longest + m) % 2 == 0) != longest_inside) continue;
-    const R d = span(i), half = std::sin(d / 2), mid = phi[i] + d / 2, sum = 2 * mid;
-    center += Vec<R, 2>(2 * r[1] * std::cos(mid) * half, 2 * r[0] * std::sin(mid) * half);
-    g.radii[0] += r[1] * (d + std::cos(sum) * std::sin(d)) / 2;
-    g.radii[1] += r[0] * (d - std::cos(sum) * std::sin(d)) / 2;
-    g.orientation += handedness * (r[0] * r[0] - r[1] * r[1]) * std::sin(sum) * std::sin(d) / 2;
+    const R d = span(i), half = sin(d / 2), mid = phi[i] + d / 2, sum = 2 * mid;
+    center += Vec<R, 2>(2 * r[1] * cos(mid) * half, 2 * r[0] * sin(mid) * half);
+    g.radii[0] += r[1] * (d + cos(sum) * sin(d)) / 2;
+    g.radii[1] += r[0] * (d - cos(sum) * sin(d)) / 2;
+    g.orientation += handedness * (r[0] * r[0] - r[1] * r[1]) * sin(sum) * sin(d) / 2;
   }
   g.center = axes * center;
   return g;
@@ -452,7 +455,7 @@ OverlapArea<T> overlap_area(const Ellipse2<T>& a, const Ellipse2<T>& b, const Op
   if (const detail::Scale scale = detail::scale_of(a, b); scale.range == detail::Range::scaled) {
     const int e = scale.exponent;
     OverlapArea<T> out = overlap_area(detail::scaled(a, -e), detail::scaled(b, -e), options);
-    out.area = std::ldexp(out.area, 2 * e);  // +inf beyond the largest finite T
+    out.area = ldexp(out.area, 2 * e);  // +inf beyond the largest finite T
     return out;
   }
   return native_overlap_area(a, b, options, [](const auto&, const auto&) {});
@@ -465,11 +468,11 @@ OverlapAreaGradient<T> overlap_area_gradient(const Ellipse2<T>& a, const Ellipse
     // The area scales as length^2: its derivatives by lengths as length, by angles as area.
     const int e = scale.exponent;
     OverlapAreaGradient<T> out = overlap_area_gradient(detail::scaled(a, -e), detail::scaled(b, -e), options);
-    out.value.area = std::ldexp(out.value.area, 2 * e);
+    out.value.area = ldexp(out.value.area, 2 * e);
     for (BodyGradient<T, 2>* g : {&out.a, &out.b}) {
       g->center = detail::times_pow2(g->center, e);
       g->radii = detail::times_pow2(g->radii, e);
-      g->orientation = std::ldexp(g->orientation, 2 * e);
+      g->orientation = ldexp(g->orientation, 2 * e);
     }
     return out;
   }

@@ -4,6 +4,7 @@
 #include "detail/instantiate.hpp"
 #include "detail/mesh_walk.hpp"
 #include "detail/polytope_distance.hpp"
+#include "detail/math.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -82,7 +83,7 @@ TriangleMesh<T, N> TriangleMesh<T, N>::from_arrays(std::span<const T> vertices,
   const std::size_t nv = vertices.size() / N, nt = triangles.size() / 3;
   for (std::size_t v = 0; v < nv; ++v)
     for (int i = 0; i < N; ++i)
-      if (!std::isfinite(vertices[v * N + i]))
+      if (!isfinite(vertices[v * N + i]))
         throw InputError("vertices[" + std::to_string(v) + "][" + std::to_string(i) + "]", "must be finite");
   for (std::size_t k = 0; k < nt; ++k)
     for (int j = 0; j < 3; ++j) {

@@ -5,6 +5,7 @@
 #include <ellipsect/packing.hpp>
 
 #include "detail/rigid_motion.hpp"
+#include "detail/math.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -88,9 +89,9 @@ HardBodies<N>::HardBodies(std::span<const Ellipsoid<double, N>> bodies, std::spa
     : box_(box), skin_fraction_(skin), expansion_(expansion) {
   if (motions.size() != bodies.size()) throw InputError("motions", "must be as many as the bodies");
   for (int k = 0; k < N; ++k)
-    if (!(box.size[k] > 0.0) || !std::isfinite(box.size[k])) throw InputError("box.size", "must be finite and > 0");
-  if (!(skin > 0.0) || !std::isfinite(skin)) throw InputError("skin", "must be finite and > 0");
-  if (!(expansion >= 0.0) || !std::isfinite(expansion)) throw InputError("expansion", "must be finite and >= 0");
+    if (!(box.size[k] > 0.0) || !isfinite(box.size[k])) throw InputError("box.size", "must be finite and > 0");
+  if (!(skin > 0.0) || !isfinite(skin)) throw InputError("skin", "must be finite and > 0");
+  if (!(expansion >= 0.0) || !isfinite(expansion)) throw InputError("expansion", "must be finite and >= 0");
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     const RigidMotion<double, N>& m = motions[i];
     if (!m.velocity.allFinite()) throw InputError("motions[" + std::to_string(i) + "].velocity", "must be finite");
@@ -158,8 +159,8 @@ double HardBodies<N>::temperature() const {
 
 template <int N>
 void HardBodies<N>::rescale(double factor, double expansion) {
-  if (!(factor > 0.0) || !std::isfinite(factor)) throw InputError("factor", "must be finite and > 0");
-  if (!(expansion >= 0.0) || !std::isfinite(expansion)) throw InputError("expansion", "must be finite and >= 0");
+  if (!(factor > 0.0) || !isfinite(factor)) throw InputError("factor", "must be finite and > 0");
+  if (!(expansion >= 0.0) || !isfinite(expansion)) throw InputError("expansion", "must be finite and >= 0");
   for (auto& b : bodies_) {
     advance(b, now_);
     b.motion.velocity *= factor;
@@ -174,7 +175,7 @@ void HardBodies<N>::rescale(double factor, double expansion) {
 template <int N>
 Ellipsoid<double, N> HardBodies<N>::wrapped(const Ellipsoid<double, N>& s) const {
   Vec<double, N> shift;
-  for (int k = 0; k < N; ++k) shift[k] = -std::floor(s.center()[k] / box_.size[k]) * box_.size[k];
+  for (int k = 0; k < N; ++k) shift[k] = -floor(s.center()[k] / box_.size[k]) * box_.size[k];
   return shift.isZero(0) ? s : s.translated(shift);
 }
 
@@ -263,7 +264,7 @@ void HardBodies<N>::predict(std::uint32_t i, std::uint32_t j, const std::array<s
     // Touching and separating (the pair has just collided): look again once the gap has
     // cleared the tangency band.
     const double size = std::max(sa.radii().maxCoeff(), sb.radii().maxCoeff());
-    start += std::max(1e-9 * size / rate, 1e-15 * std::abs(start));
+    start += std::max(1e-9 * size / rate, 1e-15 * abs(start));
   }
 }
 
@@ -279,11 +280,11 @@ void HardBodies<N>::schedule_rebuild(std::uint32_t i) {
   const double grown = radius - anchor_radius_[i], growing = radius * growth_at(now_);
   if (growing == 0.0) {
     const double vv = v.squaredNorm(), dv = d.dot(v), c = d.squaredNorm() - 0.25 * skin_ * skin_;
-    exit_[i] = vv > 0.0 ? now_ + (-dv + std::sqrt(std::max(0.0, dv * dv - vv * c))) / vv : inf;
+    exit_[i] = vv > 0.0 ? now_ + (-dv + sqrt(std::max(0.0, dv * dv - vv * c))) / vv : inf;
   } else {
     exit_[i] = now_ + std::max(0.0, 0.5 * skin_ - d.norm() - grown) / (v.norm() + growing);
   }
-  if (std::isfinite(exit_[i]))
+  if (isfinite(exit_[i]))
     queue_.push({exit_[i], i, i, {}, b.collisions, b.collisions, Vec<double, N>::Zero(), Vec<double, N>::Zero(),
                  Vec<double, N>::Zero()});
 }
@@ -340,7 +341,7 @@ Mat<double, N> random_axes(std::mt19937_64& rng) {
   if constexpr (N == 2) {
     const double angle = std::uniform_real_distribution<double>(-M_PI, M_PI)(rng);
     Mat<double, 2> a;
-    a << std::cos(angle), -std::sin(angle), std::sin(angle), std::cos(angle);
+    a << cos(angle), -sin(angle), sin(angle), cos(angle);
     return a;
   } else {
     const Quat<double> q = Quat<double>(normal(rng), normal(rng), normal(rng), normal(rng)).normalized();
@@ -363,7 +364,7 @@ std::vector<Ellipsoid<double, N>> random_start(std::span<const Vec<double, N>> r
       const auto body = Ellipsoid<double, N>::from_axes(c, random_axes<N>(rng), radii[i]);
       placed = std::none_of(out.begin(), out.end(), [&](const Ellipsoid<double, N>& o) {
         Vec<double, N> d = o.center() - c;
-        for (int k = 0; k < N; ++k) d[k] -= box.size[k] * std::round(d[k] / box.size[k]);
+        for (int k = 0; k < N; ++k) d[k] -= box.size[k] * round(d[k] / box.size[k]);
         if (d.norm() > body.radii().maxCoeff() + o.radii().maxCoeff()) return false;
         return overlap(body, o.translated(Vec<double, N>(c + d - o.center())));
       });
@@ -394,16 +395,16 @@ Packing<N> jam_packing(std::span<const Vec<double, N>> radii, const PackingOptio
   if (options.schedule.empty()) throw InputError("options.schedule", "must have at least one stage");
   for (std::size_t k = 0; k < options.schedule.size(); ++k) {
     const GrowthStage& s = options.schedule[k];
-    if (!(s.rate > 0.0) || !std::isfinite(s.rate) || !(s.from >= 0.0) ||
+    if (!(s.rate > 0.0) || !isfinite(s.rate) || !(s.from >= 0.0) ||
         (k > 0 && !(s.from > options.schedule[k - 1].from)))
       throw InputError("options.schedule[" + std::to_string(k) + "]",
                        "rates must be finite and > 0, pressures increasing from 0");
   }
-  if (!(options.pressure > 1.0) || !std::isfinite(options.pressure))
+  if (!(options.pressure > 1.0) || !isfinite(options.pressure))
     throw InputError("options.pressure", "must be finite and > 1");
-  if (!(options.contact_gap >= 0.0) || !std::isfinite(options.contact_gap))
+  if (!(options.contact_gap >= 0.0) || !isfinite(options.contact_gap))
     throw InputError("options.contact_gap", "must be finite and >= 0");
-  if (!(options.skin > 0.0) || !std::isfinite(options.skin))
+  if (!(options.skin > 0.0) || !isfinite(options.skin))
     throw InputError("options.skin", "must be finite and > 0");
   if (options.collisions_per_update < 1) throw InputError("options.collisions_per_update", "must be >= 1");
 
@@ -411,7 +412,7 @@ Packing<N> jam_packing(std::span<const Vec<double, N>> radii, const PackingOptio
   double total = 0.0, largest = 0.0;
   for (const auto& r : radii) total += volume<N>(r), largest = std::max(largest, r.maxCoeff());
   PeriodicBox<N> box;
-  const double side = std::pow(total / options.initial_density, 1.0 / N);
+  const double side = pow(total / options.initial_density, 1.0 / N);
   for (int k = 0; k < N; ++k) box.size[k] = side;
   if (!(8 * largest < side)) throw InputError("radii", "too few bodies: each must be under an eighth of the box side");
   const std::vector<Ellipsoid<double, N>> start = random_start<N>(radii, box, rng);
@@ -425,10 +426,10 @@ Packing<N> jam_packing(std::span<const Vec<double, N>> radii, const PackingOptio
     mean += motions[i].velocity / double(start.size());
     const auto moments = inertia<N>(start[i], 1.0);
     if constexpr (N == 2) {
-      motions[i].angular_velocity = normal(rng) / std::sqrt(moments[0]);
+      motions[i].angular_velocity = normal(rng) / sqrt(moments[0]);
     } else {
-      const Vec<double, 3> w(normal(rng) / std::sqrt(moments[0]), normal(rng) / std::sqrt(moments[1]),
-                             normal(rng) / std::sqrt(moments[2]));
+      const Vec<double, 3> w(normal(rng) / sqrt(moments[0]), normal(rng) / sqrt(moments[1]),
+                             normal(rng) / sqrt(moments[2]));
       motions[i].angular_velocity = start[i].axes() * w;
     }
   }
@@ -439,12 +440,12 @@ Packing<N> jam_packing(std::span<const Vec<double, N>> radii, const PackingOptio
   HardBodies<N> system(start, motions, box, options.skin, expansion(options.schedule.front().rate));
   {
     const double t = system.temperature();
-    system.rescale(1.0 / std::sqrt(t), system.expansion());
+    system.rescale(1.0 / sqrt(t), system.expansion());
   }
 
   Packing<N> out;
   out.box = box;
-  const double n = double(start.size()), box_volume = std::pow(side, N);
+  const double n = double(start.size()), box_volume = pow(side, N);
   const std::uint64_t per_update = std::uint64_t(options.collisions_per_update) * start.size();
   double t_last = system.now(), virial_last = system.virial();
   for (;;) {
@@ -452,14 +453,14 @@ Packing<N> jam_packing(std::span<const Vec<double, N>> radii, const PackingOptio
     while (system.collisions() < target && system.collisions() < options.max_collisions) system.step();
     const double dt = system.now() - t_last, kt = (1.0 + system.temperature()) / 2;
     out.pressure = dt > 0.0 ? 1.0 + (system.virial() - virial_last) / (N * n * kt * dt) : inf;
-    out.density = total * std::pow(system.scale_at(system.now()), N) / box_volume;
+    out.density = total * pow(system.scale_at(system.now()), N) / box_volume;
     out.history.push_back({out.density, out.pressure});
     if (out.pressure >= options.pressure) {
       out.status = PackingStatus::jammed;
       break;
     }
     if (system.collisions() >= options.max_collisions) break;
-    system.rescale(1.0 / std::sqrt(system.temperature()), expansion(rate_at(options.schedule, out.pressure)));
+    system.rescale(1.0 / sqrt(system.temperature()), expansion(rate_at(options.schedule, out.pressure)));
     t_last = system.now();
     virial_last = system.virial();
   }
@@ -469,9 +470,9 @@ Packing<N> jam_packing(std::span<const Vec<double, N>> radii, const PackingOptio
   out.collisions = system.collisions();
   out.rebuilds = system.rebuilds();
   const double next = system.next_event();
-  out.time = std::isfinite(next) ? system.now() + (next - system.now()) / 2 : system.now();
+  out.time = isfinite(next) ? system.now() + (next - system.now()) / 2 : system.now();
   out.bodies = system.shapes_at(out.time);
-  out.density = total * std::pow(system.scale_at(out.time), N) / box_volume;
+  out.density = total * pow(system.scale_at(out.time), N) / box_volume;
   out.predictions_overlapping = system.overlaps();
   out.predictions_stopped = system.stopped();
   // Contacts and the final check, on the candidate pairs of the final bodies grown by 1 + gap
@@ -491,7 +492,7 @@ Packing<N> jam_packing(std::span<const Vec<double, N>> radii, const PackingOptio
     const Relation r = classify(a, b);
     if (r != Relation::separated && r != Relation::touching) ++out.overlapping;
     const ContactFunction<double> f = perram_wertheim(a, b);
-    if (std::sqrt(f.f) - 1.0 < gap) {
+    if (sqrt(f.f) - 1.0 < gap) {
       out.contacts.push_back(p);
       ++count[p.i];
       ++count[p.j];

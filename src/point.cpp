@@ -4,6 +4,7 @@
 #include "detail/instantiate.hpp"
 #include "detail/scale.hpp"
 #include "detail/secular.hpp"
+#include "detail/math.hpp"
 
 #include <cmath>
 #include <limits>
@@ -26,7 +27,7 @@ ClosestPoint<T, N> solve(const Ellipsoid<T, N>& body, const Vec<T, N>& x) noexce
   Vec<R, N> k = axes.transpose() * (body.center().template cast<R>() - x.template cast<R>());
   const R small = k.cwiseAbs().maxCoeff(), floor = std::numeric_limits<R>::epsilon() * e.maxCoeff();
   if (small > R(0) && small <= floor)
-    k = detail::times_pow2(k, std::ilogb(floor) - 4 - std::ilogb(small));
+    k = detail::times_pow2(k, ilogb(floor) - 4 - ilogb(small));
   else
     k = detail::settled<R, N>(e, k);
   const bool outside = detail::level_at_origin<R, N>(e, k) > R(0);
@@ -37,7 +38,7 @@ ClosestPoint<T, N> solve(const Ellipsoid<T, N>& body, const Vec<T, N>& x) noexce
 }  // namespace
 
 // At the scale of the body and the point (detail/scale.hpp): as given, rescaled by 2^-e
-// with the lengths scaled back, or in long double.
+// with the lengths scaled back, or in the wide type.
 template <class T, int N>
 ClosestPoint<T, N> closest_point(const Ellipsoid<T, N>& body, const VecArg<T, N>& x) noexcept {
   using R = detail::Work<T>;
@@ -47,7 +48,7 @@ ClosestPoint<T, N> closest_point(const Ellipsoid<T, N>& body, const VecArg<T, N>
   if (scale.range == detail::Range::wide) return solve<detail::Wide<R>>(body, x);
   const int e = scale.exponent;
   ClosestPoint<T, N> p = solve<R>(detail::scaled(body, -e), detail::times_pow2(x, -e));
-  return {detail::times_pow2(p.point, e), std::ldexp(p.signed_distance, e)};
+  return {detail::times_pow2(p.point, e), ldexp(p.signed_distance, e)};
 }
 
 #define ELLIPSECT_INSTANTIATE(T, N) \

@@ -20,6 +20,7 @@
 #include "detail/scale.hpp"
 #include "detail/shape_access.hpp"
 #include "detail/show.hpp"
+#include "detail/math.hpp"
 
 #include <algorithm>
 #include <array>
@@ -219,13 +220,13 @@ template <class T>
 Folded<T> principal_frame(const Disk<T>& d, Pt<T> u, Pt<T> v) noexcept {
   const T a = u.x * u.x + v.x * v.x, b = u.x * u.y + v.x * v.y, c = u.y * u.y + v.y * v.y;
   const T half_gap = T(0.5) * (a - c);
-  const T g = std::sqrt(half_gap * half_gap + b * b);
+  const T g = sqrt(half_gap * half_gap + b * b);
   const T w2 = T(0.5) * (a + c) + g;
   Pt<T> e = a >= c ? Pt<T>{w2 - c, b} : Pt<T>{b, w2 - a};
-  const T len = std::sqrt(dot(e, e));
+  const T len = sqrt(dot(e, e));
   e = len > T(0) ? (T(1) / len) * e : Pt<T>{T(1), T(0)};
-  const T w = std::sqrt(w2);
-  return {{{std::abs(dot(e, d.p)), std::abs(cross(e, d.p))}, d.rr}, w, std::abs(cross(u, v)) / w};
+  const T w = sqrt(w2);
+  return {{{abs(dot(e, d.p)), abs(cross(e, d.p))}, d.rr}, w, abs(cross(u, v)) / w};
 }
 
 // The disk around the arc (c0, c2) of level t: center the chord's midpoint m, radius^2 the
@@ -293,7 +294,7 @@ PolygonalOverlap<T> with_band(const Outcome& o, T major, T scaled_size, T s, boo
 
 template <class T>
 T band_size(const Vec2<T>& offset, T major, T other) noexcept {
-  return std::abs(offset.x()) + std::abs(offset.y()) + major + other;
+  return abs(offset.x()) + abs(offset.y()) + major + other;
 }
 
 // Half the largest of |offset| (componentwise), `major` and `other`, taken on halves (the
@@ -303,7 +304,7 @@ T band_size(const Vec2<T>& offset, T major, T other) noexcept {
 template <class T>
 T scene_half_size(const Vec2<T>& from, const Vec2<T>& to, T major, T other) noexcept {
   const T half = T(0.5);
-  return std::max({std::abs(half * to.x() - half * from.x()), std::abs(half * to.y() - half * from.y()),
+  return std::max({abs(half * to.x() - half * from.x()), abs(half * to.y() - half * from.y()),
                    half * major, half * other});
 }
 
@@ -335,13 +336,13 @@ Ellipse2<T> blown_up(const Ellipse2<T>& e, const VecArg<T, 2>& origin) noexcept 
 template <class T>
 Circle<T> blown_up(const Circle<T>& c, const VecArg<T, 2>& origin) noexcept {
   return make_circle<T>(detail::times_pow2(Vec2<T>(c.center() - origin), tiny_shift<T>),
-                        std::ldexp(c.radius(), tiny_shift<T>));
+                        ldexp(c.radius(), tiny_shift<T>));
 }
 
 template <class T>
 PolygonalOverlap<T> shrunk_back(PolygonalOverlap<T> r) noexcept {
-  r.gap_lo = std::ldexp(r.gap_lo, -tiny_shift<T>);
-  r.gap_hi = std::ldexp(r.gap_hi, -tiny_shift<T>);
+  r.gap_lo = ldexp(r.gap_lo, -tiny_shift<T>);
+  r.gap_hi = ldexp(r.gap_hi, -tiny_shift<T>);
   return r;
 }
 
@@ -352,7 +353,7 @@ template <class T>
 Disk<T> folded_disk(const Ellipse2<T>& e, const Vec2<T>& offset, T r) noexcept {
   const Mat2<T>& q = e.axes();
   const T dx = offset.x(), dy = offset.y();
-  return {{std::abs(q(0, 0) * dx + q(1, 0) * dy), std::abs(q(0, 1) * dx + q(1, 1) * dy)}, r * r};
+  return {{abs(q(0, 0) * dx + q(1, 0) * dy), abs(q(0, 1) * dx + q(1, 1) * dy)}, r * r};
 }
 
 template <class T>
@@ -416,9 +417,9 @@ T side_of(const Offsets<T>& o) noexcept {
 template <class T>
 Circle<T> make_circle(const VecArg<T, 2>& center, T radius) {
   for (int i = 0; i < 2; ++i)
-    if (!std::isfinite(center[i]))
+    if (!isfinite(center[i]))
       throw InputError("center[" + std::to_string(i) + "]", "must be finite (got " + detail::show(center[i]) + ")");
-  if (!std::isfinite(radius) || radius < T(0))
+  if (!isfinite(radius) || radius < T(0))
     throw InputError("radius", "must be finite and >= 0 (got " + detail::show(radius) + ")");
   return Circle<T>(center, radius);
 }

@@ -5,6 +5,7 @@
 #include "detail/reduce.hpp"
 #include "detail/scale.hpp"
 #include "detail/secular.hpp"
+#include "detail/math.hpp"
 
 #include <cmath>
 #include <complex>
@@ -41,8 +42,8 @@ Frame<R> frame(const Ellipse2<T>& e, const Vec2<T>& x) noexcept {
   f.major = e.radii()[0] >= e.radii()[1] ? 0 : 1;
   f.a = R(e.radii()[f.major]);
   f.b = R(e.radii()[1 - f.major]);
-  f.c = std::abs(f.local[f.major]);
-  f.d = std::abs(f.local[1 - f.major]);
+  f.c = abs(f.local[f.major]);
+  f.d = abs(f.local[1 - f.major]);
   return f;
 }
 
@@ -59,8 +60,8 @@ template <class R, class T>
 QuarticPoint<T> outside(const Ellipse2<T>& e, const Frame<R>& f, R along_major, R along_minor, R distance) noexcept {
   if (!(T(distance) > T(0))) return no_point<T>(QuarticStatus::inside);
   Vec2<R> local;
-  local[f.major] = std::copysign(along_major, f.local[f.major]);
-  local[1 - f.major] = std::copysign(along_minor, f.local[1 - f.major]);
+  local[f.major] = copysign(along_major, f.local[f.major]);
+  local[1 - f.major] = copysign(along_minor, f.local[1 - f.major]);
   const Vec2<R> world = e.center().template cast<R>() + detail::work_axes<R>(e) * local;
   return {QuarticStatus::outside, world.template cast<T>(), T(distance)};
 }
@@ -85,17 +86,17 @@ QuarticPoint<T> closest_point_closed_form(const Ellipse2<T>& ellipse, const VecA
   const T j = 72 * f * e * g + 2 * g * g * g + (108 * (f - e) + 36 * g) * i * i;
   const T k = 12 * i * i + g * g - 12 * f * e;
   const T s = j * j - 4 * k * k * k;
-  const C q = std::pow(j + std::sqrt(C(s)), T(1) / 3);
+  const C q = pow(j + sqrt(C(s)), T(1) / 3);
   const T m = b * b - 1;
   const T n = 1 / m;
-  const C o = g / (3 * f) + g * g * n * n * std::cbrt(T(2)) / (T(3) * q) + (n * n * q * std::cbrt(T(4))) / T(6);
+  const C o = g / (3 * f) + g * g * n * n * cbrt(T(2)) / (T(3) * q) + (n * n * q * cbrt(T(4))) / T(6);
   const C s3 = (e - g) * n * n + o;
-  const C p = std::sqrt(s3);
+  const C p = sqrt(s3);
   const C s2 = (2 * e - g) * n * n - o - (2 * h * ((e - g) * n * n * n - 2 / m)) / p;
-  const T xx = std::real(h / (2 * m) - p / T(2) + std::sqrt(s2) / T(2));
-  const T yy = std::sqrt(1 - xx * xx) / b;
-  if (!std::isfinite(xx) || !std::isfinite(yy)) return no_point<T>(QuarticStatus::failed);
-  return outside<T>(ellipse, fr, xx * fr.a, yy * fr.a, std::hypot(fr.c - xx * fr.a, fr.d - yy * fr.a));
+  const T xx = std::real(h / (2 * m) - p / T(2) + sqrt(s2) / T(2));
+  const T yy = sqrt(1 - xx * xx) / b;
+  if (!isfinite(xx) || !isfinite(yy)) return no_point<T>(QuarticStatus::failed);
+  return outside<T>(ellipse, fr, xx * fr.a, yy * fr.a, hypot(fr.c - xx * fr.a, fr.d - yy * fr.a));
 }
 
 namespace {
@@ -120,7 +121,7 @@ QuarticPoint<T> quartic_in(const Ellipse2<T>& ellipse, const Vec2<T>& x) noexcep
 }  // namespace
 
 // At the scale of the body and the point (detail/scale.hpp), as closest_point: as given,
-// rescaled by 2^-e with the lengths scaled back, or in long double. A major radius near
+// rescaled by 2^-e with the lengths scaled back, or in the wide type. A major radius near
 // the top of the range made a^2 (the polish's start a^2 tau) overflow: a NaN point.
 template <class T>
 QuarticPoint<T> closest_point_quartic(const Ellipse2<T>& ellipse, const VecArg<T, 2>& x) noexcept {
@@ -133,7 +134,7 @@ QuarticPoint<T> closest_point_quartic(const Ellipse2<T>& ellipse, const VecArg<T
   const int e = scale.exponent;
   QuarticPoint<T> q = quartic_in<R>(detail::scaled(ellipse, -e), Vec2<T>(detail::times_pow2(x, -e)));
   if (q.status != QuarticStatus::outside) return q;
-  const T distance = std::ldexp(q.distance, e);
+  const T distance = ldexp(q.distance, e);
   if (!(distance > T(0))) return no_point<T>(QuarticStatus::inside);
   return {q.status, detail::times_pow2(q.point, e), distance};
 }

@@ -23,6 +23,7 @@
 #include "detail/rigid_motion.hpp"
 #include "detail/scale.hpp"
 #include "detail/shape_access.hpp"
+#include "detail/math.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -70,8 +71,8 @@ struct BodyParty {
     const R apart = between.stableNorm();
     const R size = turning_a.big * turning_a.scale(t) + turning.big * turning.scale(t);
     bool far = apart > 2 * size;
-    if (!touched && !far && apart > R(0) && std::min(turning_a.small, turning.small) > std::ldexp(R(1), -960)) {
-      constexpr R ulp = R(std::numeric_limits<T>::epsilon());
+    if (!touched && !far && apart > R(0) && std::min(turning_a.small, turning.small) > ldexp(R(1), -960)) {
+      const R ulp = R(std::numeric_limits<T>::epsilon());
       const Vec<R, N> u = between / apart;
       Vec<R, N> offset;
       const R gap = apart - support(body_a, u, offset) - support(body_b, u, offset);
@@ -92,7 +93,7 @@ struct BodyParty {
             -n.dot(velocity) + turning.rising(t, across),
             turning.curvature(t, across, turned),
             turning.configuration(t),
-            std::abs(center) + rho,
+            abs(center) + rho,
             turning.rates(t),
             turning.small * turning.scale(t),
             turning.reach(t)};
@@ -102,7 +103,7 @@ struct BodyParty {
   // velocity), that is q(s) = (|u|^2 - G^2) s^2 + 2 (p . u - rad G) s + |p|^2 - rad^2 > 0,
   // decided with a margin far above its rounding.
   bool never(const Vec<R, N>&, const Ellipsoid<T, N>& body_a, R margin) const noexcept {
-    constexpr R ulp = R(std::numeric_limits<T>::epsilon());
+    const R ulp = R(std::numeric_limits<T>::epsilon());
     const Vec<R, N> rel_v = velocity - velocity_a;
     const Vec<R, N> apart = body_b.center().template cast<R>() - body_a.center().template cast<R>();
     const R radius = (turning_a.big * turning_a.scale(t) + turning.big * turning.scale(t)) * (1 + 64 * ulp) + margin;
@@ -115,7 +116,7 @@ struct BodyParty {
     const R c0 = apart.squaredNorm() - radius * radius;
     const R slack = 64 * ulp * (apart.squaredNorm() + radius * radius);
     if (!(c0 > slack) || !(a2 > 64 * ulp * (speed2 + grow * grow))) return false;  // touching, or the balls catch up
-    return b1 >= R(0) || c0 - b1 / a2 * b1 > slack + 64 * ulp * (b1 / a2 * std::abs(b1));
+    return b1 >= R(0) || c0 - b1 / a2 * b1 > slack + 64 * ulp * (b1 / a2 * abs(b1));
   }
 };
 
@@ -128,34 +129,34 @@ Contact<T, N> rescaled_first_contact(const Ellipsoid<T, N>& a, const RigidMotion
   RigidMotion<T, N> ma = motion_a, mb = motion_b;
   ma.velocity = detail::times_pow2(motion_a.velocity, -e - f);
   mb.velocity = detail::times_pow2(motion_b.velocity, -e - f);
-  ma.growth = std::ldexp(motion_a.growth, -f);
-  mb.growth = std::ldexp(motion_b.growth, -f);
+  ma.growth = ldexp(motion_a.growth, -f);
+  mb.growth = ldexp(motion_b.growth, -f);
   if constexpr (N == 2) {
-    ma.angular_velocity = std::ldexp(motion_a.angular_velocity, -f);
-    mb.angular_velocity = std::ldexp(motion_b.angular_velocity, -f);
+    ma.angular_velocity = ldexp(motion_a.angular_velocity, -f);
+    mb.angular_velocity = ldexp(motion_b.angular_velocity, -f);
   } else {
     ma.angular_velocity = detail::times_pow2(motion_a.angular_velocity, -f);
     mb.angular_velocity = detail::times_pow2(motion_b.angular_velocity, -f);
   }
   // Centers that the scaling would overflow (bodies far smaller than their coordinates):
   // the pair is moved to a's center first (an exact difference for nearby centers).
-  const bool move = std::max(detail::max_abs(a.center()), detail::max_abs(b.center())) >= std::ldexp(T(1), 1000 + e);
+  const bool move = std::max(detail::max_abs(a.center()), detail::max_abs(b.center())) >= ldexp(T(1), 1000 + e);
   const Vec<T, N> origin = move ? Vec<T, N>(a.center()) : Vec<T, N>::Zero();
   auto prepared = [&](const Ellipsoid<T, N>& x) {
     return detail::scaled(detail::ShapeAccess::unchecked<T, N>(x.center() - origin, x.axes(), x.radii()), -e);
   };
-  Contact<T, N> c = first_contact(prepared(a), ma, prepared(b), mb, std::ldexp(t_max, f), options);
-  c.time = std::ldexp(c.time, -f);
+  Contact<T, N> c = first_contact(prepared(a), ma, prepared(b), mb, ldexp(t_max, f), options);
+  c.time = ldexp(c.time, -f);
   c.point = detail::times_pow2(c.point, e);
   if (move) c.point += origin;
   return c;
 }
 
-// The hit's last steps in long double, along the hit's normal n held fixed. The slab gap
+// The hit's last steps in the wide type (detail/wide.hpp), along the hit's normal n held fixed. The slab gap
 // along any unit n is a lower bound on the distance, so advancing to the first zero of its
 // lower bounds (as advance does) stays early; the bodies are formed from the given data in a's
 // frame (c = c_b - c_a + t (v_b - v_a), axes exp(t [omega]x) axes_0), and the margins for
-// their rounding, in long double's epsilon, are 2^11 times narrower than advance's, which
+// their rounding, in the wide type's epsilon, are 2^11 times narrower than advance's, which
 // stop about 70 ulps of the size short of contact: 1.5e-11 of the time scale where the
 // approach's sine is 1e-3. A few steps, each a lower bound: the result is never late.
 // Where neither body turns, g_n is linear in time and a lower bound on the distance before t
@@ -165,8 +166,8 @@ Contact<T, N> rescaled_first_contact(const Ellipsoid<T, N>& a, const RigidMotion
 template <class T, int N>
 T refined(T time, const Vec<T, N>& normal, const Ellipsoid<T, N>& a, const RigidMotion<T, N>& motion_a,
           const Ellipsoid<T, N>& b, const RigidMotion<T, N>& motion_b, T t_max) noexcept {
-  using L = long double;
-  constexpr L eps = std::numeric_limits<L>::epsilon();
+  using L = detail::WideFloat;
+  const L eps = std::numeric_limits<L>::epsilon();
   const Vec<L, N> r0 = b.center().template cast<L>() - a.center().template cast<L>();
   const Vec<L, N> u = motion_b.velocity.template cast<L>() - motion_a.velocity.template cast<L>();
   const Vec<L, N> n = normal.template cast<L>().normalized();
@@ -219,7 +220,7 @@ T refined(T time, const Vec<T, N>& normal, const Ellipsoid<T, N>& a, const Rigid
     const L stored = radii.cwiseProduct(r.stored.transpose() * e).norm();
     const L quadric = radii.cwiseProduct(r.inverse * e).norm();
     const L orthonormal = radii.cwiseProduct(r.orthonormal.transpose() * e).norm();
-    return std::max(std::abs(stored - quadric), std::abs(stored - orthonormal)) + 16 * eps * L(x.radii().maxCoeff());
+    return std::max(abs(stored - quadric), abs(stored - orthonormal)) + 16 * eps * L(x.radii().maxCoeff());
   };
   const L speed = u.norm(), apart = r0.norm();
   // The bounds of advance (detail/rigid_motion.hpp, Turning) at t, with |omega x n| in L and
@@ -230,9 +231,9 @@ T refined(T time, const Vec<T, N>& normal, const Ellipsoid<T, N>& a, const Rigid
     return L(x.big) * L(x.big) * across * across / L(x.small) + L(x.big) * L(x.spin) * across;
   };
   auto curving = [&](const Turning<T, N>& x, L across, L g, L scale, L turned) {
-    return g == 0 ? bend(x, across) * scale : L(1.125) * bend(x, across) * scale + 2 * g / scale * std::abs(turned);
+    return g == 0 ? bend(x, across) * scale : L(1.125) * bend(x, across) * scale + 2 * g / scale * abs(turned);
   };
-  constexpr L inf = std::numeric_limits<L>::infinity();
+  const L inf = std::numeric_limits<L>::infinity();
   const bool still = ta.spin == 0 && tb.spin == 0;
   L t = time;
   for (int step = 0; step < 8; ++step) {
@@ -246,16 +247,16 @@ T refined(T time, const Vec<T, N>& normal, const Ellipsoid<T, N>& a, const Rigid
     const L along = n.dot(c);
     const L configuration =
         4 * (apart + t * speed + L(ta.big) * sa * (8 + L(ta.spin) * t) + L(tb.big) * sb * (8 + L(tb.spin) * t));
-    const L gap = along - rho_a - rho_b - eps * (configuration + 8 * (std::abs(along) + rho_a + rho_b)) - ambiguity;
+    const L gap = along - rho_a - rho_b - eps * (configuration + 8 * (abs(along) + rho_a + rho_b)) - ambiguity;
     if (still) {
       // g_n is linear in time (the radii grow linearly); the closing speed's rounding taken so
       // that the step, forward or back, falls short.
       const L closing = -n.dot(u) + rate_a + rate_b + (gap > 0 ? rate_margin : -rate_margin);
       if (!(closing > 0)) return std::numeric_limits<T>::quiet_NaN();
       const L step_to_root = gap / closing, root = t + step_to_root;
-      const L early = root - 64 * eps * (std::abs(root) + std::abs(step_to_root));
+      const L early = root - 64 * eps * (abs(root) + abs(step_to_root));
       T out = T(early);
-      if (L(out) > early) out = std::nextafter(out, T(0));
+      if (L(out) > early) out = nextafter(out, T(0));
       return std::min(out, time);
     }
     if (!(gap > 0)) break;
@@ -267,7 +268,7 @@ T refined(T time, const Vec<T, N>& normal, const Ellipsoid<T, N>& a, const Rigid
     const L reach = std::min(ga > 0 ? sa / (8 * ga) : inf, gb > 0 ? sb / (8 * gb) : inf);
     const L slope = n.dot(u) - rate_a - rate_b - rate_margin;
     const L first_order = fastest > 0 ? gap / fastest : inf;
-    const L root = std::sqrt(slope * slope + 2 * curvature * gap);
+    const L root = sqrt(slope * slope + 2 * curvature * gap);
     const L second_order = curvature > 0 ? (slope <= 0 ? 2 * gap / (root - slope) : (slope + root) / curvature)
                            : slope < 0   ? gap / -slope
                                          : inf;
@@ -276,7 +277,7 @@ T refined(T time, const Vec<T, N>& normal, const Ellipsoid<T, N>& a, const Rigid
     t = next;
   }
   T out = T(t);
-  if (L(out) > t) out = std::nextafter(out, T(0));
+  if (L(out) > t) out = nextafter(out, T(0));
   return std::max(out, time);
 }
 
@@ -286,8 +287,8 @@ template <class T, int N>
 Ellipsoid<T, N> body_at(const Ellipsoid<T, N>& body, const RigidMotion<T, N>& motion, T t) {
   if (!motion.velocity.allFinite()) throw InputError("velocity", "must be finite");
   if (!all_finite<N>(motion.angular_velocity)) throw InputError("angular_velocity", "must be finite");
-  if (!(motion.growth >= T(0)) || !std::isfinite(motion.growth)) throw InputError("growth", "must be finite and >= 0");
-  if (!std::isfinite(t)) throw InputError("time", "must be finite");
+  if (!(motion.growth >= T(0)) || !isfinite(motion.growth)) throw InputError("growth", "must be finite and >= 0");
+  if (!isfinite(t)) throw InputError("time", "must be finite");
   const Ellipsoid<T, N> out = moved(body, motion, t);
   if (!out.center().allFinite()) throw InputError("time", "moves the center beyond the range of the type");
   if (!out.axes().allFinite()) throw InputError("time", "turns the body by an angle beyond the range of the type");
@@ -311,7 +312,7 @@ Contact<T, N> first_contact(const Ellipsoid<T, N>& a, const RigidMotion<T, N>& m
   out.normal.setConstant(nan);
   if (!motion_a.velocity.allFinite() || !motion_b.velocity.allFinite() || !all_finite<N>(motion_a.angular_velocity) ||
       !all_finite<N>(motion_b.angular_velocity) || !valid_growth(motion_a.growth) || !valid_growth(motion_b.growth) ||
-      std::isnan(t_max) || t_max < T(0))
+      isnan(t_max) || t_max < T(0))
     return out;
   const R spin_a = magnitude<N>(motion_a.angular_velocity), spin_b = magnitude<N>(motion_b.angular_velocity);
   // Neither turns nor grows: the translational answer, its hit time certified early by
@@ -334,23 +335,23 @@ Contact<T, N> first_contact(const Ellipsoid<T, N>& a, const RigidMotion<T, N>& m
   const Ellipsoid<T, N> a_rel = detail::ShapeAccess::unchecked<T, N>(Vec<T, N>::Zero(), a.axes(), a.radii());
   const Ellipsoid<T, N> b_rel = detail::ShapeAccess::unchecked<T, N>(offset, b.axes(), b.radii());
   const detail::Range range = (offset.allFinite() ? detail::scale_of(a_rel, b_rel) : detail::scale_of(a, b)).range;
-  bool out_of_range = !std::isfinite(spin_a) || !std::isfinite(spin_b) || range == detail::Range::wide;
+  bool out_of_range = !isfinite(spin_a) || !isfinite(spin_b) || range == detail::Range::wide;
 
   // Lengths rescaled by 2^-e (exact) where the radii leave 2^+-64, so that squares of radii
   // stay normal; where the speeds in those lengths would leave the range of the type, time
   // is rescaled too, by 2^f (velocities times 2^-(e + f), angular velocities 2^-f).
   if constexpr (std::is_same_v<T, double>) {
-    const int e = std::ilogb(std::max(a.radii().maxCoeff(), b.radii().maxCoeff()));
+    const int e = ilogb(std::max(a.radii().maxCoeff(), b.radii().maxCoeff()));
     if ((e > detail::native_exponent || e < -detail::native_exponent) && !out_of_range) {
       const T speed = std::max(detail::max_abs(motion_a.velocity), detail::max_abs(motion_b.velocity));
-      const int g = speed > T(0) ? std::ilogb(speed) - e : 0;
+      const int g = speed > T(0) ? ilogb(speed) - e : 0;
       const int f = g > 960 || g < -960 ? g : 0;
       // Bodies 2^963 across moving 1 per unit time and turning at 2^500 rad per unit time:
       // in the time unit where they move about a radius, the spin overflows; so does a growth
       // (radii 2^996 moving at 2^-592 and growing at 2^996 per unit time: it was taken for an
       // invalid one).
-      if (std::isfinite(std::ldexp(std::max(spin_a, spin_b), -f)) &&
-          std::isfinite(std::ldexp(std::max(motion_a.growth, motion_b.growth), -f)))
+      if (isfinite(ldexp(std::max(spin_a, spin_b), -f)) &&
+          isfinite(ldexp(std::max(motion_a.growth, motion_b.growth), -f)))
         return rescaled_first_contact(a, motion_a, b, motion_b, t_max, options, e, f);
       out_of_range = true;
     }

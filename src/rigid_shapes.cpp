@@ -17,6 +17,7 @@
 #include "detail/rigid_motion.hpp"
 #include "detail/scale.hpp"
 #include "detail/shape_access.hpp"
+#include "detail/math.hpp"
 
 #include <algorithm>
 #include <array>
@@ -43,7 +44,7 @@ Lowest lowest_of(const Vec<R, N>& n, const std::array<Vec<T, N>, K>& points, R g
   for (const auto& p : points) {
     const R x = n.dot(p.template cast<R>());
     out.low = std::min(out.low, x);
-    out.magnitude = std::max(out.magnitude, std::abs(x));
+    out.magnitude = std::max(out.magnitude, abs(x));
   }
   return {out.low - grow, out.magnitude + grow};
 }
@@ -55,7 +56,7 @@ Lowest lowest_of(const Vec<R, N>& n, const HalfSpace<T, N>& h) noexcept {
   const Vec<R, N> outward = h.normal().template cast<R>();
   if (n != -outward) return {-std::numeric_limits<R>::infinity(), 0};
   const R x = n.dot(h.point().template cast<R>());
-  return {x, std::abs(x)};
+  return {x, abs(x)};
 }
 template <class T, int N>
 Lowest lowest_of(const Vec<R, N>& n, const Triangle<T, N>& t) noexcept {
@@ -104,17 +105,17 @@ struct ShapeParty {
   // radius plus 64 ulps of T of its terms (far above the tangency band and the slab's
   // rounding): the step then costs the shape's vertices along u and one support point.
   Distance<T, N> near(const Ellipsoid<T, N>& body, bool touched) const noexcept {
-    constexpr R ulp = R(std::numeric_limits<T>::epsilon());
+    const R ulp = R(std::numeric_limits<T>::epsilon());
     const std::optional<Vec<R, N>> inside = inner_point<T, N>(shape);
     if (!touched && inside) {
       const Vec<R, N> center = body.center().template cast<R>(), between = *inside - center;
       const R apart = between.stableNorm(), big = R(body.radii().maxCoeff());
-      if (apart > R(0) && R(body.radii().minCoeff()) > std::ldexp(R(1), -960)) {
+      if (apart > R(0) && R(body.radii().minCoeff()) > ldexp(R(1), -960)) {
         const Vec<R, N> u = between / apart;
         Vec<R, N> offset;
         const Lowest l = lowest_of<T, N>(u, shape);
         const R along = u.dot(center), rho = support(body, u, offset);
-        if (l.low - along - rho > big / 8 + 64 * ulp * (l.magnitude + std::abs(along) + rho)) return slab_step<T, N>(u);
+        if (l.low - along - rho > big / 8 + 64 * ulp * (l.magnitude + abs(along) + rho)) return slab_step<T, N>(u);
       }
     }
     return distance(body, shape, options);
@@ -128,7 +129,7 @@ struct ShapeParty {
   // shape's slab and its top does not move towards it (the center's approach and the
   // radius's growth): they never meet.
   bool never(const Vec<R, N>& n, const Ellipsoid<T, N>& body, R margin) const noexcept {
-    constexpr R ulp = R(std::numeric_limits<T>::epsilon());
+    const R ulp = R(std::numeric_limits<T>::epsilon());
     const R big = R(body.radii().maxCoeff());
     return (growing == R(0) ? n.dot(velocity) <= R(0) : n.dot(velocity) + growing * (1 + 64 * ulp) <= R(0)) &&
            lowest_of<T, N>(n, shape).low - n.dot(body.center().template cast<R>()) - big * (1 + 64 * ulp) - margin > R(0);
@@ -155,7 +156,7 @@ Contact<T, N> advance_at_rest(const Ellipsoid<T, N>& a, const RigidMotion<T, N>&
                               T t_max, const Options& options) noexcept {
   const detail::Scale scale = detail::scale_of<T>(a.radii().maxCoeff(), a.radii().minCoeff(),
                                                   std::max(detail::max_abs(a.center()), coordinate));
-  const bool out_of_range = !std::isfinite(magnitude<N>(motion.angular_velocity)) ||
+  const bool out_of_range = !isfinite(magnitude<N>(motion.angular_velocity)) ||
                             (std::is_same_v<T, double> && scale.range != detail::Range::native);
   return advance<T, N>(a, motion, t_max, options, out_of_range,
                        ShapeParty<T, N, Shape>{b, options, motion.velocity.template cast<R>(),
@@ -231,7 +232,7 @@ Contact<T, N> rigid_contact(const Ellipsoid<T, N>& a, const RigidMotion<T, N>& m
     } catch (const InputError&) {  // moved beyond the range of T
     }
     const T coordinate = moved ? coordinate_of<T, N>(*moved) : std::numeric_limits<T>::infinity();
-    if (std::isfinite(coordinate)) {
+    if (isfinite(coordinate)) {
       const Ellipsoid<T, N> body = detail::ShapeAccess::unchecked<T, N>(Vec<T, N>::Zero(), a.axes(), a.radii());
       Contact<T, N> c = advance_at_rest<T, N>(body, moving, *moved, coordinate, t_max, options);
       if (c.status == ContactStatus::hit)
@@ -281,7 +282,7 @@ MeshContact<T, N> first_contact(const Ellipsoid<T, N>& a, const RigidMotion<T, N
   // mesh; each by its own advancement.
   using W = detail::Work<T>;
   const W grown = motion_a.growth == T(0) ? W(1) : 1 + W(motion_a.growth) * W(t_max);
-  const W reach = W(a.radii().maxCoeff()) * grown * (1 + 2 * W(options.tolerance) + W(1e-9)) *
+  const W reach = W(a.radii().maxCoeff()) * grown * (1 + 2 * W(double(options.tolerance)) + W(1e-9)) *
                   (sizeof(T) < sizeof(double) ? W(1 + 1e-6) : W(1));
   return detail::mesh_contact<T, N>(a, b, options, (motion_a.velocity - velocity_b).template cast<W>(),
                                     Vec<W, N>::Constant(reach), t_max, false, [&](std::uint32_t k, T t_end) {

@@ -8,6 +8,7 @@
 #include "detail/instantiate.hpp"
 #include "detail/shape_access.hpp"
 #include "detail/show.hpp"
+#include "detail/math.hpp"
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/QR>
@@ -44,7 +45,7 @@ template <class T>
 
 template <class T>
 [[noreturn, gnu::cold, gnu::noinline]] void throw_not_positive(const std::string& field, T value) {
-  if (!std::isfinite(value)) throw_not_finite(field, value);
+  if (!isfinite(value)) throw_not_finite(field, value);
   throw InputError(field, "must be > 0 (got " + show(value) + ")");
 }
 
@@ -52,7 +53,7 @@ template <class Derived>
 void require_finite(const Eigen::MatrixBase<Derived>& m, const char* field) {
   for (Eigen::Index j = 0; j < m.cols(); ++j)
     for (Eigen::Index i = 0; i < m.rows(); ++i)
-      if (!std::isfinite(m(i, j)))
+      if (!isfinite(m(i, j)))
         throw_not_finite(m.cols() == 1 ? element_name(field, i) : element_name(field, i, j), m(i, j));
 }
 
@@ -83,7 +84,7 @@ template <class T>
 [[noreturn, gnu::cold, gnu::noinline]] void throw_bad_quaternion(const Quat<T>& q) {
   for (const auto& [value, field] : {std::pair{q.w(), "quaternion.w"}, std::pair{q.x(), "quaternion.x"},
                                      std::pair{q.y(), "quaternion.y"}, std::pair{q.z(), "quaternion.z"}})
-    if (!std::isfinite(value)) throw_not_finite(field, value);
+    if (!isfinite(value)) throw_not_finite(field, value);
   throw InputError("quaternion", "must have unit norm (got |q| = " + show(q.norm()) + ")");
 }
 
@@ -134,7 +135,7 @@ template <class T, int N>
       for (int i = 0; i <= j; ++i) gram[i][j] += axes(k, i) * axes(k, j);
   const T close = T(4 * N) * std::numeric_limits<T>::epsilon();
   for (int j = 0; j < N; ++j)
-    for (int i = 0; i <= j; ++i) ok &= std::abs(gram[i][j] - T(i == j)) <= close;
+    for (int i = 0; i <= j; ++i) ok &= abs(gram[i][j] - T(i == j)) <= close;
   return ok;
 }
 
@@ -240,9 +241,9 @@ Ellipsoid<T, N> Ellipsoid<T, N>::translated(const Vec<T, N>& offset) const {
 
 template <class T>
 Ellipse2<T> make_ellipse(const Vec2<T>& center, T angle, const Vec2<T>& radii) {
-  if (!std::isfinite(angle)) throw_not_finite("angle", angle);
+  if (!isfinite(angle)) throw_not_finite("angle", angle);
   const auto axes = [angle] {
-    const T c = std::cos(angle), s = std::sin(angle);
+    const T c = cos(angle), s = sin(angle);
     Mat2<T> m;
     m << c, -s, s, c;
     return m;
@@ -279,7 +280,7 @@ Ellipsoid3<T> make_ellipsoid(const Vec3<T>& center, const Quat<T>& rotation, con
   // |q|^2 within 2 tol of 1 (|q| within tol, to tol^2); NaN or inf unless every component
   // is finite.
   const T n2 = rotation.squaredNorm();
-  if (!(std::abs(n2 - T(1)) <= T(2) * quaternion_tolerance<T>)) [[unlikely]]
+  if (!(abs(n2 - T(1)) <= T(2) * quaternion_tolerance<T>)) [[unlikely]]
     throw_bad_quaternion(rotation);
   const auto axes = [&] { return unit_rotation<T>(rotation, n2); };
   return body<T, 3>(center, axes(), radii, axes);
@@ -339,7 +340,7 @@ void make_ellipses(std::span<const T> centers, std::span<const T> angles, std::s
 template <class T>
 Quat<T> normalized_quaternion(const Quat<T>& q) {
   const T norm = q.coeffs().norm();
-  return std::abs(norm - T(1)) <= T(normalize_tolerance) ? Quat<T>(q.coeffs() / norm) : q;
+  return abs(norm - T(1)) <= T(normalize_tolerance) ? Quat<T>(q.coeffs() / norm) : q;
 }
 
 template <class T, int N>

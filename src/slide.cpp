@@ -4,6 +4,7 @@
 #include "detail/mesh_walk.hpp"
 #include "detail/scale.hpp"
 #include "detail/shape_access.hpp"
+#include "detail/math.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -207,7 +208,7 @@ Slide<T, N> slide_through(const Ellipsoid<T, N>& body, const VecArg<T, N>& displ
     T t = first;
     Vec<T, N> next = center + t * r;
     for (int k = 0; inside_any(at(body, next), world, options); ++k) {
-      t = k < std::numeric_limits<T>::digits ? first * (T(1) - std::ldexp(T(1), k - std::numeric_limits<T>::digits))
+      t = k < std::numeric_limits<T>::digits ? first * (T(1) - ldexp(T(1), k - std::numeric_limits<T>::digits))
                                              : T(0);
       next = center + t * r;
       if (t == T(0)) break;
@@ -276,7 +277,7 @@ Slide<T, N> slide_in_body_frame(const Ellipsoid<T, N>& body, const VecArg<T, N>&
   if (!inside_any(out.body, given, options)) return out;
   // The obstacles within the end's rounding (and the band) of the slide's end.
   const T unit = std::numeric_limits<T>::epsilon() * detail::max_abs(end);
-  const T reach = T(4 * N) * unit + T(options.tolerance) * s.body.radii().maxCoeff();
+  const T reach = T(4 * N) * unit + T(double(options.tolerance)) * s.body.radii().maxCoeff();
   Vec<T, N> away = Vec<T, N>::Zero();
   moved.near(s.body, [&](std::size_t, const auto& obstacle) {
     const Distance<T, N> d = signed_distance(s.body, obstacle, options);
@@ -286,7 +287,7 @@ Slide<T, N> slide_in_body_frame(const Ellipsoid<T, N>& body, const VecArg<T, N>&
   if (length > T(0)) {
     away /= length;
     for (int k = 0; k < 64; ++k) {
-      const Vec<T, N> step = away * std::ldexp(unit, k), nudged = end + step;
+      const Vec<T, N> step = away * ldexp(unit, k), nudged = end + step;
       if (!nudged.allFinite()) break;
       if (!inside_any(at(body, nudged), given, options)) {
         out.body = at(body, nudged);
@@ -317,8 +318,8 @@ Slide<T, N> collide_and_slide(const Ellipsoid<T, N>& body, const VecArg<T, N>& d
   bool movable = true;
   if (!world.nodes().empty())
     for (int i = 0; i < N; ++i)
-      movable = movable && std::isfinite(world.nodes()[0].lo[i] - body.center()[i]) &&
-                std::isfinite(world.nodes()[0].hi[i] - body.center()[i]);
+      movable = movable && isfinite(world.nodes()[0].lo[i] - body.center()[i]) &&
+                isfinite(world.nodes()[0].hi[i] - body.center()[i]);
   return slide_in_body_frame(
       body, displacement, Mesh<T, N>{world, options.tolerance, Vec<T, N>::Zero()},
       [&](const Vec<T, N>& origin) { return Mesh<T, N>{world, options.tolerance, origin}; }, movable, options);

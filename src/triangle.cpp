@@ -8,6 +8,7 @@
 #include "detail/polytope_distance.hpp"
 #include "detail/reduce.hpp"
 #include "detail/scale.hpp"
+#include "detail/math.hpp"
 
 #include <algorithm>
 #include <array>
@@ -22,7 +23,7 @@ using detail::CompensatedDot;
 using detail::Double;
 
 // The computations below are written once over S = F (plain) and S = Double<F> (double
-// length), F = double or long double.
+// length), F = double or the wide type.
 template <class S>
 struct Base {
   using type = S;
@@ -102,7 +103,7 @@ Point<S, N> to_ball(const Mat<F, N>& axes, const Vec<F, N>& r, const Vec<F, N>& 
 // The unit roundoff of S: eps for F, eps^2 for Double<F>.
 template <class S>
 BaseOf<S> rounding() noexcept {
-  constexpr BaseOf<S> eps = std::numeric_limits<BaseOf<S>>::epsilon();
+  const BaseOf<S> eps = std::numeric_limits<BaseOf<S>>::epsilon();
   return std::is_same_v<S, BaseOf<S>> ? eps : eps * eps;
 }
 
@@ -312,10 +313,10 @@ Bracket<F, N> bracket_of(const Pair<F, N>& p, const std::array<Vec<F, N>, 3>& v,
   for (int k = 0; k < 3; ++k) {
     u[k] = to_ball<S, F, N>(p.axes, p.radii, v[k], p.center);
     extent = std::max(extent, detail::max_abs(Vec<F, N>(v[k] - p.center)) / p.radii.minCoeff());
-    size = std::max(size, std::sqrt(value(dot<S, N>(u[k], u[k]))) + 1);
+    size = std::max(size, sqrt(value(dot<S, N>(u[k], u[k]))) + 1);
   }
-  extent *= std::sqrt(F(N));
-  constexpr F eps = std::numeric_limits<F>::epsilon();
+  extent *= sqrt(F(N));
+  const F eps = std::numeric_limits<F>::epsilon();
   const F slack = std::is_same_v<S, F> ? 2 * eps * (F((N + 2) * N) * extent + F(4 * (N + 4)) * size)
                                        : 2 * eps * eps * (F(8 * N * N) * extent + F(64 * (N + 4)) * size);
   return bracket<F, S, N>(u, slack);
@@ -349,7 +350,7 @@ Pair<F, N> pair_in(const Ellipsoid<T, N>& a, const Triangle<T, N>& b, const Opti
   p.center = a.center().template cast<F>();
   p.radii = a.radii().template cast<F>();
   for (int k = 0; k < 3; ++k) p.vertices[k] = b.vertex(k).template cast<F>();
-  const F band = F(options.tolerance);
+  const F band = F(double(options.tolerance));
   p.bracket = bracket_of<F, F, N>(p, p.vertices, p.u, p.size);
   p.relation = decide(p.bracket, band);
   if (p.relation != Decision::undecided) return p;
@@ -367,13 +368,13 @@ Pair<F, N> pair_in(const Ellipsoid<T, N>& a, const Triangle<T, N>& b, const Opti
   return p;
 }
 
-// Calls then(pair) with the pair in double, or in long double beyond the native range.
+// Calls then(pair) with the pair in double, or in the wide type beyond the native range.
 template <class T, int N, class Then>
 auto with_pair(const Ellipsoid<T, N>& a, const Triangle<T, N>& b, const Options& options, Then&& then) noexcept {
   T coordinate = detail::max_abs(a.center());
   for (int k = 0; k < 3; ++k) coordinate = std::max(coordinate, detail::max_abs(b.vertex(k)));
   const detail::Scale scale = detail::scale_of<T>(a.radii().maxCoeff(), a.radii().minCoeff(), coordinate);
-  if (scale.range == detail::Range::wide) return then(pair_in<long double>(a, b, options));
+  if (scale.range == detail::Range::wide) return then(pair_in<detail::WideFloat>(a, b, options));
   return then(pair_in<detail::Work<T>>(a, b, options));
 }
 
@@ -496,17 +497,17 @@ Contact<T, N> first_contact(const Ellipsoid<T, N>& a, const VecArg<T, N>& veloci
     out.status = ContactStatus::no_contact_in_window;
     const T speed = std::max(detail::max_abs(velocity_a), detail::max_abs(velocity_b));
     if (!(speed > T(0))) return out;
-    const int v = F(speed) >= F(0x1p-500) && F(speed) <= F(0x1p500) ? 0 : std::ilogb(speed);
+    const int v = F(speed) >= F(0x1p-500) && F(speed) <= F(0x1p500) ? 0 : ilogb(speed);
     Vec<F, N> va, vb;
     for (int i = 0; i < N; ++i) {
-      va[i] = std::ldexp(F(velocity_a[i]), -v);
-      vb[i] = std::ldexp(F(velocity_b[i]), -v);
+      va[i] = ldexp(F(velocity_a[i]), -v);
+      vb[i] = ldexp(F(velocity_b[i]), -v);
     }
     // The body's box swept relative to the triangle's box over [0, t_max] (times here in units
     // of 2^v): where they never meet, no contact, whatever the triangle's size.
     {
-      const Vec<F, N> h = box_half_extents(p, F(options.tolerance)), d = va - vb;
-      F entry = 0, exit = std::ldexp(F(t_max), v);
+      const Vec<F, N> h = box_half_extents(p, F(double(options.tolerance))), d = va - vb;
+      F entry = 0, exit = ldexp(F(t_max), v);
       for (int i = 0; i < N; ++i) {
         const F lo = std::min({p.vertices[0][i], p.vertices[1][i], p.vertices[2][i]}) - h[i] - p.center[i];
         const F hi = std::max({p.vertices[0][i], p.vertices[1][i], p.vertices[2][i]}) + h[i] - p.center[i];
@@ -549,13 +550,13 @@ Contact<T, N> first_contact(const Ellipsoid<T, N>& a, const VecArg<T, N>& veloci
       solve(p.u, F(0));
     }
     if (!(time >= F(0))) return out;
-    time = std::max(std::ldexp(time, -v), F(std::numeric_limits<T>::denorm_min()));
-    if (!(std::isfinite(T(time)) && T(time) <= t_max)) return out;
+    time = std::max(ldexp(time, -v), F(std::numeric_limits<T>::denorm_min()));
+    if (!(isfinite(T(time)) && T(time) <= t_max)) return out;
     out.time = T(time);
     // The contact point lies on the unit sphere of the ball frame; one that does not (only
     // for triangles far beyond the stated range, whose roots lose every digit) is no answer.
     const F length = x.norm();
-    if (!(std::abs(length - 1) <= F(1e-6))) {
+    if (!(abs(length - 1) <= F(1e-6))) {
       out.status = ContactStatus::did_not_converge;
       return out;
     }

@@ -11,6 +11,7 @@
 
 #include <cmath>
 #include <limits>
+#include "math.hpp"
 
 namespace ellipsect::detail {
 
@@ -32,9 +33,9 @@ Mat<R, N> work_axes(const Ellipsoid<T, N>& e) noexcept {
 template <class R, int N>
 Vec<R, N> unit_vector(Vec<R, N> v) noexcept {
   const R s = v.squaredNorm();
-  if (s >= std::numeric_limits<R>::min() && s <= std::numeric_limits<R>::max()) return v / std::sqrt(s);
+  if (s >= std::numeric_limits<R>::min() && s <= std::numeric_limits<R>::max()) return v / sqrt(s);
   const R m = v.cwiseAbs().maxCoeff();
-  if (!(m > R(0)) || !std::isfinite(m)) return v;
+  if (!(m > R(0)) || !isfinite(m)) return v;
   v /= m;
   return v / v.norm();
 }

@@ -47,6 +47,7 @@
 #include <ellipsect/shapes.hpp>
 
 #include "axes.hpp"
+#include "math.hpp"
 
 #include <cmath>
 #include <limits>
@@ -66,15 +67,15 @@ namespace ellipsect::detail::ELLIPSECT_LANE_NAMESPACE {
 
 // Scalar twins of the Highway operations, so one template serves both. Max and Min follow
 // the x86 instructions (the second operand when unordered).
-ELLIPSECT_LANE double Sqrt(double x) { return std::sqrt(x); }
+ELLIPSECT_LANE double Sqrt(double x) { return sqrt(x); }
 ELLIPSECT_LANE double Max(double a, double b) { return a > b ? a : b; }
 ELLIPSECT_LANE double Min(double a, double b) { return a < b ? a : b; }
 ELLIPSECT_LANE bool Lt(double a, double b) { return a < b; }
 ELLIPSECT_LANE bool Le(double a, double b) { return a <= b; }
 ELLIPSECT_LANE bool Gt(double a, double b) { return a > b; }
 ELLIPSECT_LANE bool Ge(double a, double b) { return a >= b; }
-ELLIPSECT_LANE bool IsFinite(double x) { return std::isfinite(x); }
-ELLIPSECT_LANE double Abs(double x) { return std::abs(x); }
+ELLIPSECT_LANE bool IsFinite(double x) { return isfinite(x); }
+ELLIPSECT_LANE double Abs(double x) { return abs(x); }
 ELLIPSECT_LANE bool And(bool a, bool b) { return a && b; }
 ELLIPSECT_LANE bool Or(bool a, bool b) { return a || b; }
 ELLIPSECT_LANE bool AndNot(bool not_a, bool b) { return !not_a && b; }
@@ -511,7 +512,7 @@ bool centre_line_meets(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b, const
       p = p / double(e.radii()[k]);
       q = q + p * p;
     }
-    return 1 / std::sqrt(q);  // concentric: infinite
+    return 1 / sqrt(q);  // concentric: infinite
   };
   const double t = reach(a) + reach(b);
   return aspect_gate<double, N>(la, lb) && t * t * (1 - certificate_margin<double, N>(la, lb, r)) >= 1;

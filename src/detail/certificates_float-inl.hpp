@@ -42,6 +42,7 @@
 #endif
 
 #include "certificates-inl.hpp"
+#include "math.hpp"
 
 #include <hwy/highway.h>
 
@@ -64,12 +65,12 @@ inline FloatBand float_band(double tol) {
   const double out = 1 + 2 * tol + 1e-6, in = 1 - 2 * tol - 1e-6;
   auto up = [](double x) {
     const float f = float(x);
-    return double(f) >= x ? f : std::nextafter(f, std::numeric_limits<float>::infinity());
+    return double(f) >= x ? f : nextafter(f, std::numeric_limits<float>::infinity());
   };
   auto down = [](double x) {
     if (!(x > 0)) return -1.0f;  // a tolerance this wide: the comparison never passes
     const float f = float(x);
-    return double(f) <= x ? f : std::nextafter(f, 0.0f);
+    return double(f) <= x ? f : nextafter(f, 0.0f);
   };
   return {up(out * out * (1 + slack)), down(in * in * (1 - slack)), up(out * out * (1 + slack)),
           down(in * (1 - slack)), up(out * (1 + slack))};

@@ -15,6 +15,7 @@
 
 #include "reduce.hpp"
 #include "secular.hpp"
+#include "math.hpp"
 
 #include <limits>
 
@@ -57,10 +58,10 @@ Reduced<R, N> reduce_settled(const Ellipsoid<T, N>& s, const Ellipsoid<T, N>& o)
 template <class R, int N>
 int overlap_reduced(const Vec<R, N>& e, const Vec<R, N>& k, R tol, R rounding) noexcept {
   const R q0 = level_at_origin(e, k);
-  if (!(std::abs(q0) > rounding)) return 0;
+  if (!(abs(q0) > rounding)) return 0;
   if (q0 < R(0)) return 1;
   const R gap = closest_from_outside(e, k).norm - R(1);
-  if (!(std::abs(gap - tol) > rounding)) return 0;
+  if (!(abs(gap - tol) > rounding)) return 0;
   return gap <= tol ? 1 : -1;
 }
 
@@ -70,15 +71,15 @@ template <class R, int N>
 ReducedRelation classify_reduced(const Vec<R, N>& e, const Vec<R, N>& k, R tol, R& margin) noexcept {
   margin = std::numeric_limits<R>::infinity();
   auto le = [&](R x, R threshold) {
-    margin = std::min(margin, std::abs(x - threshold));
+    margin = std::min(margin, abs(x - threshold));
     return x <= threshold;
   };
   auto ge = [&](R x, R threshold) {
-    margin = std::min(margin, std::abs(x - threshold));
+    margin = std::min(margin, abs(x - threshold));
     return x >= threshold;
   };
   const R q0 = level_at_origin(e, k);
-  margin = std::abs(q0);
+  margin = abs(q0);
   if (q0 > R(0)) {
     const R d = closest_from_outside(e, k).norm;
     if (!le(d, R(1) + tol)) return ReducedRelation::separated;

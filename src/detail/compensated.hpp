@@ -1,11 +1,13 @@
 // Error-free transformations and double-length values (Knuth's two-sum, Dekker's product
-// with Veltkamp's split: exact without a fused multiply-add) for F = double or long double,
+// with Veltkamp's split: exact without a fused multiply-add) for F = double or the wide type (detail/wide.hpp),
 // and the compensated dot product of Ogita, Rump and Oishi (SIAM J. Sci. Comput. 2005,
 // "Dot2"), whose unevaluated result hi + lo is within gamma_2n^2 sum |x_i y_i| of the exact
 // dot product (gamma_k = k eps / (1 - k eps)). The source file including this header must be
 // compiled with -ffp-contract=off: a contracted split or product is no longer error-free.
 // Valid while no product over- or underflows (the callers keep their lengths in range).
 #pragma once
+
+#include "math.hpp"
 
 #include <cmath>
 #include <limits>
@@ -26,8 +28,8 @@ Double<F> two_sum(F a, F b) noexcept {
 
 template <class F>
 Double<F> two_product(F a, F b) noexcept {
-  constexpr F split = F((1ull << ((std::numeric_limits<F>::digits + 1) / 2)) + 1);
-  const auto halves = [](F x, F& high, F& low) {
+  const F split = F((1ull << ((std::numeric_limits<F>::digits + 1) / 2)) + 1);
+  const auto halves = [split](F x, F& high, F& low) {
     const F c = split * x;
     high = c - (c - x);
     low = x - high;
@@ -100,10 +102,12 @@ template <class F>
 bool operator>=(Double<F> a, Double<F> b) noexcept {
   return !(a < b);
 }
+// The built-in types' roots beside Double's below (detail/math.hpp).
+using ellipsect::sqrt;
+
 // sqrt(a) for a >= 0: one Newton correction of the working-precision root.
 template <class F>
 Double<F> sqrt(Double<F> a) noexcept {
-  using std::sqrt;
   if (!(a.hi > F(0))) return {};
   const F s = sqrt(a.hi);
   const Double<F> r = a - two_product(s, s);

@@ -23,6 +23,7 @@
 #include <ellipsect/shapes.hpp>
 
 #include "axes.hpp"
+#include "math.hpp"
 
 #include <Eigen/LU>
 
@@ -73,7 +74,7 @@ TangentBasis<R, N> tangent_basis(const Vec<R, N>& n) noexcept {
   if constexpr (N == 2) {
     q << -n[1], n[0];
   } else {
-    const R sign = std::copysign(R(1), n[2]);
+    const R sign = copysign(R(1), n[2]);
     const R a = R(-1) / (sign + n[2]);
     const R b = n[0] * n[1] * a;
     q << R(1) + sign * n[0] * n[0] * a, b, sign * b, sign + n[1] * n[1] * a, -sign * n[0], -n[1];
@@ -98,7 +99,8 @@ struct GapAt {
 template <class R, int N>
 TangentMat<R, N> curvature(const Mat<R, N>& b, const Vec<R, N>& w, R inv, const TangentBasis<R, N>& q) noexcept {
   const TangentBasis<R, N> v = b * q;
-  const Tangent<R, N> st = v.transpose() * w * inv;  // q^T s
+  Tangent<R, N> st = v.transpose() * w;  // q^T s
+  st *= inv;
   return (v.transpose() * v - st * st.transpose()) * inv;
 }
 
@@ -171,7 +173,7 @@ R lowest_eigenvalue(const Eigen::Matrix<R, M, M>& h) noexcept {
     return h(0, 0);
   } else {
     const R half_diff = (h(0, 0) - h(1, 1)) / 2;
-    return (h(0, 0) + h(1, 1)) / 2 - std::sqrt(half_diff * half_diff + h(0, 1) * h(0, 1));
+    return (h(0, 0) + h(1, 1)) / 2 - sqrt(half_diff * half_diff + h(0, 1) * h(0, 1));
   }
 }
 
@@ -229,7 +231,7 @@ Tangent<R, N> trust_step(const GapAt<R, N>& at, R radius, bool& newton) noexcept
     // Negative curvature with a small gradient (near a maximum or saddle): move along the
     // lowest eigenvector, downhill, to the trust radius.
     const Tan v = eigenvector<R, N - 1>(at.hess, lambda);
-    const R along = std::sqrt(radius * radius - t.squaredNorm());
+    const R along = sqrt(radius * radius - t.squaredNorm());
     t += (at.grad.dot(v) > R(0) ? -along : along) * v;
   }
   return t;
@@ -270,7 +272,7 @@ R kink_fraction(const GapBodies<R, N>& g, const Vec<R, N>& n, const Vec<R, N>& s
 // finite phi are accepted, so the result holds a finite iterate whenever n0 is finite.
 template <class R, int N>
 Descent<R, N> descend(const GapBodies<R, N>& g, const Vec<R, N>& n0, int max_iterations) noexcept {
-  constexpr R eps = std::numeric_limits<R>::epsilon();
+  const R eps = std::numeric_limits<R>::epsilon();
   Descent<R, N> d;
   d.at = gap_at<R, N>(g, n0);
   R radius = R(0.5);
@@ -301,7 +303,7 @@ Descent<R, N> descend(const GapBodies<R, N>& g, const Vec<R, N>& n0, int max_ite
     }
     const Vec<R, N> step = d.at.q * t;
     GapAt<R, N> trial = trial_at(d.at.n + step, !rounding_level);
-    if (rounding_level && std::isfinite(trial.phi)) {
+    if (rounding_level && isfinite(trial.phi)) {
       trial.hess = carried<R, N>(d.at.hess, d.at.q, trial.q);
       carried_hessian = true;
       last_pred = pred;
@@ -345,7 +347,7 @@ struct GaussSamples {
   std::array<std::array<int, count>, count> neighbours;  // indices, -1 terminated
   GaussSamples() noexcept {
     if constexpr (N == 2) {
-      for (int i = 0; i < count; ++i) u[i] = Vec<double, 2>(std::cos(i * M_PI / 8), std::sin(i * M_PI / 8));
+      for (int i = 0; i < count; ++i) u[i] = Vec<double, 2>(cos(i * M_PI / 8), sin(i * M_PI / 8));
     } else {
       int m = 0;  // the directions of the cube's faces, edges and corners
       for (int x = -1; x <= 1; ++x)

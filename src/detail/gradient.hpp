@@ -9,6 +9,7 @@
 #include "detail/axes.hpp"
 #include "detail/compensated.hpp"
 #include "detail/secular.hpp"
+#include "math.hpp"
 
 
 #include <array>
@@ -186,7 +187,7 @@ bool polish_on_edge(const Ellipsoid<T, 3>& a, const EdgeOffsets<R>& edge, Vec<R,
   u /= length;
   Vec<R, 3> n = normal - u * u.dot(normal);
   n /= n.norm();
-  R turned = std::abs(std::asin(std::min(R(1), std::abs(u.dot(normal)))));
+  R turned = abs(asin(std::min(R(1), abs(u.dot(normal)))));
   for (int step = 0; step < 3; ++step) {
     const HitSide<R, 3> side(a, n);
     const Vec<R, 3> t = u.cross(n);
@@ -195,8 +196,8 @@ bool polish_on_edge(const Ellipsoid<T, 3>& a, const EdgeOffsets<R>& edge, Vec<R,
     const R theta = t.dot(qp - side.p) / den;
     n += theta * t;
     n /= n.norm();
-    turned += std::abs(theta);
-    if (!(std::abs(theta) > R(4) * std::numeric_limits<R>::epsilon())) break;
+    turned += abs(theta);
+    if (!(abs(theta) > R(4) * std::numeric_limits<R>::epsilon())) break;
   }
   if (!(turned < R(1e-4))) return false;
   for (int k = 0; k < edge.side_count; ++k)
@@ -282,7 +283,7 @@ RotationVector<R, N> turned_back(const RotationVector<R, N>& theta, const Rotati
     const R angle = theta.norm();
     if (!(angle > R(0))) return v;
     const Vec<R, 3> u = theta / angle;
-    return Vec<R, 3>(v * std::cos(angle) - std::sin(angle) * u.cross(v) + (R(1) - std::cos(angle)) * u.dot(v) * u);
+    return Vec<R, 3>(v * cos(angle) - sin(angle) * u.cross(v) + (R(1) - cos(angle)) * u.dot(v) * u);
   }
 }
 
@@ -301,8 +302,8 @@ RotationVector<R, N> jacobian_transposed(const RotationVector<R, N>& theta, cons
       c1 = R(0.5) - a2 / R(24);
       c2 = R(1) / R(6) - a2 / R(120);
     } else {
-      c1 = (R(1) - std::cos(angle)) / a2;
-      c2 = (angle - std::sin(angle)) / (a2 * angle);
+      c1 = (R(1) - cos(angle)) / a2;
+      c2 = (angle - sin(angle)) / (a2 * angle);
     }
     const Vec<R, 3> tv = theta.cross(v);
     return Vec<R, 3>(v - c1 * tv + c2 * theta.cross(tv));
@@ -334,7 +335,7 @@ struct Cholesky {
     for (int j = 0; j < N; ++j) {
       R d = s(j, j);
       for (int k = 0; k < j; ++k) d -= l(j, k) * l(j, k);
-      l(j, j) = std::sqrt(d);
+      l(j, j) = sqrt(d);
       for (int i = j + 1; i < N; ++i) {
         R x = s(i, j);
         for (int k = 0; k < j; ++k) x -= l(i, k) * l(j, k);

@@ -7,6 +7,7 @@
 
 #include "contact_start.hpp"
 #include "reduce.hpp"
+#include "math.hpp"
 
 #include <algorithm>
 #include <array>
@@ -29,13 +30,13 @@ Vec<Work<T>, N> half_extents(const Ellipsoid<T, N>& a, double tolerance) noexcep
   Vec<W, N> h;
   for (int i = 0; i < N; ++i) {
     W s = 0;
-    for (int k = 0; k < N; ++k) s = std::max(s, std::abs(W(a.axes()(i, k))) * W(a.radii()[k]));
+    for (int k = 0; k < N; ++k) s = std::max(s, abs(W(a.axes()(i, k))) * W(a.radii()[k]));
     W sum = 0;
     for (int k = 0; k < N; ++k) {
       const W x = W(a.axes()(i, k)) * W(a.radii()[k]) / s;
       sum += x * x;
     }
-    h[i] = s * std::sqrt(sum) * grow;
+    h[i] = s * sqrt(sum) * grow;
   }
   return h;
 }
@@ -46,7 +47,7 @@ std::pair<Work<T>, Work<T>> grown(const typename TriangleMesh<T, N>::Node& node,
                                   int i) noexcept {
   using W = Work<T>;
   const W lo = W(node.lo[i]), hi = W(node.hi[i]);
-  const W margin = W(1e-9) * (std::abs(lo) + std::abs(hi) + h[i]) + std::numeric_limits<W>::denorm_min();
+  const W margin = W(1e-9) * (abs(lo) + abs(hi) + h[i]) + std::numeric_limits<W>::denorm_min();
   return {lo - h[i] - margin, hi + h[i] + margin};
 }
 
@@ -94,7 +95,7 @@ void for_each_nearest(const TriangleMesh<T, N>& mesh, const Vec<Work<T>, N>& c, 
       const W out = std::max({lo - c[i], c[i] - hi, W(0)});
       sum += out * out;
     }
-    return sum > W(0) ? std::sqrt(sum) : -std::numeric_limits<W>::infinity();
+    return sum > W(0) ? sqrt(sum) : -std::numeric_limits<W>::infinity();
   };
   W bound = std::numeric_limits<W>::infinity();
   std::array<std::pair<W, std::uint32_t>, 64> stack;  // (gap, node)
@@ -133,7 +134,7 @@ std::pair<Work<T>, Work<T>> slab(const typename TriangleMesh<T, N>::Node& node, 
     exit = std::min(exit, t2);
   }
   // The quotients are rounded: widen the interval by 1e-9 of itself.
-  const W slack = W(1e-9) * (std::abs(entry) + std::abs(exit));
+  const W slack = W(1e-9) * (abs(entry) + abs(exit));
   return {entry - slack, exit + slack};
 }
 

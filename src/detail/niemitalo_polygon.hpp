@@ -24,6 +24,7 @@
 
 #include <array>
 #include <cmath>
+#include "math.hpp"
 
 namespace ellipsect::detail {
 
@@ -45,13 +46,13 @@ const NiemitaloCoefficients<T>& niemitalo_coefficients() noexcept {
     NiemitaloCoefficients<T> k;
     const long double pi = 3.141592653589793238462643383279502884L;
     for (int t = 0; t <= niemitalo_levels; ++t) {
-      const long double half = pi / std::ldexp(1.0L, t + 2);  // half the angle between level-t neighbours
-      k.outer[t] = static_cast<T>(0.5L / (std::cos(half) * std::cos(half)));
-      if (t > 0) k.inner[t] = static_cast<T>(0.5L / std::cos(2 * half));
-      const long double s = std::sin(half / 2);
+      const long double half = pi / ldexp(1.0L, t + 2);  // half the angle between level-t neighbours
+      k.outer[t] = static_cast<T>(0.5L / (cos(half) * cos(half)));
+      if (t > 0) k.inner[t] = static_cast<T>(0.5L / cos(2 * half));
+      const long double s = sin(half / 2);
       k.below[t] = static_cast<T>(2 * s * s);
-      k.above[t] = static_cast<T>(2 * s * s / std::cos(half));
-      k.cover_above[t] = static_cast<T>(std::sin(half));
+      k.above[t] = static_cast<T>(2 * s * s / cos(half));
+      k.cover_above[t] = static_cast<T>(sin(half));
     }
     return k;
   }();

@@ -24,6 +24,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include "math.hpp"
 
 namespace ellipsect::detail {
 
@@ -36,13 +37,13 @@ R resolvent_largest_root(R a2, R a0) noexcept {
   const R disc = q * q / 4 + p * p * p / 27;
   R x;
   if (p == R(0)) {
-    x = std::cbrt(-q);
+    x = cbrt(-q);
   } else if (disc <= R(0)) {                       // three real roots
-    const R m = std::sqrt(-p / 3);
+    const R m = sqrt(-p / 3);
     const R cos3 = std::clamp(-q / (2 * m * m * m), R(-1), R(1));
-    x = 2 * m * std::cos(std::acos(cos3) / 3);
+    x = 2 * m * cos(acos(cos3) / 3);
   } else {                                         // one real root
-    const R big = -std::copysign(std::cbrt(std::abs(q) / 2 + std::sqrt(disc)), q);
+    const R big = -copysign(cbrt(abs(q) / 2 + sqrt(disc)), q);
     x = big != R(0) ? big - p / (3 * big) : R(0);
   }
   R y = x - shift;
@@ -64,17 +65,17 @@ R secular_quartic_root(R beta, R C, R D) noexcept {
   const R d2 = delta * delta;
   const R y = resolvent_largest_root<R>((S - 4 * d2) / 2, 2 * d2 * C2 * D2);
   const R w2 = std::max(S + 2 * y, R(0));
-  const R w = std::sqrt(w2);
+  const R w = sqrt(w2);
   const R cross = delta * (C2 - D2);
   // z^2 = y^2 - 2 delta^2 y + S delta^2; from the division while w is not small.
-  const R z = w2 >= S / 4 ? cross / w : std::copysign(std::sqrt(std::max(y * y - 2 * d2 * y + S * d2, R(0))), cross);
+  const R z = w2 >= S / 4 ? cross / w : copysign(sqrt(std::max(y * y - 2 * d2 * y + S * d2, R(0))), cross);
   const R k1 = y - d2 + z;  // sigma^2 - w sigma + k1 = 0
   const R k2 = y - d2 - z;  // sigma^2 + w sigma + k2 = 0
   const R disc1 = w2 - 4 * k1, disc2 = w2 - 4 * k2;
   R sigma = -std::numeric_limits<R>::infinity();
-  if (disc1 >= R(0)) sigma = (w + std::sqrt(disc1)) / 2;
+  if (disc1 >= R(0)) sigma = (w + sqrt(disc1)) / 2;
   if (disc2 >= R(0)) {
-    const R den = w + std::sqrt(disc2);
+    const R den = w + sqrt(disc2);
     sigma = std::max(sigma, den > R(0) ? -2 * k2 / den : R(0));
   }
   if (!(sigma > -std::numeric_limits<R>::infinity()))  // rounding made both slightly negative

@@ -35,6 +35,7 @@
 #include "contact_start.hpp"
 #include "scale.hpp"
 #include "secular.hpp"
+#include "math.hpp"
 
 #include <Eigen/Eigenvalues>
 
@@ -107,7 +108,7 @@ void stationary_normals(const Vec<F, M>& a, const Vec<F, M>& given, bool all, Em
       (((fx > F(0)) == lo_positive) ? lo : hi) = x;
       F next = x - fx / df(x);
       if (!(next > lo && next < hi)) next = lo + (hi - lo) / 2;
-      if (!(std::abs(next - x) > 4 * std::numeric_limits<F>::epsilon() * std::abs(x))) return next;
+      if (!(abs(next - x) > 4 * std::numeric_limits<F>::epsilon() * abs(x))) return next;
       x = next;
     }
     return x;
@@ -115,10 +116,10 @@ void stationary_normals(const Vec<F, M>& a, const Vec<F, M>& given, bool all, Em
   // Beyond the extreme poles 1 - sum^(-1/2), with the secular function's roots and signs, is
   // concave and nearly linear (linear for one pole): Newton on it takes a few steps where on
   // the secular function itself it creeps away from a near pole.
-  const auto flat = [&](F s) { return 1 - 1 / std::sqrt(sum(s)); };
+  const auto flat = [&](F s) { return 1 - 1 / sqrt(sum(s)); };
   const auto flat_slope = [&](F s) {
     const F q = sum(s);
-    return slope(s) / (2 * q * std::sqrt(q));
+    return slope(s) / (2 * q * sqrt(q));
   };
   const auto emit_root = [&](F s) {
     Vec<F, M> n;
@@ -126,10 +127,10 @@ void stationary_normals(const Vec<F, M>& a, const Vec<F, M>& given, bool all, Em
     emit(n);
   };
   if (m > 0) {
-    const F spread = std::sqrt(total);
+    const F spread = sqrt(total);
     // Beyond the extreme poles: Newton on `flat` from the end of the bracket where the
     // secular function is >= 0.
-    const F right = -pa[0] + std::sqrt(pb[0]), left = -pa[m - 1] - std::sqrt(pb[m - 1]);
+    const F right = -pa[0] + sqrt(pb[0]), left = -pa[m - 1] - sqrt(pb[m - 1]);
     emit_root(solve(flat, flat_slope, right, -pa[0] + spread, true, right));
     if (!all) return;
     emit_root(solve(flat, flat_slope, -pa[m - 1] - spread, left, false, left));
@@ -141,7 +142,7 @@ void stationary_normals(const Vec<F, M>& a, const Vec<F, M>& given, bool all, Em
       // are least at u = L c / (1 + c), c = (B1 / B2)^(1/3), where they are
       // (B1^(1/3) + B2^(1/3))^3 / L^2: at least 1 there, the function has no root here; the
       // place starts the search for its least value.
-      const F c1 = std::cbrt(pb[j + 1]), c2 = std::cbrt(pb[j]);
+      const F c1 = cbrt(pb[j + 1]), c2 = cbrt(pb[j]);
       if ((c1 + c2) * (c1 + c2) * (c1 + c2) >= (hi - lo) * (hi - lo)) continue;
       const F low = solve(slope, curvature, lo, hi, false, lo + (hi - lo) * c1 / (c1 + c2));
       if (!(secular(low) < F(0))) continue;
@@ -166,7 +167,7 @@ void stationary_normals(const Vec<F, M>& a, const Vec<F, M>& given, bool all, Em
       rest -= a[j] * n[j] * n[j];
     }
     if (!valid || !(rest >= F(0))) continue;
-    n[i] = std::sqrt(rest / a[i]);
+    n[i] = sqrt(rest / a[i]);
     emit(n);
     n[i] = -n[i];
     emit(n);
@@ -224,7 +225,7 @@ GapMaximum<F, N> max_support_gap(const Vec<F, N>& a, const Polytope<F, N>& p, bo
       low = std::min(low, n.dot(y));
       high = std::max(high, n.dot(y));
     }
-    const F rho = std::sqrt(n.cwiseAbs2().dot(a));
+    const F rho = sqrt(n.cwiseAbs2().dot(a));
     best.evaluations += 2;
     if (low - rho > best.gap) {
       best.gap = low - rho;
@@ -303,7 +304,7 @@ Support<T, N> polytope_support(const Ellipsoid<T, N>& body, std::span<const Vec<
   const Scale scale = scale_of<T>(body.radii().maxCoeff(), body.radii().minCoeff(), coordinate);
   const auto run = [&](auto zero) {
     using F = decltype(zero);
-    const int e = std::ilogb(body.radii().maxCoeff());
+    const int e = ilogb(body.radii().maxCoeff());
     const Mat<F, N> axes = work_axes<F>(body);
     const Vec<F, N> center = body.center().template cast<F>();
     const Vec<F, N> a = times_pow2(body.radii().template cast<F>(), -e).cwiseAbs2();
@@ -312,11 +313,11 @@ Support<T, N> polytope_support(const Ellipsoid<T, N>& body, std::span<const Vec<
       y[k] = times_pow2(axes.transpose() * (vertices[k].template cast<F>() - center), -e);
     const GapMaximum<F, N> m =
         max_support_gap<F, N>(a, {std::span<const Vec<F, N>>(y.data(), vertices.size()), edges, faces, near}, containment);
-    const F rho = std::sqrt(m.normal.cwiseAbs2().dot(a));
+    const F rho = sqrt(m.normal.cwiseAbs2().dot(a));
     const Vec<F, N> support = a.cwiseProduct(m.normal) / rho;
     return Support<T, N>{(axes * m.normal).template cast<T>(), (center + axes * times_pow2(support, e)).template cast<T>(),
-                         T(std::ldexp(m.gap, e)), T(std::ldexp(rho, e)), T(std::ldexp(m.reach, e)),
-                         T(std::ldexp(m.farthest, e)), m.complete, m.evaluations};
+                         T(ldexp(m.gap, e)), T(ldexp(rho, e)), T(ldexp(m.reach, e)),
+                         T(ldexp(m.farthest, e)), m.complete, m.evaluations};
   };
   return scale.range == Range::wide ? run(0.0L) : run(std::conditional_t<(sizeof(T) < sizeof(double)), double, T>(0));
 }
@@ -355,7 +356,7 @@ Distance<T, N> distance_of(const Support<T, N>& s, T grow, Relation relation) no
 // such a body and polytope differently by that much).
 template <class T, class W>
 W status_band(const Options& options, W radius, W spread, W coordinate) noexcept {
-  return (W(options.tolerance) + W(1e-9)) * radius + W(1e-12) * spread +
+  return (W(double(options.tolerance)) + W(1e-9)) * radius + W(1e-12) * spread +
          W(16) * W(std::numeric_limits<T>::epsilon()) * (radius + coordinate);
 }
 

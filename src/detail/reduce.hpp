@@ -18,6 +18,7 @@
 #include <ellipsect/shapes.hpp>
 
 #include "axes.hpp"
+#include "wide.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -29,7 +30,7 @@ namespace ellipsect::detail {
 // Working precision: float inputs are computed in double, results rounded back.
 template <class T> using Work = std::conditional_t<(sizeof(T) < sizeof(double)), double, T>;
 // The wider type used to re-decide answers that rounding in Work<T> could flip.
-template <class R> using Wide = long double;
+template <class R> using Wide = WideFloat;
 
 // Bodies whose largest radii differ by more than this factor: the larger becomes the ball.
 inline constexpr double sphere_body_size_ratio = 0x1p26;
@@ -38,7 +39,7 @@ template <class T, int N>
 bool is_sphere_body(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b) noexcept {
   // A small body near a large one's boundary is measured in the large one's frame: in the
   // small one's, the large one's center lies (size ratio) units away and is rounded by eps
-  // times that, beyond the tangency band from a ratio of about 2^26 on (in long double too)
+  // times that, beyond the tangency band from a ratio of about 2^26 on (in the wide type too)
   // and beyond the small body's own size at 2^52 (two balls of radius ratio 2^154: classify,
   // overlap and first_contact each answered their own rounding).
   const T size_a = a.radii().maxCoeff(), size_b = b.radii().maxCoeff();
@@ -53,7 +54,7 @@ bool is_sphere_body(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b) noexcept
     for (Eigen::Index i = 0; i < x.size(); ++i) {
       const T u = x.data()[i], v = y.data()[i];
       if (u != v) return u < v ? -1 : 1;
-      if (std::signbit(u) != std::signbit(v)) return std::signbit(u) ? -1 : 1;
+      if (signbit(u) != signbit(v)) return signbit(u) ? -1 : 1;
     }
     return 0;
   };
@@ -63,13 +64,13 @@ bool is_sphere_body(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b) noexcept
 }
 
 // a * b + c with about one rounding: a hardware fma where the build has one, Dekker's exact
-// product otherwise (libm's software fma is ~50x slower). long double is only used where
+// product otherwise (libm's software fma is ~50x slower). The wide type is only used where
 // its 11 extra bits already cover the second rounding.
 template <class R>
 R mul_add(R a, R b, R c) noexcept {
   if constexpr (std::is_same_v<R, double>) {
 #ifdef FP_FAST_FMA
-    return std::fma(a, b, c);
+    return fma(a, b, c);
 #else
     constexpr double split = 134217729.0;  // 2^27 + 1
     const double p = a * b;
@@ -94,7 +95,7 @@ R mul_add(R a, R b, R c) noexcept {
 // then orthogonal to rounding anyway.
 template <class R, int N>
 void left_singular(Mat<R, N> w, Vec<R, N>& sigma, Mat<R, N>& u) noexcept {
-  constexpr R eps = std::numeric_limits<R>::epsilon();
+  const R eps = std::numeric_limits<R>::epsilon();
   Vec<R, N> norm2 = w.colwise().squaredNorm().transpose();  // updated by each rotation
   for (int sweep = 0; sweep < 16; ++sweep) {
     R largest = 0;  // largest relative off-diagonal |gamma| / sqrt(alpha beta) this sweep
@@ -102,12 +103,12 @@ void left_singular(Mat<R, N> w, Vec<R, N>& sigma, Mat<R, N>& u) noexcept {
       for (int q = p + 1; q < N; ++q) {
         const R gamma = w.col(p).dot(w.col(q));
         // sqrt of each norm: their product overflows for columns beyond 1e77 (radius ratios).
-        const R relative = std::abs(gamma) / (std::sqrt(norm2[p]) * std::sqrt(norm2[q]));
+        const R relative = abs(gamma) / (sqrt(norm2[p]) * sqrt(norm2[q]));
         if (!(relative > eps)) continue;
         largest = std::max(largest, relative);
         const R zeta = (norm2[q] - norm2[p]) / (2 * gamma);
-        const R t = (zeta >= 0 ? R(1) : R(-1)) / (std::abs(zeta) + std::sqrt(R(1) + zeta * zeta));
-        const R c = R(1) / std::sqrt(R(1) + t * t), s = c * t;
+        const R t = (zeta >= 0 ? R(1) : R(-1)) / (abs(zeta) + sqrt(R(1) + zeta * zeta));
+        const R c = R(1) / sqrt(R(1) + t * t), s = c * t;
         const Vec<R, N> wp = w.col(p);
         w.col(p) = c * wp - s * w.col(q);
         w.col(q) = s * wp + c * w.col(q);
@@ -116,7 +117,7 @@ void left_singular(Mat<R, N> w, Vec<R, N>& sigma, Mat<R, N>& u) noexcept {
       }
     // Quadratic convergence: a sweep that started within sqrt(eps) of orthogonality ends
     // at eps, so the confirming sweep is skipped.
-    if (!(largest > std::sqrt(eps))) break;
+    if (!(largest > sqrt(eps))) break;
   }
   for (int i = 0; i < N; ++i) {
     sigma[i] = w.col(i).norm();

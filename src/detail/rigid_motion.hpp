@@ -7,6 +7,7 @@
 
 #include "contact_start.hpp"
 #include "shape_access.hpp"
+#include "math.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -32,7 +33,7 @@ Vec<S, N> spin_cross(const W& omega, const Vec<S, N>& v) noexcept {
 template <int N, class W>
 R magnitude(const W& omega) noexcept {
   if constexpr (N == 2) {
-    return std::abs(R(omega));
+    return abs(R(omega));
   } else {
     return omega.template cast<R>().stableNorm();
   }
@@ -41,7 +42,7 @@ R magnitude(const W& omega) noexcept {
 template <int N, class W>
 bool all_finite(const W& omega) noexcept {
   if constexpr (N == 2) {
-    return std::isfinite(omega);
+    return isfinite(omega);
   } else {
     return omega.allFinite();
   }
@@ -49,14 +50,14 @@ bool all_finite(const W& omega) noexcept {
 
 template <class T>
 bool valid_growth(T growth) noexcept {
-  return growth >= T(0) && std::isfinite(growth);
+  return growth >= T(0) && isfinite(growth);
 }
 
 // exp(t [omega]x) (Rodrigues' formula in 3D).
 template <class T, int N>
 Mat<T, N> rotation(const Omega<T, N>& omega, T t) noexcept {
   if constexpr (N == 2) {
-    const T angle = omega * t, c = std::cos(angle), s = std::sin(angle);
+    const T angle = omega * t, c = cos(angle), s = sin(angle);
     Mat<T, 2> rot;
     rot << c, -s, s, c;
     return rot;
@@ -64,7 +65,7 @@ Mat<T, N> rotation(const Omega<T, N>& omega, T t) noexcept {
     const T rate = omega.stableNorm();
     if (!(rate > T(0)) || t == T(0)) return Mat<T, 3>::Identity();
     const Vec<T, 3> k = omega / rate;
-    const T angle = rate * t, c = std::cos(angle), s = std::sin(angle);
+    const T angle = rate * t, c = cos(angle), s = sin(angle);
     Mat<T, 3> kx;
     kx << T(0), -k[2], k[1], k[2], T(0), -k[0], -k[1], k[0], T(0);
     return Mat<T, 3>(Mat<T, 3>::Identity() + s * kx + (T(1) - c) * (kx * kx));
@@ -138,7 +139,7 @@ struct Turning {
   R rising(R t, R across) const noexcept { return sweep * scale(t) * across + growth * big; }
   R curvature(R t, R across, R turned) const noexcept {
     const R rigid = scale(t) * (big * big * across * across / small + big * spin * across);
-    return growth == R(0) ? rigid : R(1.125) * rigid + 2 * growth / scale(t) * std::abs(turned);
+    return growth == R(0) ? rigid : R(1.125) * rigid + 2 * growth / scale(t) * abs(turned);
   }
   R reach(R t) const noexcept {
     return growth == R(0) ? std::numeric_limits<R>::infinity() : scale(t) / (8 * growth);
@@ -183,7 +184,7 @@ template <class T, int N, class Other>
 Contact<T, N> advance(const Ellipsoid<T, N>& a, const RigidMotion<T, N>& motion, T t_max, const Options& options,
                       bool out_of_range, Other&& other) noexcept {
   constexpr T nan = std::numeric_limits<T>::quiet_NaN();
-  constexpr R ulp = R(std::numeric_limits<T>::epsilon()), eps = std::numeric_limits<R>::epsilon();
+  const R ulp = R(std::numeric_limits<T>::epsilon()), eps = std::numeric_limits<R>::epsilon();
   const Turning<T, N> turning(a, motion);
   const Vec<R, N> v = motion.velocity.template cast<R>();
   Contact<T, N> out;
@@ -228,7 +229,7 @@ Contact<T, N> advance(const Ellipsoid<T, N>& a, const RigidMotion<T, N>& motion,
     const R along = n.dot(body.center().template cast<R>());
     const Party b = other.side(n, body);
     // The gap g_n = low - n . c - rho, less the rounding of this step's bodies and its own.
-    const R margin = ulp * (turning.configuration(t) + b.configuration) + 8 * eps * (std::abs(along) + rho + b.magnitude);
+    const R margin = ulp * (turning.configuration(t) + b.configuration) + 8 * eps * (abs(along) + rho + b.magnitude);
     const R gap = b.low - along - rho - margin;
     const R rate_margin = 32 * ulp * (turning.rates(t) + b.speed);
     const R across = turning.across(n), turned = turning.turn(n, offset);
@@ -238,13 +239,13 @@ Contact<T, N> advance(const Ellipsoid<T, N>& a, const RigidMotion<T, N>& motion,
     const R reach = std::min(turning.reach(t), b.reach);
     // The first zero of the larger of the two lower bounds of g_n beyond t (infinite where
     // neither has one; the second holds up to `reach`).
-    constexpr R inf = std::numeric_limits<R>::infinity();
+    const R inf = std::numeric_limits<R>::infinity();
     R advance = 0;
     if (gap > R(0)) {
       const R first_order = fastest > R(0) ? gap / fastest : inf;
       R second_order;
       if (curvature > R(0)) {
-        const R root = std::sqrt(slope * slope + 2 * curvature * gap);
+        const R root = sqrt(slope * slope + 2 * curvature * gap);
         second_order = slope <= R(0) ? 2 * gap / (root - slope) : (slope + root) / curvature;
       } else {
         second_order = slope < R(0) ? gap / -slope : inf;

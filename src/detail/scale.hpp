@@ -14,7 +14,7 @@
 //           exactly 2^k;
 //   wide    not representable in double: some radius of the pair is below about
 //           2^-ratio_bits r_max, or a center or query point coordinate above about
-//           2^offset_bits r_max. The query runs in long double (its 15-bit exponent holds
+//           2^offset_bits r_max. The query runs in the wide type (detail/wide.hpp: its 15-bit exponent holds
 //           the squares of any double) on the bodies as given.
 // first_contact also rescales time where the speeds leave the window (time_exponent).
 // float bodies are always native: their squares and cubes fit in double, the working type.
@@ -23,6 +23,7 @@
 #include <ellipsect/shapes.hpp>
 
 #include "shape_access.hpp"
+#include "math.hpp"
 
 #include <algorithm>
 #include <bit>
@@ -64,8 +65,8 @@ Scale scale_of(T r_max, T r_min, T coordinate) noexcept {
   } else {
     // Most pairs: native by comparisons alone (the products by powers of two are exact).
     if (r_max >= 0x1p-64 && r_max < 0x1p65 && r_min >= r_max * 0x1p-160 && coordinate <= r_max * 0x1p340) return {};
-    const int e = std::ilogb(r_max);
-    if (std::ilogb(r_min) < e - ratio_bits || (coordinate > 0 && std::ilogb(coordinate) > e + offset_bits))
+    const int e = ilogb(r_max);
+    if (ilogb(r_min) < e - ratio_bits || (coordinate > 0 && ilogb(coordinate) > e + offset_bits))
       return {Range::wide, 0};
     if (e >= -native_exponent && e <= native_exponent) return {};
     return {Range::scaled, e};
@@ -88,8 +89,8 @@ int time_exponent(const Scale& scale, const Vec<T, N>& velocity_a, const Vec<T, 
     return 0;
   } else {
     const T speed = std::max(max_abs(velocity_a), max_abs(velocity_b));
-    if (scale.range == Range::wide || !(speed > 0) || !std::isfinite(speed)) return 0;
-    const int f = std::ilogb(speed) - scale.exponent;
+    if (scale.range == Range::wide || !(speed > 0) || !isfinite(speed)) return 0;
+    const int f = ilogb(speed) - scale.exponent;
     return f >= -native_exponent && f <= native_exponent ? 0 : f;
   }
 }
@@ -107,8 +108,8 @@ T unit_scale(T size) noexcept {
   const U field = (std::bit_cast<U>(size) >> mantissa) & (2 * bias + 1);
   if (field == 0 || field >= 2 * bias) {  // size subnormal, or 2^-e would be: the nearest finite power
     int e;
-    (void)std::frexp(size, &e);
-    return std::ldexp(T(1), std::min(1 - e, std::numeric_limits<T>::max_exponent - 1));
+    (void)frexp(size, &e);
+    return ldexp(T(1), std::min(1 - e, std::numeric_limits<T>::max_exponent - 1));
   }
   return std::bit_cast<T>(static_cast<U>((2 * bias - field) << mantissa));
 }
@@ -117,7 +118,7 @@ T unit_scale(T size) noexcept {
 template <class D>
 Vec<typename D::Scalar, D::RowsAtCompileTime> times_pow2(const Eigen::MatrixBase<D>& v, int k) noexcept {
   Vec<typename D::Scalar, D::RowsAtCompileTime> out;
-  for (int i = 0; i < D::RowsAtCompileTime; ++i) out[i] = std::ldexp(v[i], k);
+  for (int i = 0; i < D::RowsAtCompileTime; ++i) out[i] = ldexp(v[i], k);
   return out;
 }
 

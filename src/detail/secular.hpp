@@ -27,6 +27,7 @@
 
 #include <cmath>
 #include <limits>
+#include "math.hpp"
 
 namespace ellipsect::detail {
 
@@ -35,13 +36,13 @@ namespace ellipsect::detail {
 template <class R, int N>
 R stable_norm(const Vec<R, N>& v) noexcept {
   const R s = v.squaredNorm();
-  if (s >= std::numeric_limits<R>::min() && s <= std::numeric_limits<R>::max()) return std::sqrt(s);
+  if (s >= std::numeric_limits<R>::min() && s <= std::numeric_limits<R>::max()) return sqrt(s);
   const R m = v.cwiseAbs().maxCoeff();
-  if (!(m > R(0)) || !std::isfinite(m)) return m;
-  const int e = std::ilogb(m);
+  if (!(m > R(0)) || !isfinite(m)) return m;
+  const int e = ilogb(m);
   Vec<R, N> w;
-  for (int i = 0; i < N; ++i) w[i] = std::ldexp(v[i], -e);
-  return std::ldexp(w.norm(), e);
+  for (int i = 0; i < N; ++i) w[i] = ldexp(v[i], -e);
+  return ldexp(w.norm(), e);
 }
 
 template <class R>
@@ -62,7 +63,7 @@ SecularRoot<R> solve_secular(const Vec<R, N>& c_in, const Vec<R, N>& g, R guess 
   using std::abs;
   using std::sqrt;
   const Vec<R, N> c = c_in.cwiseAbs();
-  constexpr R eps = std::numeric_limits<R>::epsilon();
+  const R eps = std::numeric_limits<R>::epsilon();
 
   // Degenerate group: terms with g_i = 0. If all of them vanish, S(0) is finite.
   bool pole = false;
@@ -137,7 +138,7 @@ struct BranchPoint {
 template <class R>
 R scaled_ratio(R k, R n, R den) noexcept {
   const R q = n / den;
-  return std::isfinite(q) ? k * q : k / den * n;
+  return isfinite(q) ? k * q : k / den * n;
 }
 
 template <class R, int N, class Num, class Off>
@@ -148,7 +149,7 @@ BranchPoint<R, N> branch_point(const Vec<R, N>& e, const Vec<R, N>& k, const Vec
   for (int i = 0; i < N; ++i) {
     const R den = g[i] + root.x;
     if (den == R(0)) {  // hard case: k_i = 0 here
-      b.offset[i] = completed ? R(0) : e[i] * std::sqrt(std::max(R(0), R(1) - root.s_rest));
+      b.offset[i] = completed ? R(0) : e[i] * sqrt(std::max(R(0), R(1) - root.s_rest));
       b.point[i] = b.offset[i];
       completed = true;
     } else {
@@ -199,7 +200,7 @@ template <class R, int N>
 Vec<R, N> settled(const Vec<R, N>& e, Vec<R, N> k) noexcept {
   const R floor = std::numeric_limits<R>::epsilon() * e.maxCoeff();
   for (int i = 0; i < N; ++i)
-    if (std::abs(k[i]) <= floor) k[i] = R(0);
+    if (abs(k[i]) <= floor) k[i] = R(0);
   return k;
 }
 
