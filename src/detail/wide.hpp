@@ -6,8 +6,9 @@
 //   emulated     elsewhere (MSVC, Apple arm64, where long double is double), or where the
 //                build asks (ELLIPSECT_EMULATED_WIDE, to test that path on any machine):
 //                Boost.Multiprecision's binary float with the 80-bit format's significand
-//                and exponent range, in software (7x the cost of long double on pairs
-//                beyond double's range, measured; the common paths never reach it).
+//                and exponent range, in software: several times slower than long double,
+//                on the paths that reach it (near-ties of the decisions, pairs beyond
+//                double's range); the common paths never do.
 // Its math functions are called unqualified (detail/math.hpp).
 #pragma once
 
