@@ -2,6 +2,7 @@
 // pairs, the scalar function on the pairs it leaves open, chunks shared among threads.
 #include <ellipsect/batch.hpp>
 #include <ellipsect/gpu.hpp>
+#include <ellipsect/parallel.hpp>
 
 #include "detail/batch_gpu.hpp"
 #include "detail/batch_kernels.hpp"
@@ -12,19 +13,12 @@
 
 #include <algorithm>
 #include <array>
-#include <atomic>
 #include <cmath>
-#include <condition_variable>
 #include <cstdint>
-#include <exception>
 #include <functional>
 #include <limits>
-#include <mutex>
 #include <stdexcept>
-#include <thread>
 #include <type_traits>
-
-#include <unistd.h>
 
 namespace ellipsect {
 
@@ -42,8 +36,9 @@ void put_pair(const Ellipsoid<T, N>& a, const Vec<T, N>& velocity_a, const Ellip
               const Vec<T, N>& velocity_b, T t_max, detail::HWY_NAMESPACE::Fill fill, const Put& put) {
   constexpr detail::BodyLayout layout{N};
   constexpr int body_columns = Pairs<T, N>::body_columns;
-  const detail::Scale scale = detail::scale_of(a, b);
-  const bool open = scale.range != detail::Range::native || detail::time_exponent(scale, velocity_a, velocity_b) != 0;
+  detail::Scale scale = detail::scale_of(a, b);
+  scale.time = detail::time_exponent(scale, velocity_a, velocity_b);
+  const bool open = !scale.as_given();
   auto body = [&](int first, const Ellipsoid<T, N>& e) {
     const auto lanes = detail::HWY_NAMESPACE::lanes_of(e, fill);
     for (int i = 0; i < N; ++i) {
@@ -114,92 +109,11 @@ namespace {
 constexpr std::size_t chunk = 1024;           // pairs per unit of work (a thread takes whole chunks)
 constexpr std::size_t chunks_per_thread = 8;  // at least ~100 us of work per thread asked for
 
-// Worker threads kept between calls, one per hardware thread beyond the caller's, started
-// on first use. Starting threads on each call cost about a fifth of a 16,384-pair overlap
-// on 2 cores (bench/RESULTS.md). One call holds the pool at a time; a call that finds it
-// held runs its work on its own thread. The caller runs the work too, and when it is done, workers
-// that have not woken up yet are no longer waited for (the work is shared through an atomic
-// counter, so there is nothing left for them): a call never waits for a wake-up. In a
-// forked child, where the workers do not exist, calls run alone without touching the pool.
-class Workers {
-public:
-  static Workers& get() {
-    static Workers* const pool = new Workers();  // never destroyed: workers wait in it until exit
-    return *pool;
-  }
 
-  // work() on the caller and on up to `extra` workers; returns once every one that began has returned.
-  template <class Work>
-  void run(std::size_t extra, const Work& work) {
-    if (extra == 0 || getpid() != owner_) return work();
-    std::unique_lock busy(busy_, std::try_to_lock);
-    if (!busy) return work();
-    const std::function<void()> job = [&work] { work(); };
-    {
-      std::lock_guard lock(mutex_);
-      job_ = &job;
-      wanted_ = std::min(extra, threads_);
-      taken_ = 0;
-      ++generation_;
-    }
-    wake_.notify_all();
-    struct Join {  // also where work() throws: the workers hold references to it
-      Workers& pool;
-      ~Join() {
-        std::unique_lock lock(pool.mutex_);
-        pool.wanted_ = pool.taken_;  // those not yet awake stay out
-        pool.done_.wait(lock, [&] { return pool.running_ == 0; });
-      }
-    } join{*this};
-    work();
-  }
-
-private:
-  Workers() : owner_(getpid()), threads_(std::max(1u, std::thread::hardware_concurrency()) - 1) {
-    for (std::size_t i = 0; i < threads_; ++i) std::thread([this] { loop(); }).detach();
-  }
-
-  void loop() {
-    std::uint64_t seen = 0;
-    std::unique_lock lock(mutex_);
-    for (;;) {
-      wake_.wait(lock, [&] { return generation_ != seen; });
-      seen = generation_;
-      if (taken_ >= wanted_) continue;
-      ++taken_;
-      ++running_;
-      const std::function<void()>* job = job_;
-      lock.unlock();
-      (*job)();
-      lock.lock();
-      if (--running_ == 0) done_.notify_all();
-    }
-  }
-
-  const pid_t owner_;  // the process whose threads these are
-  const std::size_t threads_;
-  std::mutex busy_;   // held by the call using the pool
-  std::mutex mutex_;  // guards the fields below
-  std::condition_variable wake_, done_;
-  std::uint64_t generation_ = 0;
-  std::size_t wanted_ = 0, taken_ = 0, running_ = 0;
-  const std::function<void()>* job_ = nullptr;
-};
-
-// job(j) for every j in [0, count), on up to `wanted` threads (the caller and the pool's).
-template <class Job>
-void run_jobs(std::size_t count, std::size_t wanted, const Job& job) {
-  std::atomic<std::size_t> next{0};
-  auto run = [&] {
-    for (std::size_t j; (j = next.fetch_add(1)) < count;) job(j);
-  };
-  if (wanted <= 1) return run();
-  Workers::get().run(wanted - 1, run);
-}
-
-// BatchOptions::threads (0: all hardware threads), at most `at_most`.
-std::size_t threads_wanted(int threads, std::size_t at_most) {
-  return std::min(threads > 0 ? std::size_t(threads) : std::numeric_limits<std::size_t>::max(), at_most);
+// BatchOptions::threads (0: all hardware threads), at most `at_most` (and at least 1).
+int threads_wanted(int threads, std::size_t at_most) {
+  const std::size_t cap = std::clamp<std::size_t>(at_most, 1, std::numeric_limits<int>::max());
+  return threads > 0 ? int(std::min(std::size_t(threads), cap)) : int(cap);
 }
 
 // Calls work(begin, end) on every chunk of [0, n), on up to `threads` threads (0: all
@@ -207,7 +121,7 @@ std::size_t threads_wanted(int threads, std::size_t at_most) {
 template <class Work>
 void for_each_chunk(std::size_t n, int threads, const Work& work) {
   const std::size_t chunks = (n + chunk - 1) / chunk;
-  run_jobs(chunks, threads_wanted(threads, (chunks + chunks_per_thread - 1) / chunks_per_thread),
+  parallel_for(chunks, threads_wanted(threads, (chunks + chunks_per_thread - 1) / chunks_per_thread),
            [&](std::size_t c) { work(c * chunk, std::min(n, (c + 1) * chunk)); });
 }
 
@@ -368,24 +282,18 @@ void Pairs<T, N>::fill(const Source& pairs, int threads) {
   // one job per column on the pool, as the filling below. A job that fails to allocate
   // ends the assignment with its exception, the contents cleared.
   const std::size_t jobs = columns + 2;
-  std::exception_ptr error;
-  std::mutex error_mutex;
-  run_jobs(jobs, threads_wanted(threads, n >= chunk * chunks_per_thread ? jobs : 1), [&](std::size_t j) {
-    try {
+  try {
+    parallel_for(jobs, threads_wanted(threads, n >= chunk * chunks_per_thread ? jobs : 1), [&](std::size_t j) {
       if (j < columns)
         columns_[j].resize(n);
       else if (j == columns)
         a_.assign(pairs.as.begin(), pairs.as.end());
       else
         b_.assign(pairs.bs.begin(), pairs.bs.end());
-    } catch (...) {
-      const std::lock_guard lock(error_mutex);
-      if (!error) error = std::current_exception();
-    }
-  });
-  if (error) {
+    });
+  } catch (...) {
     clear();
-    std::rethrow_exception(error);
+    throw;
   }
   for_each_chunk(n, threads, [&](std::size_t begin, std::size_t end) {
     for (std::size_t i = begin; i < end; ++i)

@@ -47,23 +47,17 @@ detail::ReducedRelation decide(const Ellipsoid<T, N>& s, const Ellipsoid<T, N>& 
   return decide<R>(s, o, tol, R(0), sure);
 }
 
-}  // namespace
-
-template <class T, int N>
-Relation classify(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b, const Options& options) noexcept {
+// The classification in W: the working type, where the certificates filter first, or the
+// wide type.
+template <class W, class T, int N>
+[[gnu::always_inline]] inline Relation classify_in(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b,
+                                                 const Options& options) noexcept {
   using R = detail::Work<T>;
-  using W = detail::Wide<R>;
-  if (detail::identical(a, b)) return Relation::equal;
-  const detail::Scale scale = detail::scale_of(a, b);
-  if (scale.range == detail::Range::scaled) {
-    if (options.tolerance.is_exact() && !detail::scales_exactly(a, b, -scale.exponent))
-      return detail::exact_relation(a, b);  // a subnormal difference the scaling would lose
-    return classify(detail::scaled(a, -scale.exponent), detail::scaled(b, -scale.exponent), options);
+  if constexpr (std::is_same_v<W, R>) {
+    namespace hw = detail::HWY_NAMESPACE;
+    const double code = hw::certificate_code<true>(a, b, options.tolerance);
+    if (code != 0) return detail::certified_relation(code);
   }
-  const bool wide = scale.range == detail::Range::wide;
-  namespace hw = detail::HWY_NAMESPACE;
-  const double code = wide ? 0 : hw::certificate_code<true>(a, b, options.tolerance);
-  if (code != 0) return detail::certified_relation(code);
   const auto [s, o, a_is_s] = detail::order_pair(a, b);
   // Exact: every comparison against 1 itself, and one within its rounding plus the
   // narrowest band (relative to the reduced frame's lengths: the rounding model is an
@@ -72,7 +66,7 @@ Relation classify(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b, const Opti
   const bool exact = options.tolerance.is_exact();
   const R tol = exact ? R(0) : R(double(options.tolerance)), slack = exact ? R(Tolerance::min) : R(0);
   bool sure;
-  const auto rel = wide ? decide<W>(s, o, W(tol), W(slack), sure) : decide<R>(s, o, tol, slack, sure);
+  const auto rel = decide<W>(s, o, W(tol), W(slack), sure);
   if (exact && !sure) return detail::exact_relation(a, b);
   switch (rel) {
     case detail::ReducedRelation::s_contains_o: return a_is_s ? Relation::a_contains_b : Relation::b_contains_a;
@@ -85,25 +79,16 @@ Relation classify(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b, const Opti
   return Relation::overlapping;
 }
 
+// overlap in the working type: the certificates, the gap against 0 where rounding allows,
+// then the decision.
 template <class T, int N>
-bool overlap(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b, const Options& options) noexcept {
+bool overlap_in(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b, const Options& options) noexcept {
   using R = detail::Work<T>;
-  using W = detail::Wide<R>;
-  const detail::Scale scale = detail::scale_of(a, b);
-  const bool exact = options.tolerance.is_exact();
-  if (scale.range == detail::Range::scaled) {
-    if (exact && !detail::scales_exactly(a, b, -scale.exponent)) return classify(a, b, options) != Relation::separated;
-    return overlap(detail::scaled(a, -scale.exponent), detail::scaled(b, -scale.exponent), options);
-  }
-  if (scale.range == detail::Range::wide) {
-    if (exact) return classify(a, b, options) != Relation::separated;
-    const auto pair = detail::order_pair(a, b);
-    return decide<W>(pair.s, pair.o, W(double(options.tolerance))) != detail::ReducedRelation::separated;
-  }
   namespace hw = detail::HWY_NAMESPACE;
   const double code = hw::certificate_code<false>(a, b, options.tolerance);
   if (code != 0) return code > 0;
   const auto [s, o, a_is_s] = detail::order_pair(a, b);
+  const bool exact = options.tolerance.is_exact();
   const R tol = R(double(options.tolerance));
   const auto red = detail::reduce_settled<R>(s, o);
   // Exact: the gap decides against 0 where rounding allows, classify otherwise.
@@ -112,6 +97,38 @@ bool overlap(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b, const Options& 
     return sure > 0;
   if (exact) return classify(a, b, options) != Relation::separated;
   return decide<R>(s, o, tol) != detail::ReducedRelation::separated;
+}
+
+}  // namespace
+
+// At the pair's scale (detail/scale.hpp). Exact: a pair whose rescaling would lose a
+// subnormal difference gets its exact relation.
+template <class T, int N>
+Relation classify(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b, const Options& options) noexcept {
+  if (detail::identical(a, b)) return Relation::equal;
+  return detail::at_scale<detail::Work<T>>(detail::scale_of(a, b), [&]<class W>(auto units) {
+    if (options.tolerance.is_exact() && units.loses(a, b)) return detail::exact_relation(a, b);
+    decltype(auto) sa = units.body(a);
+    decltype(auto) sb = units.body(b);
+    if (units.rescaled && detail::identical(sa, sb)) return Relation::equal;
+    return classify_in<W>(sa, sb, options);
+  });
+}
+
+template <class T, int N>
+bool overlap(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b, const Options& options) noexcept {
+  using R = detail::Work<T>;
+  const bool exact = options.tolerance.is_exact();
+  return detail::at_scale<R>(detail::scale_of(a, b), [&]<class W>(auto units) {
+    constexpr bool wide = !std::is_same_v<W, R>;
+    if (exact && (wide || units.loses(a, b))) return classify(a, b, options) != Relation::separated;
+    if constexpr (wide) {
+      const auto pair = detail::order_pair(a, b);
+      return decide<W>(pair.s, pair.o, W(double(options.tolerance))) != detail::ReducedRelation::separated;
+    } else {
+      return overlap_in(units.body(a), units.body(b), options);
+    }
+  });
 }
 
 #define ELLIPSECT_INSTANTIATE(T, N)                                                                          \

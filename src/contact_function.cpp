@@ -375,42 +375,34 @@ ClosestApproach<T, N> approach(const Ellipsoid<T, N>& s, const Ellipsoid<T, N>& 
   return out;
 }
 
-// F is dimensionless: pairs outside the native range (detail/scale.hpp) run rescaled by a
-// power of two, or in the wide type. The sphere body is chosen before rescaling (rescaling
-// can merge bodies that differ only below the smallest subnormal; swap symmetry needs the
-// order they had). `finish(s, o, a_is_s, direction, norm, e)` solves the pair in query order,
-// scaled by 2^-e, with r = norm * direction in the working type of direction.
+// F is dimensionless: the pair runs at its scale (detail/scale.hpp). The sphere body is
+// chosen before rescaling (rescaling can merge bodies that differ only below the smallest
+// subnormal; swap symmetry needs the order they had). `finish(s, o, a_is_s, direction, norm,
+// e)` solves the pair in query order, scaled by 2^-e, with r = norm * direction in the
+// working type of direction.
 template <class T, int N, class Finish>
-auto at_scale(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b, Finish finish) noexcept {
+auto with_direction(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b, Finish finish) noexcept {
   using R = detail::Work<T>;
-  using W = detail::Wide<R>;
-  const auto [s, o, a_is_s] = detail::order_pair(a, b);
+  const auto pair = detail::order_pair(a, b);
   auto difference = [](const auto& x, const auto& y, auto type) {
     using S = decltype(type);
     return Vec<S, N>(y.center().template cast<S>() - x.center().template cast<S>());
   };
-  const detail::Scale scale = detail::scale_of(a, b);
-  if (scale.range == detail::Range::wide) {
-    const Vec<W, N> r = difference(s, o, W());
-    return finish(s, o, a_is_s, detail::unit_vector<W, N>(r), detail::stable_norm<W, N>(r), 0);
-  }
-  if (scale.range == detail::Range::native) {
-    const Vec<R, N> r = difference(s, o, R());
-    return finish(s, o, a_is_s, detail::unit_vector<R, N>(r), detail::stable_norm<R, N>(r), 0);
-  }
-  // Rescaled: the same arithmetic as at the native scale (answers equal bit for bit), unless
-  // the rescaled centers are too close to keep the direction's digits (r subnormal or zero);
-  // then r comes from the given centers in the wide type.
-  const int e = scale.exponent;
-  const Ellipsoid<T, N> s2 = detail::scaled(s, -e), o2 = detail::scaled(o, -e);
-  Vec<R, N> r = difference(s2, o2, R());
-  R norm = detail::stable_norm<R, N>(r);
-  if (!(norm >= std::numeric_limits<R>::min())) {
-    const Vec<W, N> wide = difference(s, o, W());
-    r = detail::unit_vector<W, N>(wide).template cast<R>();
-    norm = R(ldexp(detail::stable_norm<W, N>(wide), -e));
-  }
-  return finish(s2, o2, a_is_s, detail::unit_vector<R, N>(r), norm, e);
+  return detail::at_scale<R>(detail::scale_of(a, b), [&]<class W>(auto units) {
+    decltype(auto) s = units.body(pair.s);
+    decltype(auto) o = units.body(pair.o);
+    Vec<W, N> r = difference(s, o, W());
+    W norm = detail::stable_norm<W, N>(r);
+    if (units.rescaled && !(norm >= std::numeric_limits<W>::min())) {
+      // The rescaled centers are too close to keep the direction's digits (r subnormal or
+      // zero): r comes from the given centers in the wide type.
+      using L = detail::WideFloat;
+      const Vec<L, N> wide = difference(pair.s, pair.o, L());
+      r = detail::unit_vector<L, N>(wide).template cast<W>();
+      norm = W(ldexp(detail::stable_norm<L, N>(wide), -units.exponent));
+    }
+    return finish(s, o, pair.a_is_s, detail::unit_vector<W, N>(r), norm, units.exponent);
+  });
 }
 
 template <class T>
@@ -427,7 +419,7 @@ ContactFunction<T> concentric() noexcept {
 template <class T, int N>
 ContactFunction<T> perram_wertheim(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b, const Options& options) noexcept {
   if (a.center() == b.center()) return concentric<T>();
-  return at_scale(a, b, [&](const Ellipsoid<T, N>& s, const Ellipsoid<T, N>& o, bool a_is_s, const auto& direction,
+  return with_direction(a, b, [&](const Ellipsoid<T, N>& s, const Ellipsoid<T, N>& o, bool a_is_s, const auto& direction,
                             auto norm, int) { return contact_function(s, o, a_is_s, direction, norm, options); });
 }
 
@@ -438,7 +430,7 @@ ContactFunctionGradient<T, N> perram_wertheim_gradient(const Ellipsoid<T, N>& a,
     // F vanishes to second order in r: every derivative is 0.
     return {concentric<T>(), detail::constant_gradient<T, N>(T(0)), detail::constant_gradient<T, N>(T(0))};
   }
-  return at_scale(a, b, [&](const Ellipsoid<T, N>& s, const Ellipsoid<T, N>& o, bool a_is_s, const auto& direction,
+  return with_direction(a, b, [&](const Ellipsoid<T, N>& s, const Ellipsoid<T, N>& o, bool a_is_s, const auto& direction,
                             auto norm, int e) {
     return contact_function_gradient(s, o, a_is_s, direction, norm, e, options);
   });
@@ -447,22 +439,15 @@ ContactFunctionGradient<T, N> perram_wertheim_gradient(const Ellipsoid<T, N>& a,
 template <class T, int N>
 ClosestApproach<T, N> closest_approach(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b,
                                        const VecArg<T, N>& direction, const Options& options) {
-  using R = detail::Work<T>;
-  using W = detail::Wide<R>;
   if (!direction.allFinite()) throw InputError("direction", "must be finite");
   if (direction.isZero(0)) throw InputError("direction", "must be nonzero");
-  const auto [s, o, a_is_s] = detail::order_pair(a, b);
-  const detail::Scale scale = detail::scale_of(a, b);
-  if (scale.range == detail::Range::wide)
-    return approach<W>(s, o, a_is_s, detail::unit_vector<W, N>(direction.template cast<W>()), options);
-  const Vec<R, N> u = detail::unit_vector<R, N>(direction.template cast<R>());
-  if (scale.range == detail::Range::native) return approach<R>(s, o, a_is_s, u, options);
-  const int e = scale.exponent;
-  ClosestApproach<T, N> out = approach<R>(detail::scaled(s, -e), detail::scaled(o, -e), a_is_s, u, options);
-  out.distance = ldexp(out.distance, e);
-  out.distance_lower = ldexp(out.distance_lower, e);
-  out.point = detail::times_pow2(out.point, e);
-  return out;
+  const auto pair = detail::order_pair(a, b);
+  return detail::at_scale<detail::Work<T>>(detail::scale_of(a, b), [&]<class W>(auto units) {
+    const Vec<W, N> u = detail::unit_vector<W, N>(direction.template cast<W>());
+    ClosestApproach<T, N> out = approach<W>(units.body(pair.s), units.body(pair.o), pair.a_is_s, u, options);
+    units.lengths_out(out.distance, out.distance_lower, out.point);
+    return out;
+  });
 }
 
 template <class T, int N>

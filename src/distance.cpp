@@ -129,9 +129,9 @@ DistanceStatus exact_status(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b) 
 template <int N>
 constexpr int penetration_starts = N == 2 ? 3 : 4;
 
-// The solve in working precision R.
+// The solve in working precision R, s the sphere body (detail::order_pair).
 template <class R, class T, int N>
-Distance<T, N> solve(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b, const Options& options,
+Distance<T, N> solve(const Ellipsoid<T, N>& s, const Ellipsoid<T, N>& o, bool a_is_s, const Options& options,
                      bool penetration) noexcept {
   constexpr T nan = std::numeric_limits<T>::quiet_NaN();
   Distance<T, N> out;
@@ -140,7 +140,6 @@ Distance<T, N> solve(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b, const O
   out.point_b.setConstant(nan);
   out.normal.setConstant(nan);
 
-  const auto [s, o, a_is_s] = detail::order_pair(a, b);
   const auto g = detail::gap_bodies<R>(s, o);
   const QuickStart<R, N> quick = quick_start<R>(s, o, g);
 
@@ -210,34 +209,24 @@ Distance<T, N> solve(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b, const O
 }
 
 // The solve at the pair's scale (detail/scale.hpp): as given, rescaled by 2^-e with the
-// lengths scaled back, or in the wide type.
+// lengths scaled back, or in the wide type. The sphere body is chosen before rescaling:
+// rescaling can merge two bodies that differ only below the smallest subnormal, and swap
+// symmetry needs the order they had.
 template <class T, int N>
 Distance<T, N> solve_at_scale(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b, const Options& options,
                               bool penetration) noexcept {
-  using R = detail::Work<T>;
-  const detail::Scale scale = detail::scale_of(a, b);
-  if (scale.range == detail::Range::native) return solve<R>(a, b, options, penetration);
-  if (scale.range == detail::Range::wide) return solve<detail::Wide<R>>(a, b, options, penetration);
-  // The sphere body is chosen before rescaling: rescaling can merge two bodies that differ
-  // only below the smallest subnormal, and swap symmetry needs the order they had.
-  const int e = scale.exponent;
-  const bool swap = !detail::is_sphere_body(a, b);
-  Distance<T, N> d = swap ? solve<R>(detail::scaled(b, -e), detail::scaled(a, -e), options, penetration)
-                          : solve<R>(detail::scaled(a, -e), detail::scaled(b, -e), options, penetration);
-  if (swap) {
-    std::swap(d.point_a, d.point_b);
-    d.normal = -d.normal;
-  }
-  d.distance = ldexp(d.distance, e);
-  d.point_a = detail::times_pow2(d.point_a, e);
-  d.point_b = detail::times_pow2(d.point_b, e);
-  if (options.tolerance.is_exact() && d.status != DistanceStatus::did_not_converge &&
-      !detail::scales_exactly(a, b, -e)) {  // the status of the pair as given, not of the scaled one
-    d.status = exact_status(a, b);
-    if (d.status == DistanceStatus::separated && !(d.distance > T(0))) d.distance = T(0);
-    if (d.status == DistanceStatus::overlapping && d.distance > T(0)) d.distance = T(0);
-  }
-  return d;
+  const auto pair = detail::order_pair(a, b);
+  return detail::at_scale<detail::Work<T>>(detail::scale_of(a, b), [&]<class W>(auto units) {
+    Distance<T, N> d = solve<W>(units.body(pair.s), units.body(pair.o), pair.a_is_s, options, penetration);
+    units.lengths_out(d.distance, d.point_a, d.point_b);
+    if (options.tolerance.is_exact() && d.status != DistanceStatus::did_not_converge &&
+        units.loses(a, b)) {  // the status of the pair as given, not of the scaled one
+      d.status = exact_status(a, b);
+      if (d.status == DistanceStatus::separated && !(d.distance > T(0))) d.distance = T(0);
+      if (d.status == DistanceStatus::overlapping && d.distance > T(0)) d.distance = T(0);
+    }
+    return d;
+  });
 }
 
 }  // namespace

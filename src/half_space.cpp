@@ -123,10 +123,15 @@ template <class T, int N, class Accept, class Then>
 auto with_gaps(const Ellipsoid<T, N>& a, const HalfSpace<T, N>& b, Accept&& accept, Then&& then) noexcept {
   const detail::Scale scale = detail::scale_of<T>(a.radii().maxCoeff(), a.radii().minCoeff(),
                                                   std::max(detail::max_abs(a.center()), detail::max_abs(b.point())));
-  if (scale.range == detail::Range::wide) return then(gaps_in<detail::WideFloat>(a, b, 0, true));
-  using F = detail::Work<T>;
-  const Gaps<F, N> quick = gaps_in<F>(a, b, scale.exponent, false);
-  return then(accept(quick) ? quick : gaps_in<F>(a, b, scale.exponent, true));
+  // The gaps scale the inputs by 2^-exponent themselves and keep the exponent.
+  return detail::at_scale<detail::Work<T>>(scale, [&]<class F>(auto units) {
+    if constexpr (!std::is_same_v<F, detail::Work<T>>) {
+      return then(gaps_in<F>(a, b, 0, true));
+    } else {
+      const Gaps<F, N> quick = gaps_in<F>(a, b, units.exponent, false);
+      return then(accept(quick) ? quick : gaps_in<F>(a, b, units.exponent, true));
+    }
+  });
 }
 
 // The stated accuracy of lengths (half_space.hpp: 1e-14 scale) with a margin: plain results
@@ -283,9 +288,7 @@ Contact<T, N> first_contact(const Ellipsoid<T, N>& a, const VecArg<T, N>& veloci
     out.status = ContactStatus::no_contact_in_window;
     const T speed = std::max(detail::max_abs(velocity_a), detail::max_abs(velocity_b));
     if (!(speed > T(0))) return out;
-    // The velocities are rescaled only beyond 2^+-500, where their difference could overflow
-    // or the error terms of its products underflow.
-    const int v = F(speed) >= F(0x1p-500) && F(speed) <= F(0x1p500) ? 0 : ilogb(speed);
+    const int v = detail::speed_exponent(speed);
     CompensatedDot<F> sd;  // sigma = -n . (v_a - v_b)
     for (int i = 0; i < N; ++i) {
       const Double<F> w = detail::two_sum(pow2(F(velocity_a[i]), -v), -pow2(F(velocity_b[i]), -v));

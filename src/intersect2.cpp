@@ -229,13 +229,15 @@ Common<R> common_points(const Ellipse2<T>& s, const Ellipse2<T>& o, R tol, bool&
   return out;
 }
 
-// The computation in working precision, repeated in the wider type when in doubt; `use`
+// The computation in working precision, repeated in the wider type when in doubt, or in
+// the wide type alone for a pair not representable in R (`wide`, detail/scale.hpp); `use`
 // receives the result.
 template <class T, class Use>
-void with_common_points(const Ellipse2<T>& s, const Ellipse2<T>& o, const Options& options, Use use) noexcept {
+void with_common_points(const Ellipse2<T>& s, const Ellipse2<T>& o, const Options& options, bool wide,
+                        Use use) noexcept {
   using R = detail::Work<T>;
   using W = detail::Wide<R>;
-  bool doubt = detail::scale_of(s, o).range == detail::Range::wide;  // not representable in R
+  bool doubt = wide;
   if (!doubt) {
     const auto c = common_points<R>(s, o, R(double(options.tolerance)), doubt);
     if (!doubt) return use(c);
@@ -281,23 +283,20 @@ R lens_area(const Common<R>& c) noexcept {
   return area;
 }
 
-}  // namespace
+// Whether a query run in W (detail::at_scale) is in the wide type.
+template <class W, class T>
+constexpr bool in_wide = !std::is_same_v<W, detail::Work<T>>;
 
 template <class T>
-BoundaryIntersection<T> intersect_boundaries(const Ellipse2<T>& a, const Ellipse2<T>& b, const Options& options) noexcept {
-  if (const detail::Scale scale = detail::scale_of(a, b); scale.range == detail::Range::scaled) {
-    const int e = scale.exponent;
-    BoundaryIntersection<T> out = intersect_boundaries(detail::scaled(a, -e), detail::scaled(b, -e), options);
-    for (int i = 0; i < out.count; ++i) out.points[i] = detail::times_pow2(out.points[i], e);
-    return out;
-  }
+BoundaryIntersection<T> boundaries_in(const Ellipse2<T>& a, const Ellipse2<T>& b, const Options& options,
+                                      bool wide) noexcept {
   BoundaryIntersection<T> out;
   const Relation relation = classify(a, b, options);
   if (relation == Relation::equal) out.status = BoundaryStatus::equal;
   if (relation == Relation::equal || relation == Relation::separated) return out;
   const auto pair = detail::order_pair(a, b);
   const Ellipse2<T>& s = pair.s;
-  with_common_points<T>(s, pair.o, options, [&](const auto& c) {
+  with_common_points<T>(s, pair.o, options, wide, [&](const auto& c) {
     using R = typename std::decay_t<decltype(c.red.e)>::Scalar;
     const Vec<R, 2> ca = a.center().template cast<R>();
     const Mat<R, 2> axes_a = detail::work_axes<R>(a);
@@ -329,6 +328,17 @@ BoundaryIntersection<T> intersect_boundaries(const Ellipse2<T>& a, const Ellipse
   return out;
 }
 
+}  // namespace
+
+template <class T>
+BoundaryIntersection<T> intersect_boundaries(const Ellipse2<T>& a, const Ellipse2<T>& b, const Options& options) noexcept {
+  return detail::at_scale<detail::Work<T>>(detail::scale_of(a, b), [&]<class W>(auto units) {
+    BoundaryIntersection<T> out = boundaries_in(units.body(a), units.body(b), options, in_wide<W, T>);
+    for (int i = 0; i < out.count; ++i) units.lengths_out(out.points[i]);
+    return out;
+  });
+}
+
 namespace {
 
 // pi r0 r1, in the working precision.
@@ -345,10 +355,11 @@ bool inside_of(const Ellipse2<T>& y, const Vec<R, 2>& q) noexcept {
   return u.squaredNorm() < R(1);
 }
 
-// overlap_area of a pair in the native range; `crossings(c, pair)` also receives the common
-// points of an overlapping pair (the reduced frame of pair.s and pair.o).
+// overlap_area of a pair run as given (native, or `wide`: detail/scale.hpp); `crossings(c,
+// pair)` also receives the common points of an overlapping pair (the reduced frame of pair.s
+// and pair.o).
 template <class T, class Crossings>
-OverlapArea<T> native_overlap_area(const Ellipse2<T>& a, const Ellipse2<T>& b, const Options& options,
+OverlapArea<T> native_overlap_area(const Ellipse2<T>& a, const Ellipse2<T>& b, const Options& options, bool wide,
                                    Crossings crossings) noexcept {
   OverlapArea<T> out{T(0), classify(a, b, options)};
   const auto pair = detail::order_pair(a, b);
@@ -363,7 +374,7 @@ OverlapArea<T> native_overlap_area(const Ellipse2<T>& a, const Ellipse2<T>& b, c
     case Relation::b_contains_a:
     case Relation::equal: out.area = smaller; break;
     case Relation::overlapping:
-      with_common_points<T>(s, pair.o, options, [&](const auto& c) {
+      with_common_points<T>(s, pair.o, options, wide, [&](const auto& c) {
         using W = typename std::decay_t<decltype(c.red.e)>::Scalar;
         int transverse = 0;
         for (int i = 0; i < c.count; ++i) transverse += c.points[i].kind == CrossingKind::transverse;
@@ -452,34 +463,23 @@ BodyGradient<R, 2> area_gradient(const Ellipse2<T>& e) noexcept {
 
 template <class T>
 OverlapArea<T> overlap_area(const Ellipse2<T>& a, const Ellipse2<T>& b, const Options& options) noexcept {
-  if (const detail::Scale scale = detail::scale_of(a, b); scale.range == detail::Range::scaled) {
-    const int e = scale.exponent;
-    OverlapArea<T> out = overlap_area(detail::scaled(a, -e), detail::scaled(b, -e), options);
-    out.area = ldexp(out.area, 2 * e);  // +inf beyond the largest finite T
+  return detail::at_scale<detail::Work<T>>(detail::scale_of(a, b), [&]<class W>(auto units) {
+    OverlapArea<T> out =
+        native_overlap_area(units.body(a), units.body(b), options, in_wide<W, T>, [](const auto&, const auto&) {});
+    units.areas_out(out.area);  // +inf beyond the largest finite T
     return out;
-  }
-  return native_overlap_area(a, b, options, [](const auto&, const auto&) {});
+  });
 }
 
+namespace {
+
 template <class T>
-OverlapAreaGradient<T> overlap_area_gradient(const Ellipse2<T>& a, const Ellipse2<T>& b,
-                                             const Options& options) noexcept {
-  if (const detail::Scale scale = detail::scale_of(a, b); scale.range == detail::Range::scaled) {
-    // The area scales as length^2: its derivatives by lengths as length, by angles as area.
-    const int e = scale.exponent;
-    OverlapAreaGradient<T> out = overlap_area_gradient(detail::scaled(a, -e), detail::scaled(b, -e), options);
-    out.value.area = ldexp(out.value.area, 2 * e);
-    for (BodyGradient<T, 2>* g : {&out.a, &out.b}) {
-      g->center = detail::times_pow2(g->center, e);
-      g->radii = detail::times_pow2(g->radii, e);
-      g->orientation = ldexp(g->orientation, 2 * e);
-    }
-    return out;
-  }
+OverlapAreaGradient<T> area_gradient_in(const Ellipse2<T>& a, const Ellipse2<T>& b, const Options& options,
+                                        bool wide) noexcept {
   using R = detail::Work<T>;
   const BodyGradient<T, 2> zero = detail::constant_gradient<T, 2>(T(0));
   OverlapAreaGradient<T> out{{}, zero, zero};
-  out.value = native_overlap_area(a, b, options, [&](const auto& c, const auto& pair) {
+  out.value = native_overlap_area(a, b, options, wide, [&](const auto& c, const auto& pair) {
     using W = typename std::decay_t<decltype(c.red.e)>::Scalar;
     // The transverse crossings relative to each body's center.
     const Vec<W, 2> d = pair.o.center().template cast<W>() - pair.s.center().template cast<W>();
@@ -511,26 +511,36 @@ OverlapAreaGradient<T> overlap_area_gradient(const Ellipse2<T>& a, const Ellipse
   return out;
 }
 
+}  // namespace
+
 template <class T>
-T intersection_over_union(const Ellipse2<T>& a, const Ellipse2<T>& b, const Options& options) noexcept {
-  if (const detail::Scale scale = detail::scale_of(a, b); scale.range == detail::Range::scaled)
-    return intersection_over_union(detail::scaled(a, -scale.exponent), detail::scaled(b, -scale.exponent), options);
-  return iou_of(overlap_area(a, b, options), a, b);
+OverlapAreaGradient<T> overlap_area_gradient(const Ellipse2<T>& a, const Ellipse2<T>& b,
+                                             const Options& options) noexcept {
+  return detail::at_scale<detail::Work<T>>(detail::scale_of(a, b), [&]<class W>(auto units) {
+    OverlapAreaGradient<T> out = area_gradient_in(units.body(a), units.body(b), options, in_wide<W, T>);
+    // The area scales as length^2: its derivatives by lengths as length, by angles as area.
+    units.areas_out(out.value.area);
+    for (BodyGradient<T, 2>* g : {&out.a, &out.b}) {
+      units.lengths_out(g->center, g->radii);
+      units.areas_out(g->orientation);
+    }
+    return out;
+  });
 }
 
 template <class T>
-IouGradient<T> intersection_over_union_gradient(const Ellipse2<T>& a, const Ellipse2<T>& b,
-                                                const Options& options) noexcept {
-  if (const detail::Scale scale = detail::scale_of(a, b); scale.range == detail::Range::scaled) {
-    // Scale-free: derivatives by lengths scale as 1 / length, by angles not at all.
-    const int e = scale.exponent;
-    IouGradient<T> out = intersection_over_union_gradient(detail::scaled(a, -e), detail::scaled(b, -e), options);
-    for (BodyGradient<T, 2>* g : {&out.a, &out.b}) {
-      g->center = detail::times_pow2(g->center, -e);
-      g->radii = detail::times_pow2(g->radii, -e);
-    }
-    return out;
-  }
+T intersection_over_union(const Ellipse2<T>& a, const Ellipse2<T>& b, const Options& options) noexcept {
+  return detail::at_scale<detail::Work<T>>(detail::scale_of(a, b), [&]<class W>(auto units) {
+    decltype(auto) sa = units.body(a);
+    decltype(auto) sb = units.body(b);
+    return iou_of(overlap_area(sa, sb, options), sa, sb);
+  });
+}
+
+namespace {
+
+template <class T>
+IouGradient<T> iou_gradient_in(const Ellipse2<T>& a, const Ellipse2<T>& b, const Options& options) noexcept {
   using R = detail::Work<T>;
   const OverlapAreaGradient<T> i = overlap_area_gradient(a, b, options);
   const R common = R(i.value.area), union_area = area_of(a) + area_of(b) - common;
@@ -548,6 +558,19 @@ IouGradient<T> intersection_over_union_gradient(const Ellipse2<T>& a, const Elli
   out.a = quotient(i.a, a);
   out.b = quotient(i.b, b);
   return out;
+}
+
+}  // namespace
+
+template <class T>
+IouGradient<T> intersection_over_union_gradient(const Ellipse2<T>& a, const Ellipse2<T>& b,
+                                                const Options& options) noexcept {
+  return detail::at_scale<detail::Work<T>>(detail::scale_of(a, b), [&]<class W>(auto units) {
+    IouGradient<T> out = iou_gradient_in(units.body(a), units.body(b), options);
+    // Scale-free: derivatives by lengths scale as 1 / length, by angles not at all.
+    for (BodyGradient<T, 2>* g : {&out.a, &out.b}) units.per_lengths_out(g->center, g->radii);
+    return out;
+  });
 }
 
 #define ELLIPSECT_INSTANTIATE(T)                                                                                   \

@@ -41,14 +41,13 @@ ClosestPoint<T, N> solve(const Ellipsoid<T, N>& body, const Vec<T, N>& x) noexce
 // with the lengths scaled back, or in the wide type.
 template <class T, int N>
 ClosestPoint<T, N> closest_point(const Ellipsoid<T, N>& body, const VecArg<T, N>& x) noexcept {
-  using R = detail::Work<T>;
   const detail::Scale scale = detail::scale_of<T>(body.radii().maxCoeff(), body.radii().minCoeff(),
                                                   std::max(detail::max_abs(body.center()), detail::max_abs(x)));
-  if (scale.range == detail::Range::native) return solve<R>(body, x);
-  if (scale.range == detail::Range::wide) return solve<detail::Wide<R>>(body, x);
-  const int e = scale.exponent;
-  ClosestPoint<T, N> p = solve<R>(detail::scaled(body, -e), detail::times_pow2(x, -e));
-  return {detail::times_pow2(p.point, e), ldexp(p.signed_distance, e)};
+  return detail::at_scale<detail::Work<T>>(scale, [&]<class W>(auto units) {
+    ClosestPoint<T, N> p = solve<W>(units.body(body), units.length(x));
+    units.lengths_out(p.point, p.signed_distance);
+    return p;
+  });
 }
 
 #define ELLIPSECT_INSTANTIATE(T, N) \

@@ -129,14 +129,13 @@ QuarticPoint<T> closest_point_quartic(const Ellipse2<T>& ellipse, const VecArg<T
   if (!x.allFinite()) return no_point<T>(QuarticStatus::invalid_input);
   const detail::Scale scale = detail::scale_of<T>(ellipse.radii().maxCoeff(), ellipse.radii().minCoeff(),
                                                   std::max(detail::max_abs(ellipse.center()), detail::max_abs(x)));
-  if (scale.range == detail::Range::native) return quartic_in<R>(ellipse, Vec2<T>(x));
-  if (scale.range == detail::Range::wide) return quartic_in<detail::Wide<R>>(ellipse, Vec2<T>(x));
-  const int e = scale.exponent;
-  QuarticPoint<T> q = quartic_in<R>(detail::scaled(ellipse, -e), Vec2<T>(detail::times_pow2(x, -e)));
-  if (q.status != QuarticStatus::outside) return q;
-  const T distance = ldexp(q.distance, e);
-  if (!(distance > T(0))) return no_point<T>(QuarticStatus::inside);
-  return {q.status, detail::times_pow2(q.point, e), distance};
+  return detail::at_scale<R>(scale, [&]<class W>(auto units) {
+    QuarticPoint<T> q = quartic_in<W>(units.body(ellipse), Vec2<T>(units.length(x)));
+    if (q.status != QuarticStatus::outside) return q;
+    units.lengths_out(q.point, q.distance);
+    if (!(q.distance > T(0))) return no_point<T>(QuarticStatus::inside);
+    return q;
+  });
 }
 
 #define ELLIPSECT_INSTANTIATE(T)                                                                         \

@@ -120,34 +120,26 @@ struct BodyParty {
   }
 };
 
-// first_contact with lengths scaled by 2^-e and time by 2^f (exact but for underflow far
-// below rounding): velocities times 2^-(e + f), angular velocities 2^-f, all finite.
+// first_contact in the rescaled units (detail/scale.hpp; exact but for underflow far below
+// rounding): velocities, angular velocities and growth rates all finite there.
 template <class T, int N>
 Contact<T, N> rescaled_first_contact(const Ellipsoid<T, N>& a, const RigidMotion<T, N>& motion_a,
                                      const Ellipsoid<T, N>& b, const RigidMotion<T, N>& motion_b, T t_max,
-                                     const Options& options, int e, int f) noexcept {
-  RigidMotion<T, N> ma = motion_a, mb = motion_b;
-  ma.velocity = detail::times_pow2(motion_a.velocity, -e - f);
-  mb.velocity = detail::times_pow2(motion_b.velocity, -e - f);
-  ma.growth = ldexp(motion_a.growth, -f);
-  mb.growth = ldexp(motion_b.growth, -f);
-  if constexpr (N == 2) {
-    ma.angular_velocity = ldexp(motion_a.angular_velocity, -f);
-    mb.angular_velocity = ldexp(motion_b.angular_velocity, -f);
-  } else {
-    ma.angular_velocity = detail::times_pow2(motion_a.angular_velocity, -f);
-    mb.angular_velocity = detail::times_pow2(motion_b.angular_velocity, -f);
-  }
+                                     const Options& options, const detail::Units<true>& units) noexcept {
+  auto motion = [&](const RigidMotion<T, N>& m) {
+    return RigidMotion<T, N>{units.velocity(m.velocity), units.rate(m.angular_velocity), units.rate(m.growth)};
+  };
   // Centers that the scaling would overflow (bodies far smaller than their coordinates):
   // the pair is moved to a's center first (an exact difference for nearby centers).
-  const bool move = std::max(detail::max_abs(a.center()), detail::max_abs(b.center())) >= ldexp(T(1), 1000 + e);
+  const bool move =
+      std::max(detail::max_abs(a.center()), detail::max_abs(b.center())) >= ldexp(T(1), 1000 + units.exponent);
   const Vec<T, N> origin = move ? Vec<T, N>(a.center()) : Vec<T, N>::Zero();
   auto prepared = [&](const Ellipsoid<T, N>& x) {
-    return detail::scaled(detail::ShapeAccess::unchecked<T, N>(x.center() - origin, x.axes(), x.radii()), -e);
+    return units.body(detail::ShapeAccess::unchecked<T, N>(x.center() - origin, x.axes(), x.radii()));
   };
-  Contact<T, N> c = first_contact(prepared(a), ma, prepared(b), mb, ldexp(t_max, f), options);
-  c.time = ldexp(c.time, -f);
-  c.point = detail::times_pow2(c.point, e);
+  Contact<T, N> c = first_contact(prepared(a), motion(motion_a), prepared(b), motion(motion_b), units.time(t_max), options);
+  units.times_out(c.time);
+  units.lengths_out(c.point);
   if (move) c.point += origin;
   return c;
 }
@@ -334,27 +326,23 @@ Contact<T, N> first_contact(const Ellipsoid<T, N>& a, const RigidMotion<T, N>& m
   const Vec<T, N> offset = b.center() - a.center();
   const Ellipsoid<T, N> a_rel = detail::ShapeAccess::unchecked<T, N>(Vec<T, N>::Zero(), a.axes(), a.radii());
   const Ellipsoid<T, N> b_rel = detail::ShapeAccess::unchecked<T, N>(offset, b.axes(), b.radii());
-  const detail::Range range = (offset.allFinite() ? detail::scale_of(a_rel, b_rel) : detail::scale_of(a, b)).range;
-  bool out_of_range = !isfinite(spin_a) || !isfinite(spin_b) || range == detail::Range::wide;
+  detail::Scale scale = offset.allFinite() ? detail::scale_of(a_rel, b_rel) : detail::scale_of(a, b);
+  bool out_of_range = !isfinite(spin_a) || !isfinite(spin_b) || !scale.representable();
 
   // Lengths rescaled by 2^-e (exact) where the radii leave 2^+-64, so that squares of radii
   // stay normal; where the speeds in those lengths would leave the range of the type, time
-  // is rescaled too, by 2^f (velocities times 2^-(e + f), angular velocities 2^-f).
-  if constexpr (std::is_same_v<T, double>) {
-    const int e = ilogb(std::max(a.radii().maxCoeff(), b.radii().maxCoeff()));
-    if ((e > detail::native_exponent || e < -detail::native_exponent) && !out_of_range) {
-      const T speed = std::max(detail::max_abs(motion_a.velocity), detail::max_abs(motion_b.velocity));
-      const int g = speed > T(0) ? ilogb(speed) - e : 0;
-      const int f = g > 960 || g < -960 ? g : 0;
-      // Bodies 2^963 across moving 1 per unit time and turning at 2^500 rad per unit time:
-      // in the time unit where they move about a radius, the spin overflows; so does a growth
-      // (radii 2^996 moving at 2^-592 and growing at 2^996 per unit time: it was taken for an
-      // invalid one).
-      if (isfinite(ldexp(std::max(spin_a, spin_b), -f)) &&
-          isfinite(ldexp(std::max(motion_a.growth, motion_b.growth), -f)))
-        return rescaled_first_contact(a, motion_a, b, motion_b, t_max, options, e, f);
-      out_of_range = true;
-    }
+  // is rescaled too (detail::rigid_time_window). This query has no wide path (beyond the
+  // range it decides the start state only), so it rescales through the Units alone.
+  if (!scale.as_given() && !out_of_range) {
+    scale.time = detail::time_exponent(scale, motion_a.velocity, motion_b.velocity, detail::rigid_time_window);
+    const detail::Units<true> units{scale.exponent, scale.time};
+    // Bodies 2^963 across moving 1 per unit time and turning at 2^500 rad per unit time:
+    // in the time unit where they move about a radius, the spin overflows; so does a growth
+    // (radii 2^996 moving at 2^-592 and growing at 2^996 per unit time: it was taken for an
+    // invalid one).
+    if (isfinite(units.rate(std::max(spin_a, spin_b))) && isfinite(units.rate(std::max(motion_a.growth, motion_b.growth))))
+      return rescaled_first_contact(a, motion_a, b, motion_b, t_max, options, units);
+    out_of_range = true;
   }
 
   // In a's frame (translated, not turning): a at rest at the origin, b at c_b - c_a moving

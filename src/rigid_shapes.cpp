@@ -156,8 +156,7 @@ Contact<T, N> advance_at_rest(const Ellipsoid<T, N>& a, const RigidMotion<T, N>&
                               T t_max, const Options& options) noexcept {
   const detail::Scale scale = detail::scale_of<T>(a.radii().maxCoeff(), a.radii().minCoeff(),
                                                   std::max(detail::max_abs(a.center()), coordinate));
-  const bool out_of_range = !isfinite(magnitude<N>(motion.angular_velocity)) ||
-                            (std::is_same_v<T, double> && scale.range != detail::Range::native);
+  const bool out_of_range = !isfinite(magnitude<N>(motion.angular_velocity)) || !scale.as_given();
   return advance<T, N>(a, motion, t_max, options, out_of_range,
                        ShapeParty<T, N, Shape>{b, options, motion.velocity.template cast<R>(),
                                                R(motion.growth) * R(a.radii().maxCoeff())});

@@ -368,14 +368,15 @@ Pair<F, N> pair_in(const Ellipsoid<T, N>& a, const Triangle<T, N>& b, const Opti
   return p;
 }
 
-// Calls then(pair) with the pair in double, or in the wide type beyond the native range.
+// Calls then(pair) with the pair in the working type, or in the wide type beyond the
+// representable range (detail/scale.hpp). The pair's arithmetic is in the body's unit-ball
+// frame, scale-free, so it runs on the bodies as given in the rescaled range too.
 template <class T, int N, class Then>
 auto with_pair(const Ellipsoid<T, N>& a, const Triangle<T, N>& b, const Options& options, Then&& then) noexcept {
   T coordinate = detail::max_abs(a.center());
   for (int k = 0; k < 3; ++k) coordinate = std::max(coordinate, detail::max_abs(b.vertex(k)));
   const detail::Scale scale = detail::scale_of<T>(a.radii().maxCoeff(), a.radii().minCoeff(), coordinate);
-  if (scale.range == detail::Range::wide) return then(pair_in<detail::WideFloat>(a, b, options));
-  return then(pair_in<detail::Work<T>>(a, b, options));
+  return detail::at_scale<detail::Work<T>>(scale, [&]<class F>(auto) { return then(pair_in<F>(a, b, options)); });
 }
 
 Relation relation_of(Decision d) noexcept {
@@ -497,7 +498,7 @@ Contact<T, N> first_contact(const Ellipsoid<T, N>& a, const VecArg<T, N>& veloci
     out.status = ContactStatus::no_contact_in_window;
     const T speed = std::max(detail::max_abs(velocity_a), detail::max_abs(velocity_b));
     if (!(speed > T(0))) return out;
-    const int v = F(speed) >= F(0x1p-500) && F(speed) <= F(0x1p500) ? 0 : ilogb(speed);
+    const int v = detail::speed_exponent(speed);
     Vec<F, N> va, vb;
     for (int i = 0; i < N; ++i) {
       va[i] = ldexp(F(velocity_a[i]), -v);

@@ -11,7 +11,10 @@
 #include <cstdio>
 #include <future>
 #include <limits>
+#include <memory>
+#include <optional>
 #include <type_traits>
+#include <unordered_map>
 #include <variant>
 
 namespace ellipsect::cli {
@@ -468,6 +471,157 @@ int check_pairs_csv(const Input& in, const CheckOptions& opt, const Window& w, c
   return exit_ok;
 }
 
+// Where check's pairs come from, read on the reading stage only: fill(jobs, max) appends up
+// to max jobs and returns how many; fraction() tells how far it has got.
+class PairSource {
+public:
+  virtual ~PairSource() = default;
+  virtual std::size_t fill(std::vector<Job>& jobs, std::size_t max) = 0;
+  virtual double fraction() const = 0;
+};
+
+// The pairs of a pairs file (columns a, b: ids of bodies or obstacles), in its order.
+class FilePairs final : public PairSource {
+public:
+  FilePairs(const std::string& path, std::unordered_map<std::string, std::uint32_t> ids, std::uint32_t bodies)
+      : ids_(std::move(ids)), file_(path, ids_, bodies) {}
+  std::size_t fill(std::vector<Job>& jobs, std::size_t max) override {
+    read_.clear();
+    const std::size_t k = file_.read(read_, max);
+    for (const auto& [i, j] : read_) jobs.push_back({i, j, false});
+    return k;
+  }
+  double fraction() const override { return file_.progress(); }
+
+private:
+  std::unordered_map<std::string, std::uint32_t> ids_;  // before file_, which refers to it
+  PairsFile file_;
+  std::vector<IndexPair> read_;
+};
+
+// A list of pairs: the scene's own, or the broad phase's candidates.
+class ListedPairs final : public PairSource {
+public:
+  explicit ListedPairs(std::vector<IndexPair> pairs) : pairs_(std::move(pairs)) {}
+  std::size_t fill(std::vector<Job>& jobs, std::size_t max) override {
+    std::size_t k = 0;
+    for (; k < max && pos_ < pairs_.size(); ++k, ++pos_) jobs.push_back({pairs_[pos_].first, pairs_[pos_].second, false});
+    return k;
+  }
+  double fraction() const override {
+    return pairs_.empty() ? 1.0 : static_cast<double>(pos_) / static_cast<double>(pairs_.size());
+  }
+
+private:
+  std::vector<IndexPair> pairs_;
+  std::size_t pos_ = 0;
+};
+
+// Every pair (i, j), i < j < n, in order; with the broad phase's sorted candidates, a pair
+// that is not one of them is deduced separated.
+class AllPairs final : public PairSource {
+public:
+  AllPairs(std::uint32_t n, std::optional<std::vector<IndexPair>> candidates)
+      : n_(n), candidates_(std::move(candidates)) {}
+  std::size_t fill(std::vector<Job>& jobs, std::size_t max) override {
+    std::size_t k = 0;
+    while (k < max && n_ >= 2 && i_ + 1 < n_) {
+      bool deduced = false;
+      if (candidates_) {
+        const std::vector<IndexPair>& c = *candidates_;
+        while (pos_ < c.size() && c[pos_] < IndexPair{i_, j_}) ++pos_;
+        deduced = !(pos_ < c.size() && c[pos_] == IndexPair{i_, j_});
+      }
+      jobs.push_back({i_, j_, deduced});
+      ++k;
+      if (++j_ == n_) {
+        ++i_;
+        j_ = i_ + 1;
+      }
+    }
+    return k;
+  }
+  double fraction() const override {
+    const std::uint64_t all = std::uint64_t(n_) * (n_ - 1) / 2;
+    const double i = i_, n = n_;
+    return all == 0 ? 1.0 : (i * n - i * (i + 1) / 2) / static_cast<double>(all);
+  }
+
+private:
+  std::uint32_t n_;
+  std::optional<std::vector<IndexPair>> candidates_;
+  std::size_t pos_ = 0;
+  std::uint32_t i_ = 0, j_ = 1;
+};
+
+// The body pairs of `bodies`, then every body against every obstacle: (0, n), (0, n + 1), ...
+class WithObstacles final : public PairSource {
+public:
+  WithObstacles(std::unique_ptr<PairSource> bodies, std::uint32_t n, std::uint64_t obstacles)
+      : bodies_(std::move(bodies)), n_(n), obstacles_(obstacles) {}
+  std::size_t fill(std::vector<Job>& jobs, std::size_t max) override {
+    std::size_t k = bodies_->fill(jobs, max);
+    for (; k < max && next_ < n_ * obstacles_; ++k, ++next_)
+      jobs.push_back({static_cast<std::uint32_t>(next_ / obstacles_), static_cast<std::uint32_t>(n_ + next_ % obstacles_),
+                      false});
+    return k;
+  }
+  double fraction() const override {
+    return next_ == 0 ? bodies_->fraction() : static_cast<double>(next_) / static_cast<double>(n_ * obstacles_);
+  }
+
+private:
+  std::unique_ptr<PairSource> bodies_;
+  std::uint64_t n_, obstacles_, next_ = 0;
+};
+
+// The pairs check runs and how the summary speaks of them: a pairs file, the scene's list,
+// or all pairs (reported all, or only the broad phase's candidates with the others counted
+// as separated), then the obstacle pairs.
+struct PairPlan {
+  std::unique_ptr<PairSource> source;
+  std::string mode;
+  std::uint64_t total = 0;     // pairs the summary speaks for (a pairs file: counted as read)
+  std::uint64_t unlisted = 0;  // pairs left out by the broad phase and not listed
+  bool from_file = false;
+};
+
+template <int N>
+PairPlan plan_pairs(const BodyScene<N>& scene, std::size_t n_obstacles, const CheckOptions& opt, const Window& w,
+                    const Queries& q) {
+  const auto n = static_cast<std::uint32_t>(scene.bodies.size());
+  PairPlan plan;
+  if (!opt.common.pairs_file.empty()) {
+    plan.source = std::make_unique<FilePairs>(opt.common.pairs_file, id_index<N>(scene.bodies, scene.obstacles), n);
+    plan.mode = "pairs file";
+    plan.from_file = true;
+    return plan;
+  }
+  if (scene.pairs_listed) {
+    plan.source = std::make_unique<ListedPairs>(scene.pairs);
+    plan.mode = "listed";
+    plan.total = scene.pairs.size();
+    return plan;
+  }
+  const std::uint64_t all_pairs = std::uint64_t(n) * (n - 1) / 2, obstacle_pairs = std::uint64_t(n) * n_obstacles;
+  plan.total = all_pairs + obstacle_pairs;
+  std::string report = opt.report;
+  if (report == "auto") report = n <= report_all_limit ? "all" : "candidates";
+  if (!opt.broad_phase) report = "all";
+  std::optional<std::vector<IndexPair>> candidates;
+  if (opt.broad_phase) candidates = broad_phase<N>(scene.bodies, w, q.contact);
+  if (report == "candidates") {
+    plan.mode = "broad-phase candidates";
+    plan.unlisted = all_pairs - candidates->size();
+    plan.source = std::make_unique<ListedPairs>(std::move(*candidates));
+  } else {
+    plan.mode = opt.broad_phase ? "all pairs" : "all pairs, no broad phase";
+    plan.source = std::make_unique<AllPairs>(n, std::move(candidates));
+  }
+  if (obstacle_pairs > 0) plan.source = std::make_unique<WithObstacles>(std::move(plan.source), n, n_obstacles);
+  return plan;
+}
+
 template <int N>
 int check_bodies(const Input& in, const CheckOptions& opt, const Window& w, const Queries& q, Format format,
                  int threads) {
@@ -475,105 +629,13 @@ int check_bodies(const Input& in, const CheckOptions& opt, const Window& w, cons
   const BodyScene<N> scene = load_bodies<N>(in);
   const auto& bodies = scene.bodies;
   const std::uint64_t n = bodies.size();
-  const std::uint64_t all_pairs = n * (n - 1) / 2;
   std::vector<Obstacle<N>> obstacles;  // at the window start
   for (const auto& o : scene.obstacles) obstacles.push_back(obstacle_at<N>(o, w.t0, in.path));
-  const std::uint64_t obstacle_pairs = n * obstacles.size();
 
-  // The pair source: fill(jobs, max) appends up to max jobs, returns how many; fraction()
-  // tells how far it has got. Both run on the reading stage only.
-  std::function<std::size_t(std::vector<Job>&, std::size_t)> fill;
-  std::function<double()> fraction = [] { return -1.0; };
-  std::uint64_t total_pairs = 0;  // pairs the summary speaks for
-  std::uint64_t unlisted = 0;     // pairs left out by the broad phase and not listed
-  std::string pair_mode;
-
-  std::optional<PairsFile> pairs_file;
-  std::unordered_map<std::string, std::uint32_t> ids;
-  std::vector<IndexPair> candidates;
-  std::vector<IndexPair> tmp;
-  std::size_t pos = 0;
-  std::uint32_t ci = 0, cj = 1;
-  std::uint64_t next_obstacle_pair = 0;
-  if (!opt.common.pairs_file.empty()) {
-    ids = id_index<N>(bodies, scene.obstacles);
-    pairs_file.emplace(opt.common.pairs_file, ids, static_cast<std::uint32_t>(n));
-    pair_mode = "pairs file";
-    fill = [&](std::vector<Job>& jobs, std::size_t max) {
-      tmp.clear();
-      const std::size_t k = pairs_file->read(tmp, max);
-      for (const auto& [i, j] : tmp) jobs.push_back({i, j, false});
-      return k;
-    };
-    fraction = [&] { return pairs_file->progress(); };
-  } else if (scene.pairs_listed) {
-    pair_mode = "listed";
-    total_pairs = scene.pairs.size();
-    fill = [&](std::vector<Job>& jobs, std::size_t max) {
-      std::size_t k = 0;
-      for (; k < max && pos < scene.pairs.size(); ++k, ++pos)
-        jobs.push_back({scene.pairs[pos].first, scene.pairs[pos].second, false});
-      return k;
-    };
-    fraction = [&] { return scene.pairs.empty() ? 1.0 : static_cast<double>(pos) / static_cast<double>(scene.pairs.size()); };
-  } else {
-    total_pairs = all_pairs + obstacle_pairs;
-    std::string report = opt.report;
-    if (report == "auto") report = n <= report_all_limit ? "all" : "candidates";
-    if (!opt.broad_phase) report = "all";
-    if (opt.broad_phase) candidates = broad_phase<N>(bodies, w, q.contact);
-    if (report == "candidates") {
-      pair_mode = "broad-phase candidates";
-      unlisted = all_pairs - candidates.size();
-      fill = [&](std::vector<Job>& jobs, std::size_t max) {
-        std::size_t k = 0;
-        for (; k < max && pos < candidates.size(); ++k, ++pos)
-          jobs.push_back({candidates[pos].first, candidates[pos].second, false});
-        return k;
-      };
-      fraction = [&] {
-        return candidates.empty() ? 1.0 : static_cast<double>(pos) / static_cast<double>(candidates.size());
-      };
-    } else {
-      pair_mode = opt.broad_phase ? "all pairs" : "all pairs, no broad phase";
-      fill = [&](std::vector<Job>& jobs, std::size_t max) {
-        std::size_t k = 0;
-        while (k < max && n >= 2 && ci + 1 < n) {
-          bool deduced = false;
-          if (opt.broad_phase) {
-            while (pos < candidates.size() && candidates[pos] < IndexPair{ci, cj}) ++pos;
-            deduced = !(pos < candidates.size() && candidates[pos] == IndexPair{ci, cj});
-          }
-          jobs.push_back({ci, cj, deduced});
-          ++k;
-          if (++cj == n) {
-            ++ci;
-            cj = ci + 1;
-          }
-        }
-        return k;
-      };
-      fraction = [&] {
-        const double i = ci;
-        const double dn = static_cast<double>(n);
-        return all_pairs == 0 ? 1.0 : (i * dn - i * (i + 1) / 2) / static_cast<double>(all_pairs);
-      };
-    }
-    if (obstacle_pairs > 0) {
-      // After the body pairs, every body against every obstacle: (0, n), (0, n + 1), ...
-      fill = [&, body_fill = std::move(fill)](std::vector<Job>& jobs, std::size_t max) {
-        std::size_t k = body_fill(jobs, max);
-        for (; k < max && next_obstacle_pair < obstacle_pairs; ++k, ++next_obstacle_pair)
-          jobs.push_back({static_cast<std::uint32_t>(next_obstacle_pair / obstacles.size()),
-                          static_cast<std::uint32_t>(n + next_obstacle_pair % obstacles.size()), false});
-        return k;
-      };
-      fraction = [&, body_fraction = std::move(fraction)] {
-        return next_obstacle_pair == 0 ? body_fraction()
-                                       : static_cast<double>(next_obstacle_pair) / static_cast<double>(obstacle_pairs);
-      };
-    }
-  }
+  const PairPlan plan = plan_pairs<N>(scene, obstacles.size(), opt, w, q);
+  PairSource& source = *plan.source;
+  const std::string& pair_mode = plan.mode;
+  std::uint64_t total_pairs = plan.total;
 
   Output out(opt.output);
   Progress progress(opt.common.progress, "pairs");
@@ -594,10 +656,10 @@ int check_bodies(const Input& in, const CheckOptions& opt, const Window& w, cons
   auto read = [&](JobChunk& ch) {
     ch.jobs.clear();
     ch.jobs.reserve(chunk_size);
-    ch.n = fill(ch.jobs, chunk_size);
+    ch.n = source.fill(ch.jobs, chunk_size);
     ch.first = next_index;
     next_index += ch.n;
-    ch.fraction = fraction();
+    ch.fraction = source.fraction();
     return ch.n > 0;
   };
   auto process = [&](const JobChunk& ch, std::vector<BlockOut>& blocks) {
@@ -618,11 +680,11 @@ int check_bodies(const Input& in, const CheckOptions& opt, const Window& w, cons
   const std::uint64_t index = run_pipeline<JobChunk>(read, process, writer, progress);
   writer.start();
   progress.finish();
-  if (pairs_file) total_pairs = index;
+  if (plan.from_file) total_pairs = index;
   Counters c = writer.counts;
-  c.relation[static_cast<std::size_t>(Relation::separated)] += q.relation ? unlisted : 0;
-  c.contact[static_cast<std::size_t>(ContactStatus::no_contact_in_window)] += q.contact ? unlisted : 0;
-  c.distance[static_cast<std::size_t>(DistanceStatus::separated)] += q.distance ? unlisted : 0;
+  c.relation[static_cast<std::size_t>(Relation::separated)] += q.relation ? plan.unlisted : 0;
+  c.contact[static_cast<std::size_t>(ContactStatus::no_contact_in_window)] += q.contact ? plan.unlisted : 0;
+  c.distance[static_cast<std::size_t>(DistanceStatus::separated)] += q.distance ? plan.unlisted : 0;
   if (format == Format::json) out.write(json_footer(writer.any(), total_pairs, index, c, q));
   out.commit();
   if (opt.stats) {

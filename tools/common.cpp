@@ -1,16 +1,12 @@
 #include "common.hpp"
 
 #include <algorithm>
-#include <atomic>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
-#include <exception>
 #include <fstream>
-#include <mutex>
 #include <sstream>
 #include <thread>
-#include <vector>
 
 namespace ellipsect::cli {
 
@@ -130,37 +126,6 @@ std::string read_file(const std::string& path) {
   ss << f.rdbuf();
   if (f.bad()) throw IoError(path + ": read error");
   return std::move(ss).str();
-}
-
-void parallel_for(std::size_t blocks, int threads, const std::function<void(std::size_t)>& body) {
-  if (blocks == 0) return;
-  const std::size_t n_threads = std::min<std::size_t>(static_cast<std::size_t>(std::max(threads, 1)), blocks);
-  if (n_threads == 1) {
-    for (std::size_t b = 0; b < blocks; ++b) body(b);
-    return;
-  }
-  std::atomic<std::size_t> next{0};
-  std::exception_ptr error;
-  std::mutex error_mutex;
-  auto work = [&] {
-    for (;;) {
-      const std::size_t b = next.fetch_add(1, std::memory_order_relaxed);
-      if (b >= blocks) return;
-      try {
-        body(b);
-      } catch (...) {
-        const std::lock_guard<std::mutex> lock(error_mutex);
-        if (!error) error = std::current_exception();
-        next.store(blocks);
-      }
-    }
-  };
-  std::vector<std::thread> pool;
-  pool.reserve(n_threads - 1);
-  for (std::size_t i = 1; i < n_threads; ++i) pool.emplace_back(work);
-  work();
-  for (auto& t : pool) t.join();
-  if (error) std::rethrow_exception(error);
 }
 
 int resolve_threads(int requested) {

@@ -1,11 +1,13 @@
 // Shared pieces of the `ellipsect` command-line program: errors and exit codes, number
-// and string formatting, the parallel loop.
+// and string formatting, the thread count (parallel work runs on the library's pool,
+// ellipsect/parallel.hpp).
 #pragma once
+
+#include <ellipsect/parallel.hpp>
 
 #include <charconv>
 #include <cmath>
 #include <cstdint>
-#include <functional>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -81,10 +83,6 @@ bool parse_double(std::string_view s, double& out);
 
 // The whole file; IoError naming it when it cannot be opened or read.
 std::string read_file(const std::string& path);
-
-// Runs body(block) for block in [0, blocks) on up to `threads` threads (the caller's
-// thread included); blocks are handed out dynamically.
-void parallel_for(std::size_t blocks, int threads, const std::function<void(std::size_t)>& body);
 
 // Number of threads for --threads N (0: all hardware threads).
 int resolve_threads(int requested);

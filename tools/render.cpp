@@ -249,213 +249,278 @@ bool ends_with(const std::string& s, const char* suffix) {
   return true;
 }
 
+// What the picture shows: the time drawn and why, the bodies and obstacles at that time with
+// the overlapping ones marked, and the first contacts over the window.
 template <int N>
-int render(const Input& in, const RenderOptions& opt, const Plane& plane) {
-  const Window w = effective_window(in, opt.common);
-  const int threads = resolve_threads(opt.common.threads);
-  const bool contact = in.has_velocity;
-  // A pairs CSV: the one pair of row --row; otherwise every body.
-  const std::size_t limit = in.kind == InputKind::pairs_csv ? 1 : std::numeric_limits<std::size_t>::max();
-  PairSet<N> set = load_pair_set<N>(in, opt.common, w, contact, limit, opt.row);
-  const auto& bodies = set.bodies;
-  const std::size_t n = bodies.size();
-  const std::size_t m = set.obstacles.size();
-  std::vector<Obstacle<N>> obstacles_t0;
-  for (const auto& o : set.obstacles) obstacles_t0.push_back(obstacle_at<N>(o, w.t0, in.path));
-  // The id of pair member j: a body, or an obstacle from n on.
-  const auto id_of = [&](std::uint32_t j) -> const std::string& {
-    return j < n ? bodies[j].id : set.obstacles[j - n].id;
-  };
-
-  // First contacts over the window.
-  Queries cq;
-  cq.relation = false;
-  cq.contact = true;
+struct Scene {
+  PairSet<N> set;
+  Window w;
+  bool contact = false;  // the scene has velocities: first contacts over the window
   std::vector<PairResult<N>> contacts;
-  if (contact) {
-    contacts.resize(set.pairs.size());
-    constexpr std::size_t block = 256;
-    parallel_for((set.pairs.size() + block - 1) / block, threads, [&](std::size_t b) {
-      const std::size_t end = std::min(set.pairs.size(), (b + 1) * block);
-      for (std::size_t k = b * block; k < end; ++k)
-        contacts[k] = set.pairs[k].second < n
-                          ? evaluate<N>(bodies[set.pairs[k].first], bodies[set.pairs[k].second], w, cq, in.path)
-                          : evaluate<N>(bodies[set.pairs[k].first], obstacles_t0[set.pairs[k].second - n], w, cq,
-                                        in.path);
+  double time = 0;
+  std::string time_note;
+  std::vector<Body<N>> at_t;
+  std::vector<Ellipsoid<double, N>> at_start;  // the moving bodies at the window's start
+  std::vector<Obstacle<N>> obstacles_at_t;
+  std::vector<char> red;  // overlapping at the time drawn: bodies, then obstacles
+  std::size_t n_red = 0, n_red_obstacles = 0, n_contacts = 0;
+  bool any_moving = false;
+  double t_end = 0;  // the paths drawn end here
+
+  std::size_t n() const { return set.bodies.size(); }
+  std::size_t m() const { return set.obstacles.size(); }
+  // The id of pair member j: a body, or an obstacle from n on.
+  const std::string& id_of(std::uint32_t j) const { return j < n() ? set.bodies[j].id : set.obstacles[j - n()].id; }
+};
+
+// evaluate(pairs[k]) for every pair, blocks of them on the program's workers.
+template <int N, class Evaluate>
+std::vector<PairResult<N>> evaluate_all(const std::vector<IndexPair>& pairs, int threads, const Evaluate& evaluate) {
+  std::vector<PairResult<N>> results(pairs.size());
+  constexpr std::size_t block = 256;
+  parallel_for((pairs.size() + block - 1) / block, threads, [&](std::size_t b) {
+    const std::size_t end = std::min(pairs.size(), (b + 1) * block);
+    for (std::size_t k = b * block; k < end; ++k) results[k] = evaluate(pairs[k]);
+  });
+  return results;
+}
+
+// The pair's answer to the queries, bodies and obstacles as given (a member j >= n is
+// obstacle j - n).
+template <int N>
+PairResult<N> evaluate_pair(const IndexPair& p, const std::vector<Body<N>>& bodies,
+                            const std::vector<Obstacle<N>>& obstacles, const Window& w, const Queries& q,
+                            const std::string& path) {
+  const std::size_t n = bodies.size();
+  return p.second < n ? evaluate<N>(bodies[p.first], bodies[p.second], w, q, path)
+                      : evaluate<N>(bodies[p.first], obstacles[p.second - n], w, q, path);
+}
+
+// The first contacts over the window, and the time to draw: --time, else the first contact,
+// else the window's start.
+template <int N>
+void choose_time(Scene<N>& scene, const Input& in, const RenderOptions& opt, int threads) {
+  if (scene.contact) {
+    std::vector<Obstacle<N>> obstacles_t0;
+    for (const auto& o : scene.set.obstacles) obstacles_t0.push_back(obstacle_at<N>(o, scene.w.t0, in.path));
+    Queries cq;
+    cq.relation = false;
+    cq.contact = true;
+    scene.contacts = evaluate_all<N>(scene.set.pairs, threads, [&](const IndexPair& p) {
+      return evaluate_pair<N>(p, scene.set.bodies, obstacles_t0, scene.w, cq, in.path);
     });
   }
   double first = std::numeric_limits<double>::infinity();
   std::size_t first_pair = 0;
-  for (std::size_t k = 0; k < contacts.size(); ++k)
-    if (has_contact_point(contacts[k].contact.status) && contacts[k].contact.time < first) {
-      first = contacts[k].contact.time;
-      first_pair = k;
+  for (std::size_t k = 0; k < scene.contacts.size(); ++k)
+    if (has_contact_point(scene.contacts[k].contact.status)) {
+      ++scene.n_contacts;
+      if (scene.contacts[k].contact.time < first) {
+        first = scene.contacts[k].contact.time;
+        first_pair = k;
+      }
     }
-  double T = w.t0;
-  std::string time_note = contact ? "window start; no contact" : "no velocities";
+  scene.time = scene.w.t0;
+  scene.time_note = scene.contact ? "window start; no contact" : "no velocities";
   if (opt.time) {
-    T = *opt.time;
-    time_note = "--time";
+    scene.time = *opt.time;
+    scene.time_note = "--time";
   } else if (std::isfinite(first)) {
-    T = first;
-    time_note = "first contact: " + id_of(set.pairs[first_pair].first) + " and " + id_of(set.pairs[first_pair].second);
-    if (in.kind == InputKind::pairs_csv) time_note = "first contact";
+    scene.time = first;
+    scene.time_note = "first contact: " + scene.id_of(scene.set.pairs[first_pair].first) + " and " +
+                      scene.id_of(scene.set.pairs[first_pair].second);
+    if (in.kind == InputKind::pairs_csv) scene.time_note = "first contact";
   }
-  if (!std::isfinite(T)) throw UsageError("--time: must be finite");
+  if (!std::isfinite(scene.time)) throw UsageError("--time: must be finite");
+}
 
-  // Bodies at T and their relations there.
-  std::vector<Body<N>> at_t;
-  at_t.reserve(n);
-  for (const auto& b : bodies) at_t.push_back(Body<N>{b.id, shape_at<N>(b, T, in.path), b.motion});
-  std::vector<Obstacle<N>> obstacles_at_t;
-  for (const auto& o : set.obstacles) obstacles_at_t.push_back(obstacle_at<N>(o, T, in.path));
-  std::vector<IndexPair> rel_pairs = set.pairs;
-  if (set.pairs_from_broad_phase) {
-    // The body pairs from the broad phase at T; the obstacle pairs as listed.
+// The bodies and obstacles at the time drawn, and which overlap there: the body pairs from
+// the broad phase at that time where the scene's came from it, the obstacle pairs as listed.
+template <int N>
+void mark_overlaps(Scene<N>& scene, const Input& in, int threads) {
+  const std::size_t n = scene.n(), m = scene.m();
+  const double T = scene.time;
+  scene.at_t.reserve(n);
+  for (const auto& b : scene.set.bodies) scene.at_t.push_back(Body<N>{b.id, shape_at<N>(b, T, in.path), b.motion});
+  for (const auto& o : scene.set.obstacles) scene.obstacles_at_t.push_back(obstacle_at<N>(o, T, in.path));
+  std::vector<IndexPair> rel_pairs = scene.set.pairs;
+  if (scene.set.pairs_from_broad_phase) {
     std::erase_if(rel_pairs, [&](const IndexPair& p) { return p.second < n; });
-    const std::vector<IndexPair> near = broad_phase<N>(at_t, Window{0.0, 0.0}, false);
+    const std::vector<IndexPair> near = broad_phase<N>(scene.at_t, Window{0.0, 0.0}, false);
     rel_pairs.insert(rel_pairs.begin(), near.begin(), near.end());
   }
-  std::vector<char> red(n + m, 0);  // bodies, then obstacles
-  {
-    Queries rq;
-    rq.relation = true;
-    rq.contact = false;
-    std::vector<char> over(rel_pairs.size(), 0);
-    constexpr std::size_t block = 256;
-    parallel_for((rel_pairs.size() + block - 1) / block, threads, [&](std::size_t b) {
-      const std::size_t end = std::min(rel_pairs.size(), (b + 1) * block);
-      for (std::size_t k = b * block; k < end; ++k)
-        over[k] = is_overlap((rel_pairs[k].second < n
-                                  ? evaluate<N>(at_t[rel_pairs[k].first], at_t[rel_pairs[k].second], Window{0.0, 0.0},
-                                                rq, in.path)
-                                  : evaluate<N>(at_t[rel_pairs[k].first], obstacles_at_t[rel_pairs[k].second - n],
-                                                Window{0.0, 0.0}, rq, in.path))
-                                 .relation);
-    });
-    for (std::size_t k = 0; k < rel_pairs.size(); ++k)
-      if (over[k]) red[rel_pairs[k].first] = red[rel_pairs[k].second] = 1;
-  }
-  std::size_t n_red = 0, n_red_obstacles = 0;
-  for (std::size_t i = 0; i < n + m; ++i) (i < n ? n_red : n_red_obstacles) += red[i] != 0;
+  scene.red.assign(n + m, 0);
+  Queries rq;
+  rq.relation = true;
+  rq.contact = false;
+  const std::vector<PairResult<N>> relations = evaluate_all<N>(rel_pairs, threads, [&](const IndexPair& p) {
+    return evaluate_pair<N>(p, scene.at_t, scene.obstacles_at_t, Window{0.0, 0.0}, rq, in.path);
+  });
+  for (std::size_t k = 0; k < rel_pairs.size(); ++k)
+    if (is_overlap(relations[k].relation)) scene.red[rel_pairs[k].first] = scene.red[rel_pairs[k].second] = 1;
+  for (std::size_t i = 0; i < n + m; ++i) (i < n ? scene.n_red : scene.n_red_obstacles) += scene.red[i] != 0;
+}
 
-  // Geometry in the drawing plane.
-  bool any_moving = false;
-  for (const auto& b : bodies) any_moving = any_moving || moves<N>(b);
-  double t_end = w.t0;
-  if (any_moving) {
+template <int N>
+Scene<N> scene_of(const Input& in, const RenderOptions& opt) {
+  Scene<N> scene;
+  scene.w = effective_window(in, opt.common);
+  const int threads = resolve_threads(opt.common.threads);
+  scene.contact = in.has_velocity;
+  // A pairs CSV: the one pair of row --row; otherwise every body.
+  const std::size_t limit = in.kind == InputKind::pairs_csv ? 1 : std::numeric_limits<std::size_t>::max();
+  scene.set = load_pair_set<N>(in, opt.common, scene.w, scene.contact, limit, opt.row);
+  choose_time(scene, in, opt, threads);
+  mark_overlaps(scene, in, threads);
+  // The paths run from the window's start to half as far again past the time drawn.
+  scene.at_start.resize(scene.n());
+  for (std::size_t i = 0; i < scene.n(); ++i)
+    if (moves<N>(scene.set.bodies[i])) {
+      scene.any_moving = true;
+      scene.at_start[i] = shape_at<N>(scene.set.bodies[i], scene.w.t0, in.path);
+    }
+  const Window& w = scene.w;
+  const double T = scene.time;
+  scene.t_end = w.t0;
+  if (scene.any_moving) {
     if (T > w.t0) {
-      t_end = std::min(w.t1, T + 0.5 * (T - w.t0));
+      scene.t_end = std::min(w.t1, T + 0.5 * (T - w.t0));
     } else {
-      t_end = std::isfinite(w.t1) ? w.t1 : w.t0 + 1.0;
+      scene.t_end = std::isfinite(w.t1) ? w.t1 : w.t0 + 1.0;
     }
-    t_end = std::max(t_end, T);
+    scene.t_end = std::max(scene.t_end, T);
   }
-  std::vector<Outline> shapes(n), ghosts(n);
-  Bounds bounds;
-  for (std::size_t i = 0; i < n; ++i) {
-    shapes[i] = outline<N>(at_t[i].shape, plane);
-    bounds.add(shapes[i]);
-    if (moves<N>(bodies[i])) {
-      ghosts[i] = outline<N>(shape_at<N>(bodies[i], w.t0, in.path), plane);
-      if (T != w.t0) bounds.add(ghosts[i]);
-      const Vec<double, N> c_end = bodies[i].shape.center() + bodies[i].motion.velocity * t_end;
-      bounds.add(c_end[plane.u], c_end[plane.v]);
-    }
-  }
-  for (const auto& r : contacts)
-    if (has_contact_point(r.contact.status)) bounds.add(r.contact.point[plane.u], r.contact.point[plane.v]);
-  std::vector<Shadow> shadows;
-  for (const auto& o : obstacles_at_t) {
-    shadows.push_back(shadow<N>(o, plane));
-    const Shadow& s = shadows.back();
-    for (const auto& polygon : s.polygons)
-      for (const Point2& x : polygon) bounds.add(x[0], x[1]);
-    if (s.capsule)
-      for (const Point2& x : s.ends) bounds.add(x[0], x[1], s.radius, s.radius);
-    // A half-plane: the feet of the bodies' centers on its line.
-    if (s.half_space && !s.everywhere && s.normal.squaredNorm() > 0)
-      for (const Outline& b : shapes) {
-        const Point2 c(b.cu, b.cv);
-        const Point2 foot = c - s.normal * (s.normal.dot(c - s.point) / s.normal.squaredNorm());
-        bounds.add(foot[0], foot[1]);
+  return scene;
+}
+
+// The SVG of a scene, layer by layer: the frame and title, obstacles, paths, bodies,
+// contacts, legend. The view holds every outline, path end, contact point and obstacle
+// (a half-plane: the feet of the bodies' centers on its line) with a 4% margin.
+template <int N>
+class Drawing {
+public:
+  Drawing(const Scene<N>& scene, const Plane& plane, int plot_width) : scene_(scene), plane_(plane) {
+    const std::size_t n = scene.n(), m = scene.m();
+    const auto& bodies = scene.set.bodies;
+    shapes_.resize(n);
+    ghosts_.resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      shapes_[i] = outline<N>(scene.at_t[i].shape, plane);
+      bounds_.add(shapes_[i]);
+      if (moves<N>(bodies[i])) {
+        ghosts_[i] = outline<N>(scene.at_start[i], plane);
+        if (scene.time != scene.w.t0) bounds_.add(ghosts_[i]);
+        const Vec<double, N> c_end = bodies[i].shape.center() + bodies[i].motion.velocity * scene.t_end;
+        bounds_.add(c_end[plane.u], c_end[plane.v]);
       }
+    }
+    for (const auto& r : scene.contacts)
+      if (has_contact_point(r.contact.status)) bounds_.add(r.contact.point[plane.u], r.contact.point[plane.v]);
+    for (const auto& o : scene.obstacles_at_t) {
+      shadows_.push_back(shadow<N>(o, plane));
+      const Shadow& s = shadows_.back();
+      for (const auto& polygon : s.polygons)
+        for (const Point2& x : polygon) bounds_.add(x[0], x[1]);
+      if (s.capsule)
+        for (const Point2& x : s.ends) bounds_.add(x[0], x[1], s.radius, s.radius);
+      if (s.half_space && !s.everywhere && s.normal.squaredNorm() > 0)
+        for (const Outline& b : shapes_) {
+          const Point2 c(b.cu, b.cv);
+          const Point2 foot = c - s.normal * (s.normal.dot(c - s.point) / s.normal.squaredNorm());
+          bounds_.add(foot[0], foot[1]);
+        }
+    }
+    double span_u = bounds_.umax - bounds_.umin, span_v = bounds_.vmax - bounds_.vmin;
+    double span = std::max(span_u, span_v);
+    if (!(span > 0) || !std::isfinite(span)) span = 1.0;
+    bounds_.umin -= 0.04 * span;
+    bounds_.umax += 0.04 * span;
+    bounds_.vmin -= 0.04 * span;
+    bounds_.vmax += 0.04 * span;
+    span_u = std::max(bounds_.umax - bounds_.umin, 1e-300);
+    span_v = std::max(bounds_.vmax - bounds_.vmin, 1e-300);
+    const double plot = std::max(plot_width, 100);
+    scale_ = plot / std::max(span_u, span_v);
+    plot_w_ = span_u * scale_;
+    plot_h_ = span_v * scale_;
+    list_bodies_ = n <= max_legend_bodies;
+    const double legend_rows = (list_bodies_ ? static_cast<double>(n) : 1.0) + 1.0 + (m > 0 ? 1.0 : 0.0) +
+                               (scene.any_moving ? 2.0 : 0.0) + (scene.contact ? 2.0 : 0.0);
+    const double legend_h = 8 + 22 + 6 + legend_rows * row_h + pad;
+    width_ = pad + plot_w_ + pad + legend_w;
+    height_ = std::max(title_h + plot_h_ + pad, title_h + legend_h);
   }
-  double span_u = bounds.umax - bounds.umin, span_v = bounds.vmax - bounds.vmin;
-  double span = std::max(span_u, span_v);
-  if (!(span > 0) || !std::isfinite(span)) span = 1.0;
-  // 4% margin on every side.
-  bounds.umin -= 0.04 * span;
-  bounds.umax += 0.04 * span;
-  bounds.vmin -= 0.04 * span;
-  bounds.vmax += 0.04 * span;
-  span_u = std::max(bounds.umax - bounds.umin, 1e-300);
-  span_v = std::max(bounds.vmax - bounds.vmin, 1e-300);
-  const double plot = std::max(opt.width, 100);
-  const double scale = plot / std::max(span_u, span_v);
-  const double plot_w = span_u * scale, plot_h = span_v * scale;
-  constexpr double title_h = 48, legend_w = 240, pad = 10, row_h = 18;
-  const bool list_bodies = n <= max_legend_bodies;
-  const double legend_rows = (list_bodies ? static_cast<double>(n) : 1.0) + 1.0 + (m > 0 ? 1.0 : 0.0) +
-                             (any_moving ? 2.0 : 0.0) + (contact ? 2.0 : 0.0);
-  const double legend_h = 8 + 22 + 6 + legend_rows * row_h + pad;
-  const double width = pad + plot_w + pad + legend_w;
-  const double height = std::max(title_h + plot_h + pad, title_h + legend_h);
-  auto sx = [&](double u) { return pad + (u - bounds.umin) * scale; };
-  auto sy = [&](double v) { return title_h + (bounds.vmax - v) * scale; };
-  const double stroke = 1.5;
 
-  std::string svg;
-  svg.reserve(512 + n * 220);
-  svg += "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
-  svg += "<svg xmlns=\"http://www.w3.org/2000/svg\" version=\"1.1\" width=\"" + fmt(width) + "\" height=\"" +
-         fmt(height) + "\" viewBox=\"0 0 " + fmt(width) + " " + fmt(height) + "\" class=\"ellipsect-scene\"" +
-         " data-dimension=\"" + std::to_string(N) + "\" data-plane=\"" + plane.name + "\" data-time=\"" +
-         number_string(T) + "\" data-bodies=\"" + std::to_string(n) + "\" data-overlapping=\"" +
-         std::to_string(n_red) + "\" data-obstacles=\"" + std::to_string(m) + "\" data-obstacles-overlapping=\"" +
-         std::to_string(n_red_obstacles) + "\">\n";
-  svg += "<defs><marker id=\"arrow\" viewBox=\"0 0 10 10\" refX=\"9\" refY=\"5\" markerWidth=\"7\" "
-         "markerHeight=\"7\" orient=\"auto-start-reverse\"><path d=\"M 0 0 L 10 5 L 0 10 z\" fill=\"context-stroke\"/>"
-         "</marker><marker id=\"arrow-black\" viewBox=\"0 0 10 10\" refX=\"9\" refY=\"5\" markerWidth=\"7\" "
-         "markerHeight=\"7\" orient=\"auto\"><path d=\"M 0 0 L 10 5 L 0 10 z\" fill=\"#000\"/></marker>"
-         "<marker id=\"arrow-grey\" viewBox=\"0 0 10 10\" refX=\"9\" refY=\"5\" markerWidth=\"6\" "
-         "markerHeight=\"6\" orient=\"auto\"><path d=\"M 0 0 L 10 5 L 0 10 z\" fill=\"#888\"/></marker></defs>\n";
-  svg += "<rect x=\"0\" y=\"0\" width=\"" + fmt(width) + "\" height=\"" + fmt(height) + "\" fill=\"#ffffff\"/>\n";
-  svg += "<rect x=\"" + fmt(pad) + "\" y=\"" + fmt(title_h) + "\" width=\"" + fmt(plot_w) + "\" height=\"" +
-         fmt(plot_h) + "\" fill=\"#fbfbfb\" stroke=\"#dddddd\"/>\n";
-  // Title.
-  svg += "<text x=\"" + fmt(pad) + "\" y=\"20\" font-family=\"sans-serif\" font-size=\"15\" font-weight=\"bold\">" +
-         xml_escape(in.title) + "</text>\n";
-  std::string sub = "t = " + number_string(T) + " (" + time_note + ")";
-  if (in.kind == InputKind::pairs_csv) sub = "row " + std::to_string(opt.row) + ", " + sub;
-  if (N == 3) sub += ", projected onto the " + plane.name + " plane";
-  svg += "<text x=\"" + fmt(pad) + "\" y=\"38\" font-family=\"sans-serif\" font-size=\"12\" fill=\"#444\">" +
-         xml_escape(sub) + "</text>\n";
-  // Axis names at the plot's corner.
-  static const char* axis_names[3] = {"x", "y", "z"};
-  svg += "<text x=\"" + fmt(pad + plot_w - 4) + "\" y=\"" + fmt(title_h + plot_h - 4) +
-         "\" text-anchor=\"end\" font-family=\"sans-serif\" font-size=\"10\" fill=\"#999\">" + axis_names[plane.u] +
-         " \u2192, " + axis_names[plane.v] + " \u2191</text>\n";
+  std::string svg(const std::string& title, const std::string& subtitle) const {
+    std::string out;
+    out.reserve(512 + scene_.n() * 220);
+    frame(out, title, subtitle);
+    obstacles(out);
+    paths(out);
+    bodies(out);
+    contacts(out);
+    legend(out);
+    out += "</svg>\n";
+    return out;
+  }
 
-  auto ellipse = [&](const Outline& o, const std::string& cls, const std::string& id, const char* fill,
-                     const char* stroke_color, double fill_opacity, const char* dash) {
+private:
+  static constexpr double title_h = 48, legend_w = 240, pad = 10, row_h = 18, stroke = 1.5;
+
+  double sx(double u) const { return pad + (u - bounds_.umin) * scale_; }
+  double sy(double v) const { return title_h + (bounds_.vmax - v) * scale_; }
+  const char* body_color(std::size_t i) const { return scene_.red[i] ? overlap_color : palette[i % palette_size]; }
+
+  std::string ellipse(const Outline& o, const std::string& cls, const std::string& id, const char* fill,
+                      const char* stroke_color, double fill_opacity, const char* dash) const {
     std::string e = "<ellipse class=\"" + cls + "\" data-id=\"" + xml_escape(id) + "\" cx=\"" + fmt(sx(o.cu)) +
-                    "\" cy=\"" + fmt(sy(o.cv)) + "\" rx=\"" + fmt(std::max(o.major * scale, 0.5)) + "\" ry=\"" +
-                    fmt(std::max(o.minor * scale, 0.5)) + "\" transform=\"rotate(" + fmt(-o.angle * 180.0 / pi) +
+                    "\" cy=\"" + fmt(sy(o.cv)) + "\" rx=\"" + fmt(std::max(o.major * scale_, 0.5)) + "\" ry=\"" +
+                    fmt(std::max(o.minor * scale_, 0.5)) + "\" transform=\"rotate(" + fmt(-o.angle * 180.0 / pi) +
                     " " + fmt(sx(o.cu)) + " " + fmt(sy(o.cv)) + ")\" fill=\"" + fill + "\" fill-opacity=\"" +
                     fmt(fill_opacity) + "\" stroke=\"" + stroke_color + "\" stroke-width=\"" + fmt(stroke) + "\"";
     if (dash != nullptr) e += std::string(" stroke-dasharray=\"") + dash + "\"";
     e += "/>\n";
     return e;
-  };
+  }
 
-  // Obstacles at T, under everything else: polygons, half-planes clipped to the view.
-  if (m > 0) {
+  // The document, its markers and background, the title and the axis names.
+  void frame(std::string& svg, const std::string& title, const std::string& subtitle) const {
+    svg += "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
+    svg += "<svg xmlns=\"http://www.w3.org/2000/svg\" version=\"1.1\" width=\"" + fmt(width_) + "\" height=\"" +
+           fmt(height_) + "\" viewBox=\"0 0 " + fmt(width_) + " " + fmt(height_) + "\" class=\"ellipsect-scene\"" +
+           " data-dimension=\"" + std::to_string(N) + "\" data-plane=\"" + plane_.name + "\" data-time=\"" +
+           number_string(scene_.time) + "\" data-bodies=\"" + std::to_string(scene_.n()) + "\" data-overlapping=\"" +
+           std::to_string(scene_.n_red) + "\" data-obstacles=\"" + std::to_string(scene_.m()) +
+           "\" data-obstacles-overlapping=\"" + std::to_string(scene_.n_red_obstacles) + "\">\n";
+    svg += "<defs><marker id=\"arrow\" viewBox=\"0 0 10 10\" refX=\"9\" refY=\"5\" markerWidth=\"7\" "
+           "markerHeight=\"7\" orient=\"auto-start-reverse\"><path d=\"M 0 0 L 10 5 L 0 10 z\" fill=\"context-stroke\"/>"
+           "</marker><marker id=\"arrow-black\" viewBox=\"0 0 10 10\" refX=\"9\" refY=\"5\" markerWidth=\"7\" "
+           "markerHeight=\"7\" orient=\"auto\"><path d=\"M 0 0 L 10 5 L 0 10 z\" fill=\"#000\"/></marker>"
+           "<marker id=\"arrow-grey\" viewBox=\"0 0 10 10\" refX=\"9\" refY=\"5\" markerWidth=\"6\" "
+           "markerHeight=\"6\" orient=\"auto\"><path d=\"M 0 0 L 10 5 L 0 10 z\" fill=\"#888\"/></marker></defs>\n";
+    svg += "<rect x=\"0\" y=\"0\" width=\"" + fmt(width_) + "\" height=\"" + fmt(height_) + "\" fill=\"#ffffff\"/>\n";
+    svg += "<rect x=\"" + fmt(pad) + "\" y=\"" + fmt(title_h) + "\" width=\"" + fmt(plot_w_) + "\" height=\"" +
+           fmt(plot_h_) + "\" fill=\"#fbfbfb\" stroke=\"#dddddd\"/>\n";
+    svg += "<text x=\"" + fmt(pad) + "\" y=\"20\" font-family=\"sans-serif\" font-size=\"15\" font-weight=\"bold\">" +
+           xml_escape(title) + "</text>\n";
+    svg += "<text x=\"" + fmt(pad) + "\" y=\"38\" font-family=\"sans-serif\" font-size=\"12\" fill=\"#444\">" +
+           xml_escape(subtitle) + "</text>\n";
+    static const char* axis_names[3] = {"x", "y", "z"};
+    svg += "<text x=\"" + fmt(pad + plot_w_ - 4) + "\" y=\"" + fmt(title_h + plot_h_ - 4) +
+           "\" text-anchor=\"end\" font-family=\"sans-serif\" font-size=\"10\" fill=\"#999\">" + axis_names[plane_.u] +
+           " \u2192, " + axis_names[plane_.v] + " \u2191</text>\n";
+  }
+
+  // Obstacles at the time drawn, under everything else: polygons, half-planes clipped to the
+  // view, capsules as stadiums.
+  void obstacles(std::string& svg) const {
+    const std::size_t n = scene_.n(), m = scene_.m();
+    if (m == 0) return;
     svg += "<g id=\"obstacles\">\n";
-    const std::vector<Point2> view = {Point2(bounds.umin, bounds.vmin), Point2(bounds.umax, bounds.vmin),
-                                      Point2(bounds.umax, bounds.vmax), Point2(bounds.umin, bounds.vmax)};
+    const std::vector<Point2> view = {Point2(bounds_.umin, bounds_.vmin), Point2(bounds_.umax, bounds_.vmin),
+                                      Point2(bounds_.umax, bounds_.vmax), Point2(bounds_.umin, bounds_.vmax)};
     for (std::size_t k = 0; k < m; ++k) {
-      const Shadow& s = shadows[k];
+      const Shadow& s = shadows_[k];
       std::vector<std::vector<Point2>> polygons = s.polygons;
       if (s.half_space) polygons.push_back(s.everywhere ? view : clip(view, s.normal, s.point));
       std::string d;
@@ -471,129 +536,156 @@ int render(const Input& in, const RenderOptions& opt, const Plane& plane) {
         const Point2 along = s.ends[1] - s.ends[0];
         const Point2 side = along.norm() > 0 ? Point2(-along[1], along[0]).normalized() * s.radius
                                              : Point2(0.0, s.radius);
-        const std::string arc = "A " + fmt(s.radius * scale) + " " + fmt(s.radius * scale) + " 0 0 1 ";
+        const std::string arc = "A " + fmt(s.radius * scale_) + " " + fmt(s.radius * scale_) + " 0 0 1 ";
         const auto at = [&](const Point2& x) { return fmt(sx(x[0])) + " " + fmt(sy(x[1])); };
         d += "M " + at(s.ends[0] + side) + " L " + at(s.ends[1] + side) + " " + arc + at(s.ends[1] - side) + " L " +
              at(s.ends[0] - side) + " " + arc + at(s.ends[0] + side) + " Z";
       }
-      const char* color = red[n + k] ? overlap_color : obstacle_color;
-      svg += "<path class=\"" + std::string(red[n + k] ? "obstacle overlapping" : "obstacle") + "\" data-id=\"" +
-             xml_escape(set.obstacles[k].id) + "\" data-type=\"" + obstacle_type<N>(set.obstacles[k]) + "\" d=\"" + d +
-             "\" fill=\"" + color + "\" fill-opacity=\"0.2\" fill-rule=\"nonzero\" stroke=\"" + color +
+      const bool red = scene_.red[n + k];
+      const char* color = red ? overlap_color : obstacle_color;
+      svg += "<path class=\"" + std::string(red ? "obstacle overlapping" : "obstacle") + "\" data-id=\"" +
+             xml_escape(scene_.set.obstacles[k].id) + "\" data-type=\"" + obstacle_type<N>(scene_.set.obstacles[k]) +
+             "\" d=\"" + d + "\" fill=\"" + color + "\" fill-opacity=\"0.2\" fill-rule=\"nonzero\" stroke=\"" + color +
              "\" stroke-width=\"1\" stroke-linejoin=\"round\"/>\n";
     }
     svg += "</g>\n";
   }
 
-  // Start positions and paths.
-  svg += "<g id=\"paths\">\n";
-  for (std::size_t i = 0; i < n; ++i) {
-    if (!moves<N>(bodies[i])) continue;
-    const char* color = red[i] ? overlap_color : palette[i % palette_size];
-    if (T != w.t0) svg += ellipse(ghosts[i], "start", bodies[i].id, "none", color, 0.0, "4 3");
-    const Vec<double, N> c0 = bodies[i].shape.center() + bodies[i].motion.velocity * w.t0;
-    const Vec<double, N> c1 = bodies[i].shape.center() + bodies[i].motion.velocity * t_end;
-    if ((c1 - c0).norm() * scale < 1.0) continue;
-    svg += "<line class=\"path\" data-id=\"" + xml_escape(bodies[i].id) + "\" x1=\"" + fmt(sx(c0[plane.u])) +
-           "\" y1=\"" + fmt(sy(c0[plane.v])) + "\" x2=\"" + fmt(sx(c1[plane.u])) + "\" y2=\"" +
-           fmt(sy(c1[plane.v])) + "\" stroke=\"#888\" stroke-width=\"1\" stroke-dasharray=\"6 4\" "
-           "marker-end=\"url(#arrow-grey)\"/>\n";
+  // Start positions and the paths of the centers.
+  void paths(std::string& svg) const {
+    const auto& bodies = scene_.set.bodies;
+    svg += "<g id=\"paths\">\n";
+    for (std::size_t i = 0; i < scene_.n(); ++i) {
+      if (!moves<N>(bodies[i])) continue;
+      const char* color = body_color(i);
+      if (scene_.time != scene_.w.t0) svg += ellipse(ghosts_[i], "start", bodies[i].id, "none", color, 0.0, "4 3");
+      const Vec<double, N> c0 = bodies[i].shape.center() + bodies[i].motion.velocity * scene_.w.t0;
+      const Vec<double, N> c1 = bodies[i].shape.center() + bodies[i].motion.velocity * scene_.t_end;
+      if ((c1 - c0).norm() * scale_ < 1.0) continue;
+      svg += "<line class=\"path\" data-id=\"" + xml_escape(bodies[i].id) + "\" x1=\"" + fmt(sx(c0[plane_.u])) +
+             "\" y1=\"" + fmt(sy(c0[plane_.v])) + "\" x2=\"" + fmt(sx(c1[plane_.u])) + "\" y2=\"" +
+             fmt(sy(c1[plane_.v])) + "\" stroke=\"#888\" stroke-width=\"1\" stroke-dasharray=\"6 4\" "
+             "marker-end=\"url(#arrow-grey)\"/>\n";
+    }
+    svg += "</g>\n";
   }
-  svg += "</g>\n";
 
-  // Bodies at T.
-  svg += "<g id=\"bodies\">\n";
-  for (std::size_t i = 0; i < n; ++i) {
-    const char* color = red[i] ? overlap_color : palette[i % palette_size];
-    svg += ellipse(shapes[i], red[i] ? "body overlapping" : "body", bodies[i].id, color, color, 0.25, nullptr);
+  // The bodies at the time drawn, labeled where there are few.
+  void bodies(std::string& svg) const {
+    const auto& bodies = scene_.set.bodies;
+    const std::size_t n = scene_.n();
+    svg += "<g id=\"bodies\">\n";
+    for (std::size_t i = 0; i < n; ++i) {
+      const char* color = body_color(i);
+      svg += ellipse(shapes_[i], scene_.red[i] ? "body overlapping" : "body", bodies[i].id, color, color, 0.25, nullptr);
+    }
+    if (n <= max_labels)
+      for (std::size_t i = 0; i < n; ++i)
+        svg += "<text class=\"label\" x=\"" + fmt(sx(shapes_[i].cu)) + "\" y=\"" + fmt(sy(shapes_[i].cv) + 4) +
+               "\" text-anchor=\"middle\" font-family=\"sans-serif\" font-size=\"11\" fill=\"#222\">" +
+               xml_escape(bodies[i].id) + "</text>\n";
+    svg += "</g>\n";
   }
-  if (n <= max_labels)
-    for (std::size_t i = 0; i < n; ++i)
-      svg += "<text class=\"label\" x=\"" + fmt(sx(shapes[i].cu)) + "\" y=\"" + fmt(sy(shapes[i].cv) + 4) +
-             "\" text-anchor=\"middle\" font-family=\"sans-serif\" font-size=\"11\" fill=\"#222\">" +
-             xml_escape(bodies[i].id) + "</text>\n";
-  svg += "</g>\n";
 
   // Contact points and normals.
-  svg += "<g id=\"contacts\">\n";
-  std::size_t n_contacts = 0;
-  for (std::size_t k = 0; k < contacts.size(); ++k) {
-    const Contact<double, N>& c = contacts[k].contact;
-    if (!has_contact_point(c.status)) continue;
-    ++n_contacts;
-    const double px = sx(c.point[plane.u]), py = sy(c.point[plane.v]);
-    const double nu = c.normal[plane.u], nv = c.normal[plane.v];
-    const double len = 36.0;
-    svg += "<g class=\"contact\" data-a=\"" + xml_escape(id_of(set.pairs[k].first)) + "\" data-b=\"" +
-           xml_escape(id_of(set.pairs[k].second)) + "\" data-time=\"" + number_string(c.time) + "\">";
-    if (std::hypot(nu, nv) > 1e-3)
-      svg += "<line class=\"contact-normal\" x1=\"" + fmt(px) + "\" y1=\"" + fmt(py) + "\" x2=\"" +
-             fmt(px + len * nu) + "\" y2=\"" + fmt(py - len * nv) + "\" stroke=\"" + contact_color +
-             "\" stroke-width=\"1.5\" marker-end=\"url(#arrow-black)\"/>";
-    svg += "<circle class=\"contact-point\" cx=\"" + fmt(px) + "\" cy=\"" + fmt(py) + "\" r=\"4\" fill=\"#ffffff\" "
-           "stroke=\"" + std::string(contact_color) + "\" stroke-width=\"2\"/></g>\n";
+  void contacts(std::string& svg) const {
+    svg += "<g id=\"contacts\">\n";
+    for (std::size_t k = 0; k < scene_.contacts.size(); ++k) {
+      const Contact<double, N>& c = scene_.contacts[k].contact;
+      if (!has_contact_point(c.status)) continue;
+      const double px = sx(c.point[plane_.u]), py = sy(c.point[plane_.v]);
+      const double nu = c.normal[plane_.u], nv = c.normal[plane_.v];
+      const double len = 36.0;
+      svg += "<g class=\"contact\" data-a=\"" + xml_escape(scene_.id_of(scene_.set.pairs[k].first)) + "\" data-b=\"" +
+             xml_escape(scene_.id_of(scene_.set.pairs[k].second)) + "\" data-time=\"" + number_string(c.time) + "\">";
+      if (std::hypot(nu, nv) > 1e-3)
+        svg += "<line class=\"contact-normal\" x1=\"" + fmt(px) + "\" y1=\"" + fmt(py) + "\" x2=\"" +
+               fmt(px + len * nu) + "\" y2=\"" + fmt(py - len * nv) + "\" stroke=\"" + contact_color +
+               "\" stroke-width=\"1.5\" marker-end=\"url(#arrow-black)\"/>";
+      svg += "<circle class=\"contact-point\" cx=\"" + fmt(px) + "\" cy=\"" + fmt(py) + "\" r=\"4\" fill=\"#ffffff\" "
+             "stroke=\"" + std::string(contact_color) + "\" stroke-width=\"2\"/></g>\n";
+    }
+    svg += "</g>\n";
   }
-  svg += "</g>\n";
 
-  // Legend.
-  const double lx = pad + plot_w + pad + 10;
-  double ly = title_h + 8;
-  svg += "<g id=\"legend\" font-family=\"sans-serif\" font-size=\"12\">\n";
-  auto legend_text = [&](double x, const std::string& text, const char* cls = "legend-entry") {
-    svg += "<text class=\"" + std::string(cls) + "\" x=\"" + fmt(x) + "\" y=\"" + fmt(ly + 4) + "\">" +
-           xml_escape(text) + "</text>\n";
-  };
-  svg += "<text x=\"" + fmt(lx) + "\" y=\"" + fmt(ly + 4) + "\" font-weight=\"bold\">Legend</text>\n";
-  ly += 22;
-  if (list_bodies) {
-    for (std::size_t i = 0; i < n; ++i) {
-      const char* color = red[i] ? overlap_color : palette[i % palette_size];
+  void legend(std::string& svg) const {
+    const auto& bodies = scene_.set.bodies;
+    const std::size_t n = scene_.n(), m = scene_.m();
+    const double lx = pad + plot_w_ + pad + 10;
+    double ly = title_h + 8;
+    svg += "<g id=\"legend\" font-family=\"sans-serif\" font-size=\"12\">\n";
+    auto legend_text = [&](double x, const std::string& text, const char* cls = "legend-entry") {
+      svg += "<text class=\"" + std::string(cls) + "\" x=\"" + fmt(x) + "\" y=\"" + fmt(ly + 4) + "\">" +
+             xml_escape(text) + "</text>\n";
+    };
+    auto swatch = [&](const char* color, const char* opacity) {
       svg += "<rect x=\"" + fmt(lx) + "\" y=\"" + fmt(ly - 6) + "\" width=\"18\" height=\"12\" fill=\"" + color +
-             "\" fill-opacity=\"0.25\" stroke=\"" + color + "\"/>\n";
-      legend_text(lx + 26, bodies[i].id.empty() ? (i % 2 == 0 ? "a" : "b") : bodies[i].id);
+             "\" fill-opacity=\"" + opacity + "\" stroke=\"" + color + "\"/>\n";
+    };
+    svg += "<text x=\"" + fmt(lx) + "\" y=\"" + fmt(ly + 4) + "\" font-weight=\"bold\">Legend</text>\n";
+    ly += 22;
+    if (list_bodies_) {
+      for (std::size_t i = 0; i < n; ++i) {
+        swatch(body_color(i), "0.25");
+        legend_text(lx + 26, bodies[i].id.empty() ? (i % 2 == 0 ? "a" : "b") : bodies[i].id);
+        ly += row_h;
+      }
+    } else {
+      for (int k = 0; k < 3; ++k)
+        svg += "<rect x=\"" + fmt(lx + 6 * k) + "\" y=\"" + fmt(ly - 6) + "\" width=\"6\" height=\"12\" fill=\"" +
+               palette[k] + "\" fill-opacity=\"0.5\"/>\n";
+      legend_text(lx + 26, std::to_string(n) + " bodies");
       ly += row_h;
     }
-  } else {
-    for (int k = 0; k < 3; ++k)
-      svg += "<rect x=\"" + fmt(lx + 6 * k) + "\" y=\"" + fmt(ly - 6) + "\" width=\"6\" height=\"12\" fill=\"" +
-             palette[k] + "\" fill-opacity=\"0.5\"/>\n";
-    legend_text(lx + 26, std::to_string(n) + " bodies");
+    ly += 6;
+    swatch(overlap_color, "0.25");
+    legend_text(lx + 26, "overlapping at t (" + std::to_string(scene_.n_red) + " bodies)");
     ly += row_h;
+    if (m > 0) {
+      swatch(obstacle_color, "0.2");
+      legend_text(lx + 26, "obstacles (" + std::to_string(m) + ", " + std::to_string(scene_.n_red_obstacles) +
+                               " overlapped at t)");
+      ly += row_h;
+    }
+    if (scene_.any_moving) {
+      svg += "<ellipse cx=\"" + fmt(lx + 9) + "\" cy=\"" + fmt(ly) + "\" rx=\"9\" ry=\"5\" fill=\"none\" stroke=\"#555\" "
+             "stroke-dasharray=\"4 3\"/>\n";
+      legend_text(lx + 26, "position at t = " + number_string(scene_.w.t0));
+      ly += row_h;
+      svg += "<line x1=\"" + fmt(lx) + "\" y1=\"" + fmt(ly) + "\" x2=\"" + fmt(lx + 18) + "\" y2=\"" + fmt(ly) +
+             "\" stroke=\"#888\" stroke-dasharray=\"6 4\" marker-end=\"url(#arrow-grey)\"/>\n";
+      legend_text(lx + 26, "path of the center");
+      ly += row_h;
+    }
+    if (scene_.contact) {
+      svg += "<circle cx=\"" + fmt(lx + 9) + "\" cy=\"" + fmt(ly) + "\" r=\"4\" fill=\"#fff\" stroke=\"#000\" "
+             "stroke-width=\"2\"/>\n";
+      legend_text(lx + 26, "contact point (" + std::to_string(scene_.n_contacts) + ")");
+      ly += row_h;
+      svg += "<line x1=\"" + fmt(lx) + "\" y1=\"" + fmt(ly) + "\" x2=\"" + fmt(lx + 18) + "\" y2=\"" + fmt(ly) +
+             "\" stroke=\"#000\" stroke-width=\"1.5\" marker-end=\"url(#arrow-black)\"/>\n";
+      legend_text(lx + 26, "contact normal (a to b)");
+      ly += row_h;
+    }
+    svg += "</g>\n";
   }
-  ly += 6;
-  svg += "<rect x=\"" + fmt(lx) + "\" y=\"" + fmt(ly - 6) + "\" width=\"18\" height=\"12\" fill=\"" + overlap_color +
-         "\" fill-opacity=\"0.25\" stroke=\"" + overlap_color + "\"/>\n";
-  legend_text(lx + 26, "overlapping at t (" + std::to_string(n_red) + " bodies)");
-  ly += row_h;
-  if (m > 0) {
-    svg += "<rect x=\"" + fmt(lx) + "\" y=\"" + fmt(ly - 6) + "\" width=\"18\" height=\"12\" fill=\"" + obstacle_color +
-           "\" fill-opacity=\"0.2\" stroke=\"" + obstacle_color + "\"/>\n";
-    legend_text(lx + 26, "obstacles (" + std::to_string(m) + ", " + std::to_string(n_red_obstacles) +
-                             " overlapped at t)");
-    ly += row_h;
-  }
-  if (any_moving) {
-    svg += "<ellipse cx=\"" + fmt(lx + 9) + "\" cy=\"" + fmt(ly) + "\" rx=\"9\" ry=\"5\" fill=\"none\" stroke=\"#555\" "
-           "stroke-dasharray=\"4 3\"/>\n";
-    legend_text(lx + 26, "position at t = " + number_string(w.t0));
-    ly += row_h;
-    svg += "<line x1=\"" + fmt(lx) + "\" y1=\"" + fmt(ly) + "\" x2=\"" + fmt(lx + 18) + "\" y2=\"" + fmt(ly) +
-           "\" stroke=\"#888\" stroke-dasharray=\"6 4\" marker-end=\"url(#arrow-grey)\"/>\n";
-    legend_text(lx + 26, "path of the center");
-    ly += row_h;
-  }
-  if (contact) {
-    svg += "<circle cx=\"" + fmt(lx + 9) + "\" cy=\"" + fmt(ly) + "\" r=\"4\" fill=\"#fff\" stroke=\"#000\" "
-           "stroke-width=\"2\"/>\n";
-    legend_text(lx + 26, "contact point (" + std::to_string(n_contacts) + ")");
-    ly += row_h;
-    svg += "<line x1=\"" + fmt(lx) + "\" y1=\"" + fmt(ly) + "\" x2=\"" + fmt(lx + 18) + "\" y2=\"" + fmt(ly) +
-           "\" stroke=\"#000\" stroke-width=\"1.5\" marker-end=\"url(#arrow-black)\"/>\n";
-    legend_text(lx + 26, "contact normal (a to b)");
-    ly += row_h;
-  }
-  svg += "</g>\n</svg>\n";
 
+  const Scene<N>& scene_;
+  const Plane& plane_;
+  std::vector<Outline> shapes_, ghosts_;
+  std::vector<Shadow> shadows_;
+  Bounds bounds_;
+  double scale_ = 1, plot_w_ = 0, plot_h_ = 0, width_ = 0, height_ = 0;
+  bool list_bodies_ = true;
+};
+
+template <int N>
+int render(const Input& in, const RenderOptions& opt, const Plane& plane) {
+  const Scene<N> scene = scene_of<N>(in, opt);
+  std::string subtitle = "t = " + number_string(scene.time) + " (" + scene.time_note + ")";
+  if (in.kind == InputKind::pairs_csv) subtitle = "row " + std::to_string(opt.row) + ", " + subtitle;
+  if (N == 3) subtitle += ", projected onto the " + plane.name + " plane";
+  const std::string svg = Drawing<N>(scene, plane, opt.width).svg(in.title, subtitle);
   Output out(opt.output);
   if (ends_with(opt.output, ".png")) {
     out.close_stream();

@@ -17,6 +17,7 @@
 #include <ellipsect/mesh.hpp>
 #include <ellipsect/options.hpp>
 #include <ellipsect/packing.hpp>
+#include <ellipsect/parallel.hpp>
 #include <ellipsect/point.hpp>
 #include <ellipsect/polygonal2.hpp>
 #include <ellipsect/quartic2.hpp>

@@ -1,7 +1,7 @@
 // Batches of bodies from numpy arrays (Ellipses, Ellipsoids), batch.hpp's Pairs prepared
 // from two of them (ellipsect.pairs), and the queries over pairs: the library's batch
 // functions (overlap, classify, first_contact, overlapping_pairs)
-// or the scalar function on every pair in parallel_for (distance, signed_distance,
+// or the scalar function on every pair in for_each_index (distance, signed_distance,
 // overlap_area, iou). Arrays are checked (type, dtype, shape, contiguity, rows) before
 // any work; the GIL is released while the library runs.
 #include "common.hpp"
@@ -561,7 +561,7 @@ void def_batch_queries(py::module_& m) {
                    *z = normal.mutable_data();
             {
               py::gil_scoped_release release;
-              parallel_for(n, threads, [&](std::size_t i) {
+              for_each_index(n, threads, [&](std::size_t i) {
                 const Distance<double, N> r = query(a.items[i], b.items[i], o);
                 s[i] = static_cast<std::int8_t>(r.status);
                 d[i] = r.distance;
@@ -708,10 +708,12 @@ inline const std::string gradient_fields =
     "center_a (n, N), orientation_a ((n,) angles in 2D, (n, 3) world rotation vectors in 3D: "
     "quaternion_gradient carries them to quaternions), radii_a (n, N), and the same for b";
 
+// The gradients of static pair queries: signed_distance_gradient and perram_wertheim_gradient
+// (2D and 3D), overlap_area_gradient and iou_gradient (2D).
 template <int N>
-void def_gradient_queries(py::module_& m) {
+void def_pair_gradients(py::module_& m) {
   using B = Bodies<N>;
-  // signed_distance_gradient and perram_wertheim_gradient: the scalar function on every pair.
+  // The scalar function on every pair.
   // query(a, b, options) -> g with gradients g.a, g.b; read(g) -> {status, value}.
   auto static_query = [&m](const char* name, auto query, auto read, const std::string& summary,
                            const std::string& value, const std::string& pair = docs::batch_pair) {
@@ -726,7 +728,7 @@ void def_gradient_queries(py::module_& m) {
             const auto ra = ga.rows(), rb = gb.rows();
             {
               py::gil_scoped_release release;
-              parallel_for(n, threads, [&](std::size_t i) {
+              for_each_index(n, threads, [&](std::size_t i) {
                 const auto g = query(a.items[i], b.items[i], o);
                 const auto [status_i, value_i] = read(g);
                 s[i] = static_cast<std::int8_t>(status_i);
@@ -784,6 +786,12 @@ void def_gradient_queries(py::module_& m) {
         "the IoU, status the Relation",
         "a, b: two Ellipses of equal length; pair i is (a[i], b[i]).\n" + docs::options + "\n" + docs::threads);
   }
+}
+
+// closest_approach_gradient: sigma along each pair's direction and its derivatives.
+template <int N>
+void def_closest_approach_gradient(py::module_& m) {
+  using B = Bodies<N>;
   m.def("closest_approach_gradient",
         [](const B& a, const B& b, const ArrayLike& direction, const Options& o, int threads) {
           const std::size_t n = paired(a, b);
@@ -804,7 +812,7 @@ void def_gradient_queries(py::module_& m) {
           const auto ra = ga.rows(), rb = gb.rows();
           {
             py::gil_scoped_release release;
-            parallel_for(n, threads, [&](std::size_t i) {
+            for_each_index(n, threads, [&](std::size_t i) {
               const ClosestApproachGradient<double, N> g = closest_approach_gradient(a.items[i], b.items[i], directions[i], o);
               s[i] = static_cast<std::int8_t>(g.value.status);
               v[i] = g.value.distance;
@@ -827,6 +835,13 @@ void def_gradient_queries(py::module_& m) {
                   docs::batch_raises + "\nInputError: a row of direction that is not finite or is zero, named by "
                                        "its row.")
             .c_str());
+}
+
+// first_contact_gradient: the contact time under linear or rigid motion, its derivatives by
+// the bodies and motions, and the contact point's Jacobian.
+template <int N>
+void def_contact_gradient(py::module_& m) {
+  using B = Bodies<N>;
   m.def("first_contact_gradient",
         [](const B& a, const ArrayLike& velocity_a, const B& b, const ArrayLike& velocity_b, const ArrayLike& t_max,
            const std::optional<ArrayLike>& angular_velocity_a, const std::optional<ArrayLike>& angular_velocity_b,
@@ -850,7 +865,7 @@ void def_gradient_queries(py::module_& m) {
           const auto pa = ja.rows(), pb = jb.rows();
           {
             py::gil_scoped_release release;
-            parallel_for(n, threads, [&](std::size_t i) {
+            for_each_index(n, threads, [&](std::size_t i) {
               ContactGradient<double, N> g;
               if (rigid) {
                 g = first_contact_gradient<double, N>(a.items[i], RigidMotion<double, N>{motion.velocity_a[i], wa[i]},
@@ -960,7 +975,7 @@ void def_areas(py::module_& m) {
             py::array_t<double> out(static_cast<py::ssize_t>(n));
             double* p = out.mutable_data();
             py::gil_scoped_release release;
-            parallel_for(n, threads, [&](std::size_t i) { p[i] = query(a.items[i], b.items[i], o); });
+            for_each_index(n, threads, [&](std::size_t i) { p[i] = query(a.items[i], b.items[i], o); });
             return out;
           },
           py::arg("a"), py::arg("b"), options_arg(), py::arg("threads") = 0,
@@ -1048,8 +1063,12 @@ void def_batch(py::module_& m) {
                       [](const py::tuple& t) { return make_ellipsoids(t[0], t[1], py::none(), t[2], false); }));
   def_batch_queries<2>(m);
   def_batch_queries<3>(m);
-  def_gradient_queries<2>(m);
-  def_gradient_queries<3>(m);
+  def_pair_gradients<2>(m);
+  def_pair_gradients<3>(m);
+  def_closest_approach_gradient<2>(m);
+  def_closest_approach_gradient<3>(m);
+  def_contact_gradient<2>(m);
+  def_contact_gradient<3>(m);
   m.def(
       "quaternion_gradient",
       [](const ArrayLike& quaternions, const ArrayLike& gradient) {

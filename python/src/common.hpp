@@ -3,6 +3,7 @@
 #pragma once
 
 #include <ellipsect/ellipsect.hpp>
+#include <ellipsect/parallel.hpp>
 
 #include <Eigen/SVD>
 
@@ -11,7 +12,6 @@
 #include <pybind11/stl.h>
 
 #include <algorithm>
-#include <atomic>
 #include <charconv>
 #include <cmath>
 #include <cstdint>
@@ -20,7 +20,6 @@
 #include <optional>
 #include <span>
 #include <string>
-#include <thread>
 #include <type_traits>
 #include <utility>
 #include <vector>
@@ -149,23 +148,15 @@ void def_equality(py::class_<X>& c, Numbers numbers) {
       });
 }
 
-// Calls f(i) for every i in [0, n) on up to `threads` threads (0: every hardware thread),
-// in chunks of 256; each i writes its own output slot, so results do not depend on the
-// thread count.
+// Calls f(i) for every i in [0, n) on up to `threads` threads (0: every hardware thread) of
+// the library's pool (ellipsect/parallel.hpp), in chunks of 256; each i writes its own
+// output slot, so results do not depend on the thread count.
 template <class F>
-void parallel_for(std::size_t n, int threads, const F& f) {
+void for_each_index(std::size_t n, int threads, const F& f) {
   constexpr std::size_t chunk = 256;
-  const std::size_t chunks = (n + chunk - 1) / chunk;
-  const std::size_t hardware = std::max(1u, std::thread::hardware_concurrency());
-  const std::size_t workers = std::min(threads > 0 ? std::size_t(threads) : hardware, chunks);
-  std::atomic<std::size_t> next{0};
-  auto run = [&] {
-    for (std::size_t c; (c = next.fetch_add(1)) < chunks;)
-      for (std::size_t i = c * chunk; i < std::min(n, (c + 1) * chunk); ++i) f(i);
-  };
-  std::vector<std::jthread> pool;
-  for (std::size_t w = 1; w < workers; ++w) pool.emplace_back(run);
-  run();
+  ellipsect::parallel_for((n + chunk - 1) / chunk, threads, [&](std::size_t c) {
+    for (std::size_t i = c * chunk; i < std::min(n, (c + 1) * chunk); ++i) f(i);
+  });
 }
 
 void def_errors(py::module_& m);

@@ -33,6 +33,7 @@
 
 #include "axes.hpp"
 #include "contact_start.hpp"
+#include "reduce.hpp"
 #include "scale.hpp"
 #include "secular.hpp"
 #include "math.hpp"
@@ -293,8 +294,8 @@ struct Support {
 };
 
 // For the body and the polytope of the world-frame vertices (at most 8; edges and faces as in
-// Polytope). Runs on the body scaled to a largest radius in [1, 2), in double (long double
-// beyond the native range, scale.hpp).
+// Polytope). Runs on the body scaled to a largest radius in [1, 2) whatever its range (the
+// support's own normalization, exact), in the working type or in the wide type (scale.hpp).
 template <class T, int N>
 Support<T, N> polytope_support(const Ellipsoid<T, N>& body, std::span<const Vec<T, N>> vertices,
                                std::span<const std::array<int, 2>> edges, std::span<const std::array<int, 3>> faces,
@@ -302,8 +303,7 @@ Support<T, N> polytope_support(const Ellipsoid<T, N>& body, std::span<const Vec<
   T coordinate = max_abs(body.center());
   for (const auto& v : vertices) coordinate = std::max(coordinate, max_abs(v));
   const Scale scale = scale_of<T>(body.radii().maxCoeff(), body.radii().minCoeff(), coordinate);
-  const auto run = [&](auto zero) {
-    using F = decltype(zero);
+  return at_scale<Work<T>>(scale, [&]<class F>(auto) {
     const int e = ilogb(body.radii().maxCoeff());
     const Mat<F, N> axes = work_axes<F>(body);
     const Vec<F, N> center = body.center().template cast<F>();
@@ -318,8 +318,7 @@ Support<T, N> polytope_support(const Ellipsoid<T, N>& body, std::span<const Vec<
     return Support<T, N>{(axes * m.normal).template cast<T>(), (center + axes * times_pow2(support, e)).template cast<T>(),
                          T(ldexp(m.gap, e)), T(ldexp(rho, e)), T(ldexp(m.reach, e)),
                          T(ldexp(m.farthest, e)), m.complete, m.evaluations};
-  };
-  return scale.range == Range::wide ? run(0.0L) : run(std::conditional_t<(sizeof(T) < sizeof(double)), double, T>(0));
+  });
 }
 
 // The distance status of a relation: containment counts as overlapping.

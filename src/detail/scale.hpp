@@ -18,12 +18,25 @@
 //           the squares of any double) on the bodies as given.
 // first_contact also rescales time where the speeds leave the window (time_exponent).
 // float bodies are always native: their squares and cubes fit in double, the working type.
+//
+// This is the one range mechanism: a query measures its inputs (scale_of, time_exponent)
+// and runs through at_scale, which picks the working type and hands the query the Units
+// that convert its inputs into the frame it runs in and its answers back; a query states
+// only how its answers scale (lengths, areas, times). Queries whose arithmetic handles the
+// scaled range itself (the half-space gaps, the polytope support, the triangle pair) read
+// Units::exponent or ignore it; the rigid advancement between bodies, which has no wide
+// path, rescales through Units alone; the advancements against shapes at rest and the
+// batch filter leave every pair that is not as_given to their start state and to the
+// scalar functions.
+// Niemitalo's division-free tests (polygonal2.cpp) are outside it: as published, they run
+// in T itself, each scene brought to unit size by its own power of two.
 #pragma once
 
 #include <ellipsect/shapes.hpp>
 
 #include "shape_access.hpp"
 #include "math.hpp"
+#include "wide.hpp"
 
 #include <algorithm>
 #include <bit>
@@ -48,6 +61,11 @@ enum class Range { native, scaled, wide };
 struct Scale {
   Range range = Range::native;
   int exponent = 0;  // E: the query runs on the bodies times 2^-E (Range::scaled)
+  int time = 0;      // F: and on times times 2^F (first contact: time_exponent)
+  // Whether the query runs on its inputs as given, in the working type.
+  bool as_given() const noexcept { return range == Range::native && time == 0; }
+  // Whether the working type holds the query's squares and cubes (else the wide type).
+  bool representable() const noexcept { return range != Range::wide; }
 };
 
 // Largest magnitude of a vector's coordinates.
@@ -80,19 +98,33 @@ Scale scale_of(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b) noexcept {
                      std::max(max_abs(a.center()), max_abs(b.center())));
 }
 
-// first_contact also rescales time where the speeds, in the rescaled lengths, leave the
-// window: f = their exponent (velocities times 2^-(E + f), times and t_max times 2^f),
-// else 0.
+// first_contact also rescales time where the speeds, in the rescaled lengths, leave a
+// window of 2^+-window: F = their exponent (velocities times 2^-(E + F), times and t_max
+// times 2^F), else 0. The linear contact forms squares and products of speeds with
+// lengths, so its window is the native one; the rigid advancement forms only speed times
+// time and its motion bounds, so it rescales time only where the speeds approach the
+// type's range (rigid_time_window).
+inline constexpr int rigid_time_window = 960;
+
 template <class T, int N>
-int time_exponent(const Scale& scale, const Vec<T, N>& velocity_a, const Vec<T, N>& velocity_b) noexcept {
+int time_exponent(const Scale& scale, const Vec<T, N>& velocity_a, const Vec<T, N>& velocity_b,
+                  int window = native_exponent) noexcept {
   if constexpr (!std::is_same_v<T, double>) {
     return 0;
   } else {
     const T speed = std::max(max_abs(velocity_a), max_abs(velocity_b));
     if (scale.range == Range::wide || !(speed > 0) || !isfinite(speed)) return 0;
     const int f = ilogb(speed) - scale.exponent;
-    return f >= -native_exponent && f <= native_exponent ? 0 : f;
+    return f >= -window && f <= window ? 0 : f;
   }
+}
+
+// The exponent by which the compensated contact times against shapes at rest (half-space,
+// triangle) scale the velocities: 0 within 2^+-500, where their differences cannot
+// overflow nor the error terms of their products underflow, else that of the speed.
+template <class T>
+int speed_exponent(T speed) noexcept {
+  return double(speed) >= 0x1p-500 && double(speed) <= 0x1p500 ? 0 : ilogb(speed);
 }
 
 // 2^-e for the binary exponent e of `size` (finite, > 0): multiplying by it is exact and
@@ -136,9 +168,70 @@ bool scales_exactly(const Ellipsoid<T, N>& e, int k) noexcept {
   return times_pow2(s.center(), -k) == e.center() && times_pow2(s.radii(), -k) == e.radii();
 }
 
-template <class T, int N>
-bool scales_exactly(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b, int k) noexcept {
-  return scales_exactly(a, k) && scales_exactly(b, k);
+// The conversions of a query run at a scale (at_scale): inputs into the frame the query
+// runs in (lengths times 2^-E, velocities 2^-(E + F), times 2^F, rates per time 2^-F),
+// answers back to the caller's. Rescaled = false: the inputs as given (no copies) and the
+// answers untouched, so native answers are those of the query alone, bit for bit.
+template <bool Rescaled>
+struct Units {
+  static constexpr bool rescaled = Rescaled;
+  int exponent = 0;       // E
+  int time_exponent = 0;  // F
+
+  template <class T, int N>
+  decltype(auto) body(const Ellipsoid<T, N>& e) const noexcept {
+    if constexpr (rescaled) return scaled(e, -exponent); else return (e);
+  }
+  template <class X>
+  decltype(auto) length(const X& x) const noexcept { return in(x, -exponent); }
+  template <class X>
+  decltype(auto) velocity(const X& v) const noexcept { return in(v, -exponent - time_exponent); }
+  template <class X>
+  decltype(auto) time(const X& t) const noexcept { return in(t, time_exponent); }
+  template <class X>
+  decltype(auto) rate(const X& w) const noexcept { return in(w, -time_exponent); }
+
+  template <class... X>
+  void lengths_out(X&... x) const noexcept { (out(x, exponent), ...); }
+  template <class... X>
+  void areas_out(X&... x) const noexcept { (out(x, 2 * exponent), ...); }
+  template <class... X>
+  void per_lengths_out(X&... x) const noexcept { (out(x, -exponent), ...); }
+  template <class... X>
+  void times_out(X&... x) const noexcept { (out(x, -time_exponent), ...); }
+
+  // Whether rescaling lost a digit of a body (a coordinate or radius below the normal
+  // range): then the exact relation (Options::tolerance = 0) of the rescaled bodies need
+  // not be that of the given ones.
+  template <class... Bodies>
+  bool loses(const Bodies&... bodies) const noexcept {
+    if constexpr (rescaled) return (!scales_exactly(bodies, -exponent) || ...); else return false;
+  }
+
+ private:
+  template <class X>
+  static decltype(auto) in(const X& x, int k) noexcept {
+    if constexpr (!rescaled) return (x);
+    else if constexpr (std::is_arithmetic_v<X>) return ldexp(x, k);
+    else return times_pow2(x, k);
+  }
+  template <class X>
+  static void out(X& x, int k) noexcept {
+    if constexpr (!rescaled) return;
+    else if constexpr (std::is_arithmetic_v<X>) x = ldexp(x, k);
+    else x = times_pow2(x, k);
+  }
+};
+
+// Runs the query at the scale: query.template operator()<W>(units) with W = R and the
+// inputs as given (native), W = R and rescaled Units (lengths beyond the native window, or
+// time rescaled), or W the wide type and the inputs as given (wide). The query converts
+// its inputs and answers through the Units it is given.
+template <class R, class Query>
+auto at_scale(const Scale& scale, Query&& query) {
+  if (scale.range == Range::wide) return query.template operator()<WideFloat>(Units<false>{});
+  if (scale.exponent != 0 || scale.time != 0) return query.template operator()<R>(Units<true>{scale.exponent, scale.time});
+  return query.template operator()<R>(Units<false>{});
 }
 
 }  // namespace ellipsect::detail
