@@ -53,10 +53,59 @@ template <int N>
 }
 
 template <int N>
+[[gnu::noinline]] double count_perram_wertheim(const std::vector<scenarios::Case<N>>& cases) {
+  double sum = 0;
+  for (const auto& c : cases) sum += perram_wertheim(c.a, c.b).iterations;
+  return sum;
+}
+
+// a's closest point to b's center.
+template <int N>
+[[gnu::noinline]] double count_closest_point(const std::vector<scenarios::Case<N>>& cases) {
+  double sum = 0;
+  for (const auto& c : cases) sum += closest_point(c.a, c.b.center()).signed_distance;
+  return sum;
+}
+
+// The shapes at rest against a: the half-space through b's center facing a, the triangle
+// of b's center and its first two semi-axes' tips.
+template <int N>
+HalfSpace<double, N> half_space_of(const scenarios::Case<N>& c) {
+  const Vec<double, N> d = c.b.center() - c.a.center();
+  return make_half_space<double, N>(c.b.center(), d.norm() > 0 ? Vec<double, N>(-d.normalized())
+                                                               : Vec<double, N>(Vec<double, N>::UnitX()));
+}
+
+template <int N>
+Triangle<double, N> triangle_of(const scenarios::Case<N>& c) {
+  const Vec<double, N> p = c.b.center();
+  return make_triangle<double, N>(p, Vec<double, N>(p + c.b.radii()[0] * c.b.axes().col(0)),
+                                  Vec<double, N>(p + c.b.radii()[1] * c.b.axes().col(1)));
+}
+
+template <int N>
+[[gnu::noinline]] double count_half_space(const std::vector<scenarios::Case<N>>& cases) {
+  double sum = 0;
+  for (const auto& c : cases) {
+    const HalfSpace<double, N> h = half_space_of(c);
+    sum += signed_distance(c.a, h).distance + static_cast<int>(first_contact(c.a, c.va, h, c.vb, c.t_max).status);
+  }
+  return sum;
+}
+
+template <int N>
+[[gnu::noinline]] double count_triangle_contact(const std::vector<scenarios::Case<N>>& cases) {
+  double sum = 0;
+  for (const auto& c : cases) sum += static_cast<int>(first_contact(c.a, c.va, triangle_of(c), c.vb, c.t_max).status);
+  return sum;
+}
+
+template <int N>
 double run() {
   const auto cases = mix<N>();
   return count_overlap<N>(cases) + count_classify<N>(cases) + count_first_contact<N>(cases) +
-         count_distance<N>(cases);
+         count_distance<N>(cases) + count_perram_wertheim<N>(cases) + count_closest_point<N>(cases) +
+         count_half_space<N>(cases) + count_triangle_contact<N>(cases);
 }
 
 }  // namespace

@@ -82,7 +82,8 @@ template <class W, class T, int N>
 // overlap in the working type: the certificates, the gap against 0 where rounding allows,
 // then the decision.
 template <class T, int N>
-bool overlap_in(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b, const Options& options) noexcept {
+[[gnu::always_inline]] inline bool overlap_in(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b,
+                                             const Options& options) noexcept {
   using R = detail::Work<T>;
   namespace hw = detail::HWY_NAMESPACE;
   const double code = hw::certificate_code<false>(a, b, options.tolerance);

@@ -124,12 +124,12 @@ auto with_gaps(const Ellipsoid<T, N>& a, const HalfSpace<T, N>& b, Accept&& acce
   const detail::Scale scale = detail::scale_of<T>(a.radii().maxCoeff(), a.radii().minCoeff(),
                                                   std::max(detail::max_abs(a.center()), detail::max_abs(b.point())));
   // The gaps scale the inputs by 2^-exponent themselves and keep the exponent.
-  return detail::at_scale<detail::Work<T>>(scale, [&]<class F>(auto units) {
+  return detail::in_type<detail::Work<T>>(scale, [&]<class F>(int exponent) {
     if constexpr (!std::is_same_v<F, detail::Work<T>>) {
-      return then(gaps_in<F>(a, b, 0, true));
+      return then(gaps_in<F>(a, b, exponent, true));
     } else {
-      const Gaps<F, N> quick = gaps_in<F>(a, b, units.exponent, false);
-      return then(accept(quick) ? quick : gaps_in<F>(a, b, units.exponent, true));
+      const Gaps<F, N> quick = gaps_in<F>(a, b, exponent, false);
+      return then(accept(quick) ? quick : gaps_in<F>(a, b, exponent, true));
     }
   });
 }

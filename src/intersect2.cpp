@@ -414,12 +414,12 @@ BodyGradient<R, 2> arc_gradient(const Ellipse2<T>& x, const std::array<Vec<R, 2>
                                 Inside inside) noexcept {
   const Mat<R, 2> axes = detail::work_axes<R>(x);
   const Vec<R, 2> r = x.radii().template cast<R>();
-  std::array<R, 4> phi;
+  std::array<R, 4> phi{};
   for (int i = 0; i < m; ++i) {
     const Vec<R, 2> u = (axes.transpose() * rel[i]).cwiseQuotient(r);
     phi[i] = atan2(u[1], u[0]);
   }
-  std::sort(phi.begin(), phi.begin() + m);
+  sort_first(phi, m, std::less<>());
   auto span = [&](int i) { return i + 1 < m ? phi[i + 1] - phi[i] : phi[0] + two_pi<R>() - phi[i]; };
   int longest = 0;
   for (int i = 1; i < m; ++i)

@@ -376,7 +376,7 @@ auto with_pair(const Ellipsoid<T, N>& a, const Triangle<T, N>& b, const Options&
   T coordinate = detail::max_abs(a.center());
   for (int k = 0; k < 3; ++k) coordinate = std::max(coordinate, detail::max_abs(b.vertex(k)));
   const detail::Scale scale = detail::scale_of<T>(a.radii().maxCoeff(), a.radii().minCoeff(), coordinate);
-  return detail::at_scale<detail::Work<T>>(scale, [&]<class F>(auto) { return then(pair_in<F>(a, b, options)); });
+  return detail::in_type<detail::Work<T>>(scale, [&]<class F>(int) { return then(pair_in<F>(a, b, options)); });
 }
 
 Relation relation_of(Decision d) noexcept {

@@ -303,7 +303,7 @@ Support<T, N> polytope_support(const Ellipsoid<T, N>& body, std::span<const Vec<
   T coordinate = max_abs(body.center());
   for (const auto& v : vertices) coordinate = std::max(coordinate, max_abs(v));
   const Scale scale = scale_of<T>(body.radii().maxCoeff(), body.radii().minCoeff(), coordinate);
-  return at_scale<Work<T>>(scale, [&]<class F>(auto) {
+  return in_type<Work<T>>(scale, [&]<class F>(int) {
     const int e = ilogb(body.radii().maxCoeff());
     const Mat<F, N> axes = work_axes<F>(body);
     const Vec<F, N> center = body.center().template cast<F>();

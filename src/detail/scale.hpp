@@ -23,11 +23,11 @@
 // and runs through at_scale, which picks the working type and hands the query the Units
 // that convert its inputs into the frame it runs in and its answers back; a query states
 // only how its answers scale (lengths, areas, times). Queries whose arithmetic handles the
-// scaled range itself (the half-space gaps, the polytope support, the triangle pair) read
-// Units::exponent or ignore it; the rigid advancement between bodies, which has no wide
-// path, rescales through Units alone; the advancements against shapes at rest and the
-// batch filter leave every pair that is not as_given to their start state and to the
-// scalar functions.
+// scaled range itself (the half-space gaps, the polytope support, the triangle pair) go
+// through in_type, which picks the type alone; the rigid advancement between bodies, which
+// has no wide path, rescales through Units alone; the advancements against shapes at rest
+// and the batch filter leave every pair that is not as_given to their start state and to
+// the scalar functions.
 // Niemitalo's division-free tests (polygonal2.cpp) are outside it: as published, they run
 // in T itself, each scene brought to unit size by its own power of two.
 #pragma once
@@ -228,10 +228,19 @@ struct Units {
 // time rescaled), or W the wide type and the inputs as given (wide). The query converts
 // its inputs and answers through the Units it is given.
 template <class R, class Query>
-auto at_scale(const Scale& scale, Query&& query) {
+[[gnu::always_inline]] inline auto at_scale(const Scale& scale, Query&& query) {
+  if (scale.as_given()) return query.template operator()<R>(Units<false>{});
   if (scale.range == Range::wide) return query.template operator()<WideFloat>(Units<false>{});
-  if (scale.exponent != 0 || scale.time != 0) return query.template operator()<R>(Units<true>{scale.exponent, scale.time});
-  return query.template operator()<R>(Units<false>{});
+  return query.template operator()<R>(Units<true>{scale.exponent, scale.time});
+}
+
+// For a query that scales its inputs itself (the half-space gaps, the polytope support, the
+// triangle pair: their arithmetic carries the exponent): query.template operator()<W>(E)
+// with W = R, or the wide type (E = 0) beyond the representable range.
+template <class R, class Query>
+auto in_type(const Scale& scale, Query&& query) {
+  if (scale.representable()) return query.template operator()<R>(scale.exponent);
+  return query.template operator()<WideFloat>(0);
 }
 
 }  // namespace ellipsect::detail
