@@ -105,12 +105,23 @@ struct Options {
   // or Tolerance::exact = 0. Pairs whose gap lies within the band are reported as touching;
   // outside it, answers are exact up to the accuracy stated per query.
   Tolerance tolerance = 1e-12;
-  // Cap on the outer (contact-time) iteration, in [1, 100000]. Reaching it is reported as a
-  // status (ContactStatus::did_not_converge), never returned as an answer.
+  // Cap on the iterations of every bounded loop below, each loop capped on its own, in
+  // [1, 100000]; reaching it is a status, never an answer:
+  //   the linear contact-time Newton (contact.hpp)     ContactStatus::did_not_converge
+  //   the capsule's contact-time Newton (capsule.hpp)  ContactStatus::did_not_converge
+  //   each distance descent (distance.hpp)             DistanceStatus::did_not_converge
+  //   the Perram-Wertheim maximization                 ContactFunctionStatus::did_not_converge
+  //     (contact_function.hpp)
+  //   the rounds of collide_and_slide (slide.hpp)      SlideStatus::blocked (displacement left)
   IterationCap<detail::max_iterations_field, 100000> max_iterations = 64;
   // Cap on the advancement steps of first_contact under rigid motion (contact.hpp), where
-  // each step costs one signed distance, in [1, 1000000]. Reaching it is reported as
-  // did_not_converge, with a certified lower bound on the contact time.
+  // each step costs one signed distance, and on the slabs of earliest_contact's search
+  // (broad_phase.hpp), in [1, 1000000]. Reaching it is ContactStatus::did_not_converge, with
+  // a certified lower bound on the contact time.
+  // The caps outside Options are reported as statuses too: PackingStatus::collision_limit
+  // (PackingOptions::max_collisions, packing.hpp) and Verdict::undecided (the Niemitalo
+  // tests' max_level, polygonal2.hpp). Every status named here is tested at a small cap in
+  // its family's unit tests.
   IterationCap<detail::max_motion_steps_field, 1000000> max_motion_steps = 10000;
 };
 

@@ -126,6 +126,20 @@ TEST(Packing, ContactsAreEveryPairWithinTheGap) {
   expect_contacts_complete(jam_packing<3>(spheroids, o), o.contact_gap);
 }
 
+// The collision cap is a status: the packing stops short of jamming, not overlapping, its
+// count at the cap.
+TEST(Packing, CollisionCapIsAStatus) {
+  const std::vector<Vec<double, 2>> radii(20, Vec<double, 2>(1.0, 0.5));
+  PackingOptions o;
+  o.max_collisions = 50;
+  const Packing<2> p = jam_packing<2>(radii, o);
+  EXPECT_EQ(p.status, PackingStatus::collision_limit);
+  EXPECT_GE(p.collisions, 50u);
+  EXPECT_LT(p.pressure, o.pressure);
+  EXPECT_EQ(p.overlapping, 0u);
+  EXPECT_EQ(to_string(p.status), "collision_limit");
+}
+
 TEST(Packing, BadInputIsNamed) {
   const std::vector<Vec<double, 2>> radii(10, Vec<double, 2>(1.0, 0.5));
   PackingOptions o;
