@@ -35,7 +35,10 @@ int run(int side, double phi, long events, const std::string& frames, long every
   double cpu = 0.0;
   for (long k = 0; k < events; ++k) {
     const auto start = std::chrono::steady_clock::now();
-    sim.step();
+    if (sim.step().status != HardStatus::collided) {
+      std::printf("no event left after %ld collisions\n", k);
+      return 1;
+    }
     cpu += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (!frames.empty() && k % every == 0) {
       char name[32];

@@ -14,6 +14,7 @@
 #include <CLI/CLI.hpp>
 
 #include <chrono>
+#include <cstdint>
 #include <cstdio>
 #include <fstream>
 #include <string>
@@ -68,7 +69,7 @@ int run(int bodies, const std::vector<double>& shape, double bidisperse, const P
               std::string(to_string(p.status)).c_str(), p.density, p.pressure,
               static_cast<unsigned long long>(p.collisions));
   std::printf("contacts (mu - 1 < %.3g): mean %.3f per body, %.3f without the %zu rattlers\n",
-              options.contact_gap > 0 ? options.contact_gap : 100.0 / options.pressure, p.mean_contacts,
+              options.contact_gap > 0 ? double(options.contact_gap) : 100.0 / options.pressure, p.mean_contacts,
               p.mean_contacts_without_rattlers, p.rattlers);
   std::printf("%.1f s, %.0f collisions per second, %zu neighbor-list rebuilds\n", seconds, double(p.collisions) / seconds,
               p.rebuilds);
@@ -85,28 +86,36 @@ int main(int argc, char** argv) {
   CLI::App app{"Jammed packings of ellipses or ellipsoids by Lubachevsky-Stillinger compression"};
   int dim = 3, bodies = 1000;
   std::vector<double> shape;
-  double bidisperse = 1.0, slow_rate = 0.0, slow_from = 0.0;
-  PackingOptions options;
+  double bidisperse = 1.0, rate = 1e-2, slow_rate = 0.0, slow_from = 0.0;
+  // The options as given (PackingOptions validates them when they are set, below).
+  const PackingOptions defaults;
+  double pressure = defaults.pressure, phi0 = defaults.initial_density, skin = defaults.skin;
+  std::uint64_t seed = defaults.seed, max_collisions = defaults.max_collisions;
   std::string svg, scene;
   app.add_option("--dim", dim, "2 or 3")->check(CLI::IsMember({2, 3}));
   app.add_option("--bodies", bodies, "number of bodies")->check(CLI::Range(2, 10000000));
   app.add_option("--radii", shape, "the radii of a body, comma separated (default 1.25,1,0.8 / 1,1)")->delimiter(',');
   app.add_option("--bidisperse", bidisperse, "half the bodies scaled by this")->check(CLI::PositiveNumber);
-  app.add_option("--rate", options.schedule[0].rate, "growth rate (thermal speeds per largest diameter)")
-      ->check(CLI::PositiveNumber);
+  app.add_option("--rate", rate, "growth rate (thermal speeds per largest diameter)")->check(CLI::PositiveNumber);
   app.add_option("--slow-rate", slow_rate, "a second growth rate, from reduced pressure --slow-from on");
   app.add_option("--slow-from", slow_from, "reduced pressure at which --slow-rate starts");
-  app.add_option("--pressure", options.pressure, "reduced pressure at which the packing counts as jammed");
-  app.add_option("--phi0", options.initial_density, "packing fraction of the random start");
-  app.add_option("--skin", options.skin, "neighbor-list skin, of the largest radius");
-  app.add_option("--seed", options.seed, "random start");
-  app.add_option("--max-collisions", options.max_collisions, "stop after this many collisions");
+  app.add_option("--pressure", pressure, "reduced pressure at which the packing counts as jammed");
+  app.add_option("--phi0", phi0, "packing fraction of the random start");
+  app.add_option("--skin", skin, "neighbor-list skin, of the largest radius");
+  app.add_option("--seed", seed, "random start");
+  app.add_option("--max-collisions", max_collisions, "stop after this many collisions");
   app.add_option("--svg", svg, "write the packing as an SVG picture");
   app.add_option("--scene", scene, "write the packing as a JSON scene");
   CLI11_PARSE(app, argc, argv);
   if (shape.empty()) shape = dim == 2 ? std::vector<double>{1, 1} : std::vector<double>{1.25, 1, 0.8};
-  if (slow_rate > 0) options.schedule.push_back({slow_from, slow_rate});
   try {
+    PackingOptions options;
+    options.seed = seed;
+    options.initial_density = phi0;
+    options.schedule = slow_rate > 0 ? GrowthSchedule{{0.0, rate}, {slow_from, slow_rate}} : GrowthSchedule{{0.0, rate}};
+    options.pressure = pressure;
+    options.max_collisions = max_collisions;
+    options.skin = skin;
     return dim == 2 ? run<2>(bodies, shape, bidisperse, options, svg, scene)
                     : run<3>(bodies, shape, bidisperse, options, svg, scene);
   } catch (const InputError& e) {

@@ -25,8 +25,14 @@ void reject_tolerance(double value, double low, double high) {
   throw InputError("tolerance", "must be 0 or in [" + shortest(low) + ", " + shortest(high) + "] (got " + shortest(value) + ")");
 }
 
-void reject_option(const char* field, const char* digits, int low, int high) {
+void reject_option(const char* field, const char* digits, std::uintmax_t low, std::uintmax_t high) {
   throw InputError(field, "must be in [" + std::to_string(low) + ", " + std::to_string(high) + "] (got " + digits + ")");
+}
+
+void reject_real(double value, const RealRange& range) {
+  throw InputError(range.field, "must be finite and in " + std::string(range.low_closed ? "[" : "(") +
+                                    shortest(range.low) + ", " + shortest(range.high) +
+                                    (range.high_closed ? "]" : ")") + " (got " + shortest(value) + ")");
 }
 
 }  // namespace ellipsect::detail

@@ -1,4 +1,6 @@
-// ellipsect: exact collision queries between ellipses and ellipsoids.
+// ellipsect: exact collision queries between ellipses and ellipsoids: the core library
+// (target ellipsect::ellipsect). The modules built on it are outside this header, each with
+// its own header and target: <ellipsect/packing.hpp>, ellipsect::packing (modules/packing).
 #pragma once
 
 #include <ellipsect/batch.hpp>
@@ -16,7 +18,6 @@
 #include <ellipsect/intersect2.hpp>
 #include <ellipsect/mesh.hpp>
 #include <ellipsect/options.hpp>
-#include <ellipsect/packing.hpp>
 #include <ellipsect/parallel.hpp>
 #include <ellipsect/point.hpp>
 #include <ellipsect/polygonal2.hpp>

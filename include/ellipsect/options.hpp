@@ -25,6 +25,8 @@
 
 #include <charconv>
 #include <concepts>
+#include <cstdint>
+#include <limits>
 #include <utility>
 
 namespace ellipsect {
@@ -34,7 +36,7 @@ namespace detail {
 // InputError(field, "must be in [low, high] (got value)") for an integer given by its
 // decimal digits (src/options.cpp).
 [[noreturn]] void reject_tolerance(double value, double low, double high);
-[[noreturn]] void reject_option(const char* field, const char* digits, int low, int high);
+[[noreturn]] void reject_option(const char* field, const char* digits, std::uintmax_t low, std::uintmax_t high);
 inline constexpr char max_iterations_field[] = "max_iterations";
 inline constexpr char max_motion_steps_field[] = "max_motion_steps";
 }  // namespace detail
@@ -74,21 +76,24 @@ private:
   double value_;
 };
 
-// An iteration cap: an integer in [1, Max], of any integer type (out of range, the value as
-// given is rejected: InputError(Field)). The maximum bounds a query's time; every loop so
-// capped converges well inside the default caps on the tested pairs.
-template <const char* Field, int Max>
+// An iteration cap: an integer in [1, Max], stored in Max's type, given in any integer type
+// (out of range, the value as given is rejected: InputError(Field)). The maximum bounds a
+// query's time; every loop so capped converges well inside the default caps on the tested
+// pairs.
+template <const char* Field, auto Max>
+  requires std::integral<decltype(Max)>
 class IterationCap {
 public:
+  using value_type = decltype(Max);
   static constexpr const char* field = Field;
-  static constexpr int min = 1;
-  static constexpr int max = Max;
+  static constexpr value_type min = 1;
+  static constexpr value_type max = Max;
 
   template <std::integral I>
-  constexpr IterationCap(I value) : value_(static_cast<int>(value)) {
+  constexpr IterationCap(I value) : value_(static_cast<value_type>(value)) {
     if (!(std::cmp_greater_equal(value, min) && std::cmp_less_equal(value, max))) reject(value);
   }
-  constexpr operator int() const noexcept { return value_; }
+  constexpr operator value_type() const noexcept { return value_; }
 
 private:
   template <class I>
@@ -97,7 +102,43 @@ private:
     std::to_chars(digits, digits + sizeof digits - 1, value);
     detail::reject_option(Field, digits, min, max);
   }
-  int value_;
+  value_type value_;
+};
+
+// The interval a real option must lie in: finite, between low and high, each end open or
+// closed (high may be infinite: then only finiteness bounds it).
+struct RealRange {
+  const char* field;
+  double low, high;
+  bool low_closed, high_closed;
+
+  constexpr bool contains(double v) const noexcept {
+    const bool finite = v == v && v != std::numeric_limits<double>::infinity() &&
+                        v != -std::numeric_limits<double>::infinity();
+    return finite && (low_closed ? v >= low : v > low) && (high_closed ? v <= high : v < high);
+  }
+};
+
+namespace detail {
+// Throw InputError(range.field, "must be finite and in (low, high) (got value)") with the
+// range's brackets (src/options.cpp).
+[[noreturn]] void reject_real(double value, const RealRange& range);
+}  // namespace detail
+
+// A real option validated as the caps are: constructed or assigned outside Range, it throws
+// InputError(Range.field) with the value and the interval; it reads as a double.
+template <const RealRange& Range>
+class RealOption {
+public:
+  static constexpr const RealRange& range = Range;
+
+  constexpr RealOption(double value) : value_(value) {
+    if (!Range.contains(value)) detail::reject_real(value, Range);
+  }
+  constexpr operator double() const noexcept { return value_; }
+
+private:
+  double value_;
 };
 
 struct Options {

@@ -3,6 +3,8 @@
 #include "common.hpp"
 #include "docs.hpp"
 
+#include <ellipsect/packing.hpp>
+
 namespace ellipsect::python {
 
 namespace {
@@ -73,8 +75,9 @@ void def_packing(py::module_& m) {
         o.seed = seed;
         o.initial_density = initial_density;
         if (schedule) {
-          o.schedule.clear();
-          for (const auto& [from, rate] : *schedule) o.schedule.push_back({from, rate});
+          std::vector<GrowthStage> stages;
+          for (const auto& [from, rate] : *schedule) stages.push_back({from, rate});
+          o.schedule = GrowthSchedule(std::move(stages));
         }
         o.pressure = pressure;
         o.max_collisions = max_collisions;
@@ -97,12 +100,13 @@ void def_packing(py::module_& m) {
                 "stop there (status collision_limit).\ncontact_gap: contacts are pairs with Perram-Wertheim mu - 1 "
                 "below it (0: 100 / pressure).\nskin: neighbor-list skin, of the largest radius.\n"
                 "collisions_per_update: per body, between thermostat and pressure updates.",
-                "Packing: status ('jammed' or 'collision_limit'), box (N,), centers (n, N), axes (n, N, N; columns "
+                "Packing: status ('jammed', 'collision_limit' or 'no_start': no room for the random start, no bodies), box (N,), centers (n, N), axes (n, N, N; columns "
                 "the axes), radii (n, N), density, pressure, collisions, rebuilds, time, contacts (m, 2 + N: i, j and "
                 "the image of j), mean_contacts, rattlers, mean_contacts_without_rattlers, overlapping (pairs "
                 "classify finds overlapping at the end: 0), predictions_overlapping, predictions_stopped (0), "
                 "history (k, 2: density and reduced pressure after each update).",
-                "InputError: a field out of range (radii[i], options.*).\nValueError: radii of the wrong shape.")
+                "InputError: a radius or an option out of range, named (radii[i], initial_density, schedule[k], pressure, "
+                "max_collisions, contact_gap, skin, collisions_per_update).\nValueError: radii of the wrong shape.")
           .c_str());
 }
 

@@ -56,9 +56,9 @@ def test_bad_input_is_named():
     bad[4, 0] = -1
     with pytest.raises(ellipsect.InputError, match=r"radii\[4\]"):
         ellipsect.jam_packing(bad)
-    with pytest.raises(ellipsect.InputError, match="options.pressure"):
+    with pytest.raises(ellipsect.InputError, match="pressure"):
         ellipsect.jam_packing(radii, pressure=0.5)
-    with pytest.raises(ellipsect.InputError, match=r"options.schedule\[1\]"):
+    with pytest.raises(ellipsect.InputError, match=r"schedule\[1\]"):
         ellipsect.jam_packing(radii, schedule=[(0.0, 0.1), (0.0, 0.2)])
 
 

@@ -8,10 +8,16 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <limits>
+#include <span>
+#include <vector>
+
 namespace {
 namespace ELLIPSECT_UNITY_ID {
 
 using namespace ellipsect;
+using ellipsect::testing::expect_field;
 
 // classify of every pair whose boxes meet, through its image: none overlaps.
 template <int N>
@@ -33,7 +39,9 @@ void run(int side, const Vec<double, N>& radii, double phi, long events, double 
   const auto start = sim.totals();
   double last = 0.0;
   for (long k = 0; k < events; ++k) {
-    const auto e = sim.step();
+    const HardStep<N> step = sim.step();
+    ASSERT_EQ(step.status, HardStatus::collided) << "event " << k;
+    const HardEvent<N>& e = step.event;
     ASSERT_GE(e.time, last) << "event " << k;
     last = e.time;
     // The colliding pair touches, through the nearest image of j's center.
@@ -73,6 +81,38 @@ TEST(HardBodies, GrowingEllipses) {
 }
 TEST(HardBodies, GrowingEllipsoids) {
   run<3>(6, Vec<double, 3>(1.0, 0.6, 0.4), 0.3, ellipsect::testing::cases(3000), 0.02);
+}
+
+// Bodies at rest that do not grow never meet: step() says so and leaves the system as it was.
+TEST(HardBodies, NothingMovingIsNoEvent) {
+  const std::vector<Ellipsoid<double, 2>> bodies = {make_ellipse<double>({1, 1}, 0.0, {0.5, 0.25}),
+                                                    make_ellipse<double>({3, 3}, 0.5, {0.5, 0.25})};
+  const std::vector<RigidMotion<double, 2>> rest(2);
+  HardBodies<2> sim(bodies, rest, PeriodicBox<2>{{4.0, 4.0}});
+  const HardStep<2> step = sim.step();
+  EXPECT_EQ(step.status, HardStatus::no_event);
+  EXPECT_EQ(to_string(step.status), "no_event");
+  EXPECT_EQ(sim.collisions(), 0u);
+  EXPECT_EQ(sim.now(), 0.0);
+  EXPECT_EQ(sim.next_event(), std::numeric_limits<double>::infinity());
+  EXPECT_EQ(sim.shapes()[1].center(), bodies[1].center());
+}
+
+// Bad input names its argument.
+TEST(HardBodies, BadInputIsNamed) {
+  const std::vector<Ellipsoid<double, 2>> bodies = {make_ellipse<double>({1, 1}, 0.0, {0.5, 0.25}),
+                                                    make_ellipse<double>({3, 3}, 0.5, {0.5, 0.25})};
+  std::vector<RigidMotion<double, 2>> motions(2);
+  const PeriodicBox<2> box{{4.0, 4.0}};
+  expect_field([&] { HardBodies<2>(bodies, std::span(motions).first(1), box); }, "motions");
+  expect_field([&] { HardBodies<2>(bodies, motions, PeriodicBox<2>{{4.0, -1.0}}); }, "box.size");
+  expect_field([&] { HardBodies<2>(bodies, motions, box, 0.0); }, "skin");
+  expect_field([&] { HardBodies<2>(bodies, motions, box, 0.5, -1.0); }, "expansion");
+  motions[1].angular_velocity = std::nan("");
+  expect_field([&] { HardBodies<2>(bodies, motions, box); }, "motions[1].angular_velocity");
+  motions[1] = {};
+  HardBodies<2> sim(bodies, motions, box);
+  expect_field([&] { sim.rescale(0.0, 0.0); }, "factor");
 }
 
 }  // namespace ELLIPSECT_UNITY_ID

@@ -13,7 +13,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
+#include <limits>
+#include <span>
+#include <string>
 #include <vector>
 
 namespace {
@@ -140,6 +144,8 @@ TEST(Packing, CollisionCapIsAStatus) {
   EXPECT_EQ(to_string(p.status), "collision_limit");
 }
 
+// Bad radii name themselves where jam_packing is called; bad options where they are set, as
+// Options' fields do.
 TEST(Packing, BadInputIsNamed) {
   const std::vector<Vec<double, 2>> radii(10, Vec<double, 2>(1.0, 0.5));
   PackingOptions o;
@@ -147,19 +153,43 @@ TEST(Packing, BadInputIsNamed) {
   std::vector<Vec<double, 2>> bad = radii;
   bad[3][1] = -1;
   expect_field([&] { jam_packing<2>(bad, o); }, "radii[3]");
-  o.initial_density = 0.7;
-  expect_field([&] { jam_packing<2>(radii, o); }, "options.initial_density");
-  o = {};
-  o.schedule = {{0.0, 0.1}, {0.0, 0.01}};
-  expect_field([&] { jam_packing<2>(radii, o); }, "options.schedule[1]");
-  o = {};
-  o.pressure = 0.5;
-  expect_field([&] { jam_packing<2>(radii, o); }, "options.pressure");
-  for (const double skin : {-0.1, std::nan("")}) {
-    o = {};
-    o.skin = skin;
-    expect_field([&] { jam_packing<2>(radii, o); }, "options.skin");
+  for (const double density : {0.0, 0.5, 0.7, std::nan("")})
+    expect_field([&] { o.initial_density = density; }, "initial_density");
+  expect_field([&] { o.schedule = {{0.0, 0.1}, {0.0, 0.01}}; }, "schedule[1]");
+  expect_field([&] { o.schedule = {{0.0, -0.1}}; }, "schedule[0]");
+  expect_field([&] { o.schedule = GrowthSchedule(std::vector<GrowthStage>{}); }, "schedule");
+  for (const double pressure : {0.5, 1.0, std::numeric_limits<double>::infinity()})
+    expect_field([&] { o.pressure = pressure; }, "pressure");
+  expect_field([&] { o.contact_gap = -1e-3; }, "contact_gap");
+  for (const double skin : {-0.1, 0.0, std::nan("")}) expect_field([&] { o.skin = skin; }, "skin");
+  expect_field([&] { o.max_collisions = 0; }, "max_collisions");
+  expect_field([&] { o.collisions_per_update = 0; }, "collisions_per_update");
+  expect_field([&] { (void)PackingOptions{.pressure = 0.9}; }, "pressure");
+  // The options kept their defaults through the rejected assignments.
+  EXPECT_EQ(double(o.initial_density), 0.2);
+  EXPECT_EQ(o.schedule.stages().size(), 1u);
+  EXPECT_EQ(double(o.pressure), 1e6);
+  EXPECT_EQ(std::uint64_t(o.max_collisions), 1'000'000'000u);
+  // The message states the range and the value.
+  try {
+    o.initial_density = 0.7;
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("must be finite and in (0, 0.5) (got 0.7)"), std::string::npos) << e.what();
   }
+}
+
+// A start denser than random placement reaches is a status, not an exception: no bodies.
+// (Random sequential placement of spheres jams at 0.38, Talbot et al., Colloids Surf. A 165
+// (2000) 287, short of 0.45.)
+TEST(Packing, NoRoomForTheStartIsAStatus) {
+  const std::vector<Vec<double, 3>> spheres(60, Vec<double, 3>::Constant(1.0));
+  PackingOptions o;
+  o.initial_density = 0.45;
+  const Packing<3> p = jam_packing<3>(spheres, o);
+  EXPECT_EQ(p.status, PackingStatus::no_start);
+  EXPECT_EQ(to_string(p.status), "no_start");
+  EXPECT_TRUE(p.bodies.empty());
+  EXPECT_EQ(p.collisions, 0u);
 }
 
 }  // namespace ELLIPSECT_UNITY_ID

@@ -24,14 +24,20 @@
 // (expansion / scale) n . (c_j - c_i) the rate at which growth closes the gap, the gap's rate
 // -a before (a = n . (u_j - u_i) - w < 0, u the contact points' velocities) becomes +|a|
 // after, which adds kinetic energy; `rescale` takes it back out.
+//
+// A module of its own, outside the core's umbrella header: link ellipsect::packing. Built on
+// the core's public queries alone.
 #pragma once
 
 #include <ellipsect/broad_phase.hpp>
 #include <ellipsect/contact.hpp>
+#include <ellipsect/options.hpp>
 #include <ellipsect/shapes.hpp>
 
 #include <array>
 #include <cstdint>
+#include <initializer_list>
+#include <limits>
 #include <queue>
 #include <span>
 #include <string_view>
@@ -61,6 +67,20 @@ struct HardEvent {
   bool operator>(const HardEvent& o) const { return time > o.time; }
 };
 
+// What step() found: the next collision, or nothing left to happen (no body moves, spins or
+// grows, or none of them ever meets another).
+enum class HardStatus {
+  collided,  // event: the collision, processed
+  no_event   // event unset; the system is unchanged
+};
+std::string_view to_string(HardStatus s) noexcept;
+
+template <int N>
+struct HardStep {
+  HardStatus status = HardStatus::no_event;
+  HardEvent<N> event{};
+};
+
 // Totals the dynamics conserves (without growth), and the sum of |m v| (the scale of the
 // momentum's rounding).
 template <int N>
@@ -81,9 +101,9 @@ public:
   HardBodies(std::span<const Ellipsoid<double, N>> bodies, std::span<const RigidMotion<double, N>> motions,
              const PeriodicBox<N>& box, double skin = 0.5, double expansion = 0.0);
 
-  // Processes events up to the next collision and returns it. Throws std::runtime_error
-  // where no event is left (nothing moves or grows).
-  HardEvent<N> step();
+  // Processes events up to the next collision and returns it (status collided); status
+  // no_event where none is left.
+  HardStep<N> step();
 
   // Every body at time t (>= the last event's; default: now), centers wrapped into the box.
   std::vector<Ellipsoid<double, N>> shapes_at(double t) const;
@@ -145,22 +165,55 @@ struct GrowthStage {
   double rate = 1e-2;
 };
 
+namespace detail {
+inline constexpr char max_collisions_field[] = "max_collisions";
+inline constexpr char collisions_per_update_field[] = "collisions_per_update";
+inline constexpr RealRange initial_density_range{"initial_density", 0.0, 0.5, false, false};
+inline constexpr RealRange pressure_range{"pressure", 1.0, std::numeric_limits<double>::infinity(), false, false};
+inline constexpr RealRange contact_gap_range{"contact_gap", 0.0, std::numeric_limits<double>::infinity(), true, false};
+inline constexpr RealRange skin_range{"skin", 0.0, std::numeric_limits<double>::infinity(), false, false};
+}  // namespace detail
+
+// The growth schedule: stages with `from` increasing from 0 (the first at 0 or above) and
+// rates finite and > 0; anything else throws InputError("schedule[k]") for the first bad
+// stage k, or InputError("schedule") where there is none.
+class GrowthSchedule {
+public:
+  GrowthSchedule(std::initializer_list<GrowthStage> stages) : GrowthSchedule(std::vector<GrowthStage>(stages)) {}
+  explicit GrowthSchedule(std::vector<GrowthStage> stages);
+  const std::vector<GrowthStage>& stages() const noexcept { return stages_; }
+  // The rate of the last stage whose `from` the pressure has reached (the first stage's below it).
+  double rate_at(double pressure) const noexcept;
+
+private:
+  std::vector<GrowthStage> stages_;
+};
+
+// Each field is validated as Options' are, where it is constructed or assigned: InputError
+// naming the field, with the value and the range.
 struct PackingOptions {
   std::uint64_t seed = 1;
-  double initial_density = 0.2;  // packing fraction of the random start
-  // Growth schedule, `from` increasing from 0: the expansion rate d scale / dt in units of
-  // the thermal speed sqrt(kT / m) (kT = 1, m = 1) over the largest diameter at scale 1.
-  std::vector<GrowthStage> schedule = {{0.0, 1e-2}};
-  double pressure = 1e6;                 // jammed: reduced pressure p = PV / (N kT) beyond this
-  std::uint64_t max_collisions = 1'000'000'000;
-  double contact_gap = 0.0;              // contacts: pairs with mu - 1 below this (0: 100 / pressure)
-  double skin = 0.1;                     // neighbor-list skin, of the largest radius
-  int collisions_per_update = 20;        // per body, between thermostat and pressure updates
+  // Packing fraction of the random start, in (0, 0.5).
+  RealOption<detail::initial_density_range> initial_density = 0.2;
+  // The expansion rate d scale / dt in units of the thermal speed sqrt(kT / m) (kT = 1,
+  // m = 1) over the largest diameter at scale 1, by reduced pressure.
+  GrowthSchedule schedule = {{0.0, 1e-2}};
+  // Jammed: reduced pressure p = PV / (N kT) beyond this, in (1, inf).
+  RealOption<detail::pressure_range> pressure = 1e6;
+  // The collisions to run at most, in [1, 2^62]: reaching it is PackingStatus::collision_limit.
+  IterationCap<detail::max_collisions_field, std::uint64_t(1) << 62> max_collisions = std::uint64_t(1'000'000'000);
+  // Contacts: pairs with mu - 1 below this, in [0, inf) (0: 100 / pressure).
+  RealOption<detail::contact_gap_range> contact_gap = 0.0;
+  // Neighbor-list skin, of the largest radius, in (0, inf).
+  RealOption<detail::skin_range> skin = 0.1;
+  // Per body, between thermostat and pressure updates, in [1, 1000000].
+  IterationCap<detail::collisions_per_update_field, 1000000> collisions_per_update = 20;
 };
 
 enum class PackingStatus {
-  jammed,          // reduced pressure reached options.pressure
-  collision_limit  // options.max_collisions reached first
+  jammed,           // reduced pressure reached options.pressure
+  collision_limit,  // options.max_collisions reached first
+  no_start          // the random start found no room for a body in 1000 tries: bodies empty
 };
 std::string_view to_string(PackingStatus s) noexcept;
 
@@ -190,7 +243,8 @@ struct Packing {
 // HardBodies with expansion until jammed. Every `collisions_per_update` collisions per
 // body: the reduced pressure p = 1 + virial / (N d kT dt) over the interval, the velocities
 // rescaled to kT = 1, the growth rate from the schedule at p. Throws InputError naming the
-// field (radii, options.*).
+// radius (radii[i]), or "radii" for fewer than two bodies or too few for the box (each
+// under an eighth of its side); the options are valid by their types.
 template <int N>
 Packing<N> jam_packing(std::span<const Vec<double, N>> radii, const PackingOptions& options = {});
 
