@@ -6,5 +6,5 @@ file(GLOB_RECURSE ellipsect_sources CONFIGURE_DEPENDS ${ellipsect_source_root}/*
 # Every SIMD lane must round as the scalar code does (batch = scalar bit for bit), and the
 # error-free products of detail/compensated.hpp stay error-free: no fused multiply-adds.
 # (A unity build compiles files with options of their own alone.)
-set_source_files_properties(${ellipsect_source_root}/batch_kernels.cpp ${ellipsect_source_root}/half_space.cpp
-                            ${ellipsect_source_root}/triangle.cpp PROPERTIES COMPILE_OPTIONS -ffp-contract=off)
+set_source_files_properties(${ellipsect_source_root}/many/batch_kernels.cpp ${ellipsect_source_root}/obstacles/half_space.cpp
+                            ${ellipsect_source_root}/obstacles/triangle.cpp PROPERTIES COMPILE_OPTIONS -ffp-contract=off)

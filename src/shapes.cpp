@@ -1,7 +1,4 @@
-#include <ellipsect/box.hpp>
-#include <ellipsect/capsule.hpp>
-#include <ellipsect/half_space.hpp>
-#include <ellipsect/triangle.hpp>
+// The bodies' factories (shapes.hpp); the obstacles' are in their own files (obstacles/).
 #include <ellipsect/shapes.hpp>
 
 #include "detail/axes.hpp"
@@ -9,6 +6,7 @@
 #include "detail/shape_access.hpp"
 #include "detail/show.hpp"
 #include "detail/math.hpp"
+#include "detail/validate.hpp"
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/QR>
@@ -24,55 +22,11 @@ namespace ellipsect {
 namespace {
 
 using detail::show;
-
-// The ordered checks (the factories' path for input their good path rejects; from_quadric's
-// and translated's only path) build no string while the input is good: a failure calls one
-// of these out-of-line functions, which name the field and quote the value.
-template <class T>
-[[noreturn, gnu::cold, gnu::noinline]] void throw_not_finite(const std::string& field, T value) {
-  throw InputError(field, "must be finite (got " + show(value) + ")");
-}
-
-// field, field[i] (index >= 0).
-[[gnu::cold, gnu::noinline]] std::string element_name(const char* field, Eigen::Index i) {
-  return i < 0 ? std::string(field) : std::string(field) + '[' + std::to_string(i) + ']';
-}
-
-// field(i,j).
-[[gnu::cold, gnu::noinline]] std::string element_name(const char* field, Eigen::Index i, Eigen::Index j) {
-  return std::string(field) + '(' + std::to_string(i) + ',' + std::to_string(j) + ')';
-}
-
-template <class T>
-[[noreturn, gnu::cold, gnu::noinline]] void throw_not_positive(const std::string& field, T value) {
-  if (!isfinite(value)) throw_not_finite(field, value);
-  throw InputError(field, "must be > 0 (got " + show(value) + ")");
-}
-
-template <class Derived>
-void require_finite(const Eigen::MatrixBase<Derived>& m, const char* field) {
-  for (Eigen::Index j = 0; j < m.cols(); ++j)
-    for (Eigen::Index i = 0; i < m.rows(); ++i)
-      if (!isfinite(m(i, j)))
-        throw_not_finite(m.cols() == 1 ? element_name(field, i) : element_name(field, i, j), m(i, j));
-}
-
-// point + offset for a shape's translated(): InputError "offset[i]" for a non-finite offset,
-// "offset" where the sum leaves the range of T (`what` names the moved point).
-template <class T, int N>
-Vec<T, N> moved(const Vec<T, N>& point, const Vec<T, N>& offset, const char* what) {
-  require_finite(offset, "offset");
-  const Vec<T, N> out = point + offset;
-  if (!out.allFinite()) [[unlikely]]
-    throw InputError("offset", std::string("moves ") + what + " beyond the range of the type");
-  return out;
-}
-
-// value finite and > 0; the field is named field[index], or field when index < 0.
-template <class T>
-void require_positive(T value, const char* field, int index = -1) {
-  if (!(value > T(0) && value <= std::numeric_limits<T>::max())) throw_not_positive(element_name(field, index), value);
-}
+using detail::element_name;
+using detail::require_finite;
+using detail::require_positive;
+using detail::moved;
+using detail::throw_not_finite;
 
 template <class T>
 constexpr T quaternion_tolerance = sizeof(T) >= sizeof(double) ? T(1e-9) : T(1e-5);
@@ -378,74 +332,7 @@ void make_bodies(std::span<const T> centers, std::span<const T> rotations, std::
   });
 }
 
-template <class T, int N>
-HalfSpace<T, N> HalfSpace<T, N>::from_point_normal(const Vec<T, N>& point, const Vec<T, N>& normal) {
-  require_finite(point, "point");
-  require_finite(normal, "normal");
-  if (!(normal.cwiseAbs().maxCoeff() > T(0))) throw InputError("normal", "must not be zero");
-  HalfSpace h;
-  Eigen::Map<Vec<T, N>>(h.point_.data()) = point;
-  Eigen::Map<Vec<T, N>>(h.normal_.data()) = detail::unit_vector<T, N>(normal);
-  return h;
-}
-
-template <class T, int N>
-HalfSpace<T, N> HalfSpace<T, N>::translated(const Vec<T, N>& offset) const {
-  HalfSpace h = *this;
-  Eigen::Map<Vec<T, N>>(h.point_.data()) = moved<T, N>(point(), offset, "the point");
-  return h;
-}
-
-template <class T, int N>
-Triangle<T, N> Triangle<T, N>::from_vertices(const Vec<T, N>& v0, const Vec<T, N>& v1, const Vec<T, N>& v2) {
-  require_finite(v0, "vertices[0]");
-  require_finite(v1, "vertices[1]");
-  require_finite(v2, "vertices[2]");
-  Triangle t;
-  Eigen::Map<Vec<T, N>>(t.vertices_[0].data()) = v0;
-  Eigen::Map<Vec<T, N>>(t.vertices_[1].data()) = v1;
-  Eigen::Map<Vec<T, N>>(t.vertices_[2].data()) = v2;
-  return t;
-}
-
-template <class T, int N>
-Triangle<T, N> Triangle<T, N>::translated(const Vec<T, N>& offset) const {
-  Triangle t = *this;
-  for (int k = 0; k < 3; ++k) Eigen::Map<Vec<T, N>>(t.vertices_[k].data()) = moved<T, N>(vertex(k), offset, "a vertex");
-  return t;
-}
-
-template <class T, int N>
-Capsule<T, N> Capsule<T, N>::from_segment(const Vec<T, N>& p0, const Vec<T, N>& p1, T radius) {
-  require_finite(p0, "p0");
-  require_finite(p1, "p1");
-  require_positive(radius, "radius");
-  Capsule c;
-  Eigen::Map<Vec<T, N>>(c.points_[0].data()) = p0;
-  Eigen::Map<Vec<T, N>>(c.points_[1].data()) = p1;
-  c.radius_ = radius;
-  return c;
-}
-
-template <class T, int N>
-Capsule<T, N> Capsule<T, N>::translated(const Vec<T, N>& offset) const {
-  Capsule c = *this;
-  for (int k = 0; k < 2; ++k) Eigen::Map<Vec<T, N>>(c.points_[k].data()) = moved<T, N>(point(k), offset, "an end point");
-  return c;
-}
-
-// The box's frame is a body's, whose translated() names its center: here the argument is the
-// offset.
-template <class T, int N>
-Box<T, N> Box<T, N>::translated(const Vec<T, N>& offset) const {
-  return Box(detail::ShapeAccess::unchecked<T, N>(moved<T, N>(center(), offset, "the center"), axes(), half_extents()));
-}
-
 #define ELLIPSECT_INSTANTIATE(T, N) \
-  template class HalfSpace<T, N>;   \
-  template class Triangle<T, N>;    \
-  template class Capsule<T, N>;     \
-  template Box<T, N> Box<T, N>::translated(const Vec<T, N>&) const; \
   template class Ellipsoid<T, N>;   \
   template Ellipsoid<T, N> make_ball<T, N>(const Vec<T, N>&, T); \
   template void make_bodies<T, N>(std::span<const T>, std::span<const T>, std::span<const T>, std::span<Ellipsoid<T, N>>, \

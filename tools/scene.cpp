@@ -396,11 +396,11 @@ Obstacle<N> json_obstacle(const JsonCtx& c, const json& jo, std::size_t index, c
   // The library's InputErrors name its fields as this format does ("normal", "vertices[1][0]",
   // "half_extents[2]", "radius", "triangles[4][1]"): they are reported under the obstacle's path.
   try {
-    if (type == "half_space") {
+    if (type == obstacle_name<HalfSpace<double, N>>) {
       check_keys(c, jo, path, {"id", "type", "point", "normal", "velocity", "comment"});
       o.shape = make_half_space<double, N>(json_vector<N>(c, required(c, jo, path, "point"), path + ".point", dim),
                                            json_vector<N>(c, required(c, jo, path, "normal"), path + ".normal", dim));
-    } else if (type == "triangle") {
+    } else if (type == obstacle_name<Triangle<double, N>>) {
       check_keys(c, jo, path, {"id", "type", "vertices", "velocity", "comment"});
       const json& jv = required(c, jo, path, "vertices");
       if (!jv.is_array() || jv.size() != 3)
@@ -410,7 +410,7 @@ Obstacle<N> json_obstacle(const JsonCtx& c, const json& jo, std::size_t index, c
       for (std::size_t k = 0; k < 3; ++k)
         v[k] = json_vector<N>(c, jv[k], path + ".vertices[" + std::to_string(k) + "]", dim);
       o.shape = make_triangle<double, N>(v[0], v[1], v[2]);
-    } else if (type == "box") {
+    } else if (type == obstacle_name<Box<double, N>>) {
       check_keys(c, jo, path,
                  {"id", "type", "center", "half_extents", "angle", "direction", "quaternion", "rotation", "velocity",
                   "comment"});
@@ -423,12 +423,12 @@ Obstacle<N> json_obstacle(const JsonCtx& c, const json& jo, std::size_t index, c
                          [w = c.at(path)] { return w; })
               .axes();
       o.shape = make_box<double, N>(center, axes, half);
-    } else if (type == "capsule") {
+    } else if (type == obstacle_name<Capsule<double, N>>) {
       check_keys(c, jo, path, {"id", "type", "p0", "p1", "radius", "velocity", "comment"});
       const Vec<double, N> p0 = json_vector<N>(c, required(c, jo, path, "p0"), path + ".p0", dim);
       const Vec<double, N> p1 = json_vector<N>(c, required(c, jo, path, "p1"), path + ".p1", dim);
       o.shape = make_capsule<double, N>(p0, p1, json_number(c, required(c, jo, path, "radius"), path + ".radius"));
-    } else if (type == "mesh") {
+    } else if (type == obstacle_name<TriangleMesh<double, N>>) {
       check_keys(c, jo, path, {"id", "type", "vertices", "triangles", "file", "velocity", "comment"});
       if (jo.contains("file")) {
         if (jo.contains("vertices") || jo.contains("triangles"))
@@ -458,7 +458,11 @@ Obstacle<N> json_obstacle(const JsonCtx& c, const json& jo, std::size_t index, c
         o.shape = TriangleMesh<double, N>::from_arrays(vertices, triangles);
       }
     } else {
-      fail(c.at(path + ".type"), "unknown obstacle type " + excerpt(jt) + " (half_space, triangle, box, capsule or mesh)");
+      std::vector<std::string_view> names;
+      for_each_obstacle<double, N>([&]<class S>() { names.push_back(obstacle_name<S>); });
+      std::string known(names[0]);
+      for (std::size_t k = 1; k < names.size(); ++k) (known += k + 1 < names.size() ? ", " : " or ") += names[k];
+      fail(c.at(path + ".type"), "unknown obstacle type " + excerpt(jt) + " (" + known + ")");
     }
   } catch (const InputError& e) {
     fail(c.at(path + "." + e.field()), input_error_detail(e));
@@ -801,8 +805,7 @@ Ellipsoid<double, N> shape_at(const Body<N>& b, double t, const std::string& fil
 
 template <int N>
 const char* obstacle_type(const Obstacle<N>& o) {
-  static const char* const names[] = {"half_space", "triangle", "box", "capsule", "mesh"};
-  return names[o.shape.index()];
+  return std::visit([](const auto& shape) { return obstacle_name<std::decay_t<decltype(shape)>>.data(); }, o.shape);
 }
 
 template <int N>

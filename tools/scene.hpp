@@ -7,14 +7,10 @@
 
 #include "csv.hpp"
 
-#include <ellipsect/box.hpp>
 #include <ellipsect/broad_phase.hpp>
-#include <ellipsect/capsule.hpp>
 #include <ellipsect/contact.hpp>
-#include <ellipsect/half_space.hpp>
-#include <ellipsect/mesh.hpp>
+#include <ellipsect/obstacles.hpp>
 #include <ellipsect/shapes.hpp>
-#include <ellipsect/triangle.hpp>
 
 #include <nlohmann/json.hpp>
 
@@ -68,12 +64,12 @@ Ellipsoid<double, N> shape_at(const Body<N>& b, double t, const std::string& fil
 template <int N>
 struct Obstacle {
   std::string id;
-  std::variant<HalfSpace<double, N>, Triangle<double, N>, Box<double, N>, Capsule<double, N>, TriangleMesh<double, N>>
-      shape;
+  AnyObstacle<double, N> shape;  // one of ellipsect/obstacles.hpp's list
   Vec<double, N> velocity;
 };
 
-// "half_space", "triangle", "box", "capsule" or "mesh": the obstacle's `type` in the scene.
+// "half_space", "triangle", "box", "capsule" or "mesh" (obstacle_name): the obstacle's `type`
+// in the scene.
 template <int N>
 const char* obstacle_type(const Obstacle<N>& o);
 

@@ -92,7 +92,7 @@ public:
 
 private:
   template <class Source>
-  void fill(const Source& pairs, int threads);  // assign's work (src/batch.cpp)
+  void fill(const Source& pairs, int threads);  // assign's work (src/many/batch.cpp)
 
   std::vector<std::vector<T>> columns_;
   std::vector<Ellipsoid<T, N>> a_, b_;

@@ -17,6 +17,7 @@
 #include <ellipsect/slide.hpp>
 #include <ellipsect/intersect2.hpp>
 #include <ellipsect/mesh.hpp>
+#include <ellipsect/obstacles.hpp>
 #include <ellipsect/options.hpp>
 #include <ellipsect/parallel.hpp>
 #include <ellipsect/point.hpp>

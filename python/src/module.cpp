@@ -541,6 +541,42 @@ RigidMotion<double, N> motion(const Row<N>& v, const AngularVelocity<N>& w, doub
   return out;
 }
 
+// Each obstacle's words in the docstrings: what it is called, its header, its containment
+// relations.
+template <class S>
+struct ObstacleDocs;
+template <int N>
+struct ObstacleDocs<HalfSpace<double, N>> {
+  static constexpr const char* label = "half-space";
+  static constexpr const char* header = "half_space.hpp";
+  static constexpr const char* containment = "b_contains_a: the body inside";
+};
+template <int N>
+struct ObstacleDocs<Triangle<double, N>> {
+  static constexpr const char* label = "triangle";
+  static constexpr const char* header = "triangle.hpp";
+  static constexpr const char* containment = "a_contains_b: the triangle inside the body";
+};
+template <int N>
+struct ObstacleDocs<Box<double, N>> {
+  static constexpr const char* label = "box";
+  static constexpr const char* header = "box.hpp";
+  static constexpr const char* containment = "containment both ways";
+};
+template <int N>
+struct ObstacleDocs<Capsule<double, N>> {
+  static constexpr const char* label = "capsule";
+  static constexpr const char* header = "capsule.hpp";
+  static constexpr const char* containment =
+      "a_contains_b: the capsule inside the body, b_contains_a: the body inside the capsule";
+};
+template <int N>
+struct ObstacleDocs<TriangleMesh<double, N>> {
+  static constexpr const char* label = "triangle mesh";
+  static constexpr const char* header = "mesh.hpp";
+  static constexpr const char* containment = "the GIL is released";
+};
+
 // first_contact of a body and a moving shape S (half_space.hpp, box.hpp, capsule.hpp,
 // triangle.hpp, mesh.hpp); with angular_velocity_a, the body in rigid motion (the shape does
 // not turn). `extra`: further pybind11 attributes (a call guard).
@@ -681,29 +717,24 @@ void def_queries(py::module_& m) {
                   docs::no_overload)
             .c_str());
   const std::string contact = "Contact" + suffix + ": as for two bodies.";
+  // Every obstacle of ellipsect/obstacles.hpp's list, in its order.
+  for_each_obstacle<double, N>([&]<class S>() {
+    using D = ObstacleDocs<S>;
+    if constexpr (std::is_same_v<S, TriangleMesh<double, N>>) {  // bound as Mesh<N>, with its arrays
+      def_shape_queries<N, Mesh<N>>(m, D::label, D::header, D::containment,
+                                    "MeshDistance" + suffix + ": distance (a Distance" + suffix +
+                                        ") and the nearest (deepest) triangle.",
+                                    released);
+      def_shape_contact<N, Mesh<N>>(m, D::label, "MeshContact" + suffix + ": contact (a Contact" + suffix +
+                                                     ") and the triangle hit (-1: none).",
+                                    py::call_guard<py::gil_scoped_release>());
+    } else {
+      def_shape_queries<N, S>(m, D::label, D::header, D::containment, distance_returns, plain);
+      def_shape_contact<N, S>(m, D::label, contact);
+    }
+  });
   using H = HalfSpace<double, N>;
-  def_shape_queries<N, H>(m, "half-space", "half_space.hpp", "b_contains_a: the body inside", distance_returns, plain);
-  def_shape_contact<N, H>(m, "half-space", contact);
-  using Bx = Box<double, N>;
-  def_shape_queries<N, Bx>(m, "box", "box.hpp", "containment both ways", distance_returns, plain);
-  def_shape_contact<N, Bx>(m, "box", contact);
-  using Cp = Capsule<double, N>;
-  def_shape_queries<N, Cp>(m, "capsule", "capsule.hpp",
-                           "a_contains_b: the capsule inside the body, b_contains_a: the body inside the capsule",
-                           distance_returns, plain);
-  def_shape_contact<N, Cp>(m, "capsule", contact);
-  using Tr = Triangle<double, N>;
-  def_shape_queries<N, Tr>(m, "triangle", "triangle.hpp", "a_contains_b: the triangle inside the body",
-                           distance_returns, plain);
-  def_shape_contact<N, Tr>(m, "triangle", contact);
   using TM = Mesh<N>;
-  def_shape_queries<N, TM>(m, "triangle mesh", "mesh.hpp", "the GIL is released",
-                           "MeshDistance" + suffix + ": distance (a Distance" + suffix +
-                               ") and the nearest (deepest) triangle.",
-                           released);
-  def_shape_contact<N, TM>(m, "triangle mesh", "MeshContact" + suffix + ": contact (a Contact" + suffix +
-                                                   ") and the triangle hit (-1: none).",
-                           py::call_guard<py::gil_scoped_release>());
   const std::string slide_returns = "Slide" + suffix +
                                     ": status (SlideStatus), body (where it ends), moved, contacts, last_contact.";
   m.def("collide_and_slide",

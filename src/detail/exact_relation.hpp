@@ -1,5 +1,5 @@
 // The exact relation of two bodies as stored, for classify at Options::tolerance = 0 where
-// the floating-point decision is within its rounding of a threshold (src/exact_relation.cpp).
+// the floating-point decision is within its rounding of a threshold (src/pair/exact_relation.cpp).
 #pragma once
 
 #include <ellipsect/classify.hpp>

@@ -1,5 +1,5 @@
 // Rigid motion (contact.hpp): the body at time t and the pieces of conservative advancement
-// shared by body pairs (rigid_contact.cpp) and bodies against shapes (rigid_shapes.cpp).
+// shared by body pairs (rigid_contact.cpp) and bodies against obstacles (obstacle_motion.hpp).
 #pragma once
 
 #include <ellipsect/contact.hpp>

@@ -7,6 +7,8 @@
 #include "detail/instantiate.hpp"
 #include "detail/polytope_distance.hpp"
 #include "detail/math.hpp"
+#include "detail/obstacle_motion.hpp"
+#include "detail/validate.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -14,6 +16,7 @@
 #include <cstring>
 #include <initializer_list>
 #include <limits>
+#include <optional>
 #include <string>
 
 namespace ellipsect {
@@ -388,7 +391,45 @@ DistanceGradient<T, N, BoxGradient<T, N>> signed_distance_gradient(const Ellipso
       });
 }
 
+// ---- Rigid motion (detail/obstacle_motion.hpp) --------------------------------------------
+
+namespace detail::obstacle {
+template <class T, int N>
+struct ObstacleTraits<Box<T, N>> {
+  static std::array<Vec<T, N>, 1 << N> corners(const Box<T, N>& b) noexcept {
+    std::array<Vec<T, N>, 1 << N> out;
+    for (int k = 0; k < (1 << N); ++k) out[std::size_t(k)] = b.corner(k);
+    return out;
+  }
+  static Lowest lowest(const Vec<R, N>& n, const Box<T, N>& b) noexcept {
+    return lowest_of<T, N, (1 << N)>(n, corners(b), 0);
+  }
+  static std::optional<Vec<R, N>> inner_point(const Box<T, N>& b) noexcept {
+    return Vec<R, N>(b.center().template cast<R>());
+  }
+  static T coordinate(const Box<T, N>& b) noexcept { return largest<T, N, (1 << N)>(corners(b)); }
+};
+}  // namespace detail::obstacle
+
+template <class T, int N>
+Contact<T, N> first_contact(const Ellipsoid<T, N>& a, const RigidMotion<T, N>& motion_a, const Box<T, N>& b,
+                            const VecArg<T, N>& velocity_b, T t_max, const Options& options) noexcept {
+  return detail::obstacle::rigid_contact<T, N>(a, motion_a, b, velocity_b, t_max, options);
+}
+
+// ---- The factories -----------------------------------------------------------------------
+
+// The box's frame is a body's, whose translated() names its center: here the argument is the
+// offset.
+template <class T, int N>
+Box<T, N> Box<T, N>::translated(const Vec<T, N>& offset) const {
+  return Box(detail::ShapeAccess::unchecked<T, N>(detail::moved<T, N>(center(), offset, "the center"), axes(),
+                                                  half_extents()));
+}
+
 #define ELLIPSECT_INSTANTIATE(T, N)                                                                                  \
+  template Contact<T, N> first_contact<T, N>(const Ellipsoid<T, N>&, const RigidMotion<T, N>&, const Box<T, N>&,     \
+                                             const VecArg<T, N>&, T, const Options&) noexcept;                       \
   template class Box<T, N>;                                                                                          \
   template DistanceGradient<T, N, BoxGradient<T, N>> signed_distance_gradient<T, N>(                                \
       const Ellipsoid<T, N>&, const Box<T, N>&, const Options&) noexcept;                                                                                         \

@@ -9,11 +9,14 @@
 #include "detail/polytope_distance.hpp"
 #include "detail/scale.hpp"
 #include "detail/math.hpp"
+#include "detail/obstacle_motion.hpp"
+#include "detail/validate.hpp"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <type_traits>
 
 namespace ellipsect {
@@ -213,7 +216,55 @@ Contact<T, N> first_contact(const Ellipsoid<T, N>& a_world, const VecArg<T, N>& 
   return out;
 }
 
+// ---- Rigid motion (detail/obstacle_motion.hpp) --------------------------------------------
+
+namespace detail::obstacle {
+template <class T, int N>
+struct ObstacleTraits<Capsule<T, N>> {
+  static Lowest lowest(const Vec<R, N>& n, const Capsule<T, N>& c) noexcept {
+    return lowest_of<T, N, 2>(n, {c.point(0), c.point(1)}, R(c.radius()));
+  }
+  static std::optional<Vec<R, N>> inner_point(const Capsule<T, N>& c) noexcept {
+    return (c.point(0).template cast<R>() + c.point(1).template cast<R>()) / 2;
+  }
+  static T coordinate(const Capsule<T, N>& c) noexcept {
+    return largest<T, N, 2>({c.point(0), c.point(1)}) + c.radius();
+  }
+};
+}  // namespace detail::obstacle
+
+template <class T, int N>
+Contact<T, N> first_contact(const Ellipsoid<T, N>& a, const RigidMotion<T, N>& motion_a, const Capsule<T, N>& b,
+                            const VecArg<T, N>& velocity_b, T t_max, const Options& options) noexcept {
+  return detail::obstacle::rigid_contact<T, N>(a, motion_a, b, velocity_b, t_max, options);
+}
+
+// ---- The factories -----------------------------------------------------------------------
+
+template <class T, int N>
+Capsule<T, N> Capsule<T, N>::from_segment(const Vec<T, N>& p0, const Vec<T, N>& p1, T radius) {
+  detail::require_finite(p0, "p0");
+  detail::require_finite(p1, "p1");
+  detail::require_positive(radius, "radius");
+  Capsule c;
+  Eigen::Map<Vec<T, N>>(c.points_[0].data()) = p0;
+  Eigen::Map<Vec<T, N>>(c.points_[1].data()) = p1;
+  c.radius_ = radius;
+  return c;
+}
+
+template <class T, int N>
+Capsule<T, N> Capsule<T, N>::translated(const Vec<T, N>& offset) const {
+  Capsule c = *this;
+  for (int k = 0; k < 2; ++k)
+    Eigen::Map<Vec<T, N>>(c.points_[k].data()) = detail::moved<T, N>(point(k), offset, "an end point");
+  return c;
+}
+
 #define ELLIPSECT_INSTANTIATE(T, N)                                                                                 \
+  template Contact<T, N> first_contact<T, N>(const Ellipsoid<T, N>&, const RigidMotion<T, N>&, const Capsule<T, N>&, \
+                                             const VecArg<T, N>&, T, const Options&) noexcept;                      \
+  template class Capsule<T, N>;                                                                                     \
   template Relation classify<T, N>(const Ellipsoid<T, N>&, const Capsule<T, N>&, const Options&) noexcept;        \
   template bool overlap<T, N>(const Ellipsoid<T, N>&, const Capsule<T, N>&, const Options&) noexcept;             \
   template Distance<T, N> signed_distance<T, N>(const Ellipsoid<T, N>&, const Capsule<T, N>&, const Options&) noexcept; \

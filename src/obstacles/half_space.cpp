@@ -8,11 +8,14 @@
 #include "detail/reduce.hpp"
 #include "detail/scale.hpp"
 #include "detail/math.hpp"
+#include "detail/obstacle_motion.hpp"
+#include "detail/validate.hpp"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 namespace ellipsect {
 namespace {
@@ -313,7 +316,55 @@ Contact<T, N> first_contact(const Ellipsoid<T, N>& a, const VecArg<T, N>& veloci
   });
 }
 
+// ---- Rigid motion (detail/obstacle_motion.hpp) --------------------------------------------
+
+namespace detail::obstacle {
+template <class T, int N>
+struct ObstacleTraits<HalfSpace<T, N>> {
+  // The distance's normal is exactly -normal (half_space.hpp); along any other direction the
+  // half-space reaches -infinity.
+  static Lowest lowest(const Vec<R, N>& n, const HalfSpace<T, N>& h) noexcept {
+    const Vec<R, N> outward = h.normal().template cast<R>();
+    if (n != -outward) return {-std::numeric_limits<R>::infinity(), 0};
+    const R x = n.dot(h.point().template cast<R>());
+    return {x, abs(x)};
+  }
+  // None: the half-space's distance costs no solve.
+  static std::optional<Vec<R, N>> inner_point(const HalfSpace<T, N>&) noexcept { return std::nullopt; }
+  static T coordinate(const HalfSpace<T, N>& h) noexcept { return detail::max_abs(h.point()); }
+};
+}  // namespace detail::obstacle
+
+template <class T, int N>
+Contact<T, N> first_contact(const Ellipsoid<T, N>& a, const RigidMotion<T, N>& motion_a, const HalfSpace<T, N>& b,
+                            const VecArg<T, N>& velocity_b, T t_max, const Options& options) noexcept {
+  return detail::obstacle::rigid_contact<T, N>(a, motion_a, b, velocity_b, t_max, options);
+}
+
+// ---- The factories -----------------------------------------------------------------------
+
+template <class T, int N>
+HalfSpace<T, N> HalfSpace<T, N>::from_point_normal(const Vec<T, N>& point, const Vec<T, N>& normal) {
+  detail::require_finite(point, "point");
+  detail::require_finite(normal, "normal");
+  if (!(normal.cwiseAbs().maxCoeff() > T(0))) throw InputError("normal", "must not be zero");
+  HalfSpace h;
+  Eigen::Map<Vec<T, N>>(h.point_.data()) = point;
+  Eigen::Map<Vec<T, N>>(h.normal_.data()) = detail::unit_vector<T, N>(normal);
+  return h;
+}
+
+template <class T, int N>
+HalfSpace<T, N> HalfSpace<T, N>::translated(const Vec<T, N>& offset) const {
+  HalfSpace h = *this;
+  Eigen::Map<Vec<T, N>>(h.point_.data()) = detail::moved<T, N>(point(), offset, "the point");
+  return h;
+}
+
 #define ELLIPSECT_INSTANTIATE(T, N)                                                                                 \
+  template Contact<T, N> first_contact<T, N>(const Ellipsoid<T, N>&, const RigidMotion<T, N>&, const HalfSpace<T, N>&, \
+                                             const VecArg<T, N>&, T, const Options&) noexcept;                      \
+  template class HalfSpace<T, N>;                                                                                   \
   template Relation classify<T, N>(const Ellipsoid<T, N>&, const HalfSpace<T, N>&, const Options&) noexcept;     \
   template bool overlap<T, N>(const Ellipsoid<T, N>&, const HalfSpace<T, N>&, const Options&) noexcept;          \
   template Distance<T, N> distance<T, N>(const Ellipsoid<T, N>&, const HalfSpace<T, N>&, const Options&) noexcept; \

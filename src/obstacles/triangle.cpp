@@ -9,11 +9,14 @@
 #include "detail/reduce.hpp"
 #include "detail/scale.hpp"
 #include "detail/math.hpp"
+#include "detail/obstacle_motion.hpp"
+#include "detail/validate.hpp"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <type_traits>
 
 namespace ellipsect {
@@ -625,7 +628,55 @@ Distance<T, N> distance(const Ellipsoid<T, N>& a, const Triangle<T, N>& b, const
   return detail::unsigned_distance(signed_distance(a, b, options));
 }
 
+// ---- Rigid motion (detail/obstacle_motion.hpp) --------------------------------------------
+
+namespace detail::obstacle {
+template <class T, int N>
+struct ObstacleTraits<Triangle<T, N>> {
+  static Lowest lowest(const Vec<R, N>& n, const Triangle<T, N>& t) noexcept {
+    return lowest_of<T, N, 3>(n, {t.vertex(0), t.vertex(1), t.vertex(2)}, 0);
+  }
+  static std::optional<Vec<R, N>> inner_point(const Triangle<T, N>& t) noexcept {
+    return (t.vertex(0).template cast<R>() + t.vertex(1).template cast<R>() + t.vertex(2).template cast<R>()) / 3;
+  }
+  static T coordinate(const Triangle<T, N>& t) noexcept {
+    return largest<T, N, 3>({t.vertex(0), t.vertex(1), t.vertex(2)});
+  }
+};
+}  // namespace detail::obstacle
+
+template <class T, int N>
+Contact<T, N> first_contact(const Ellipsoid<T, N>& a, const RigidMotion<T, N>& motion_a, const Triangle<T, N>& b,
+                            const VecArg<T, N>& velocity_b, T t_max, const Options& options) noexcept {
+  return detail::obstacle::rigid_contact<T, N>(a, motion_a, b, velocity_b, t_max, options);
+}
+
+// ---- The factories -----------------------------------------------------------------------
+
+template <class T, int N>
+Triangle<T, N> Triangle<T, N>::from_vertices(const Vec<T, N>& v0, const Vec<T, N>& v1, const Vec<T, N>& v2) {
+  detail::require_finite(v0, "vertices[0]");
+  detail::require_finite(v1, "vertices[1]");
+  detail::require_finite(v2, "vertices[2]");
+  Triangle t;
+  Eigen::Map<Vec<T, N>>(t.vertices_[0].data()) = v0;
+  Eigen::Map<Vec<T, N>>(t.vertices_[1].data()) = v1;
+  Eigen::Map<Vec<T, N>>(t.vertices_[2].data()) = v2;
+  return t;
+}
+
+template <class T, int N>
+Triangle<T, N> Triangle<T, N>::translated(const Vec<T, N>& offset) const {
+  Triangle t = *this;
+  for (int k = 0; k < 3; ++k)
+    Eigen::Map<Vec<T, N>>(t.vertices_[k].data()) = detail::moved<T, N>(vertex(k), offset, "a vertex");
+  return t;
+}
+
 #define ELLIPSECT_INSTANTIATE(T, N)                                                                                \
+  template Contact<T, N> first_contact<T, N>(const Ellipsoid<T, N>&, const RigidMotion<T, N>&, const Triangle<T, N>&, \
+                                             const VecArg<T, N>&, T, const Options&) noexcept;                     \
+  template class Triangle<T, N>;                                                                                   \
   template Relation classify<T, N>(const Ellipsoid<T, N>&, const Triangle<T, N>&, const Options&) noexcept;     \
   template bool overlap<T, N>(const Ellipsoid<T, N>&, const Triangle<T, N>&, const Options&) noexcept;          \
   template Contact<T, N> first_contact<T, N>(const Ellipsoid<T, N>&, const VecArg<T, N>&, const Triangle<T, N>&, \

@@ -5,6 +5,7 @@
 #include "detail/mesh_walk.hpp"
 #include "detail/polytope_distance.hpp"
 #include "detail/math.hpp"
+#include "detail/obstacle_motion.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -191,7 +192,34 @@ MeshDistance<T, N> distance(const Ellipsoid<T, N>& a, const TriangleMesh<T, N>& 
   return out;
 }
 
+// Under rigid motion (detail/obstacle_motion.hpp): each candidate triangle by its own
+// advancement.
+template <class T, int N>
+MeshContact<T, N> first_contact(const Ellipsoid<T, N>& a, const RigidMotion<T, N>& motion_a,
+                                const TriangleMesh<T, N>& b, const VecArg<T, N>& velocity_b, T t_max,
+                                const Options& options) noexcept {
+  using detail::rigid::R;
+  if (!detail::obstacle::valid_rigid<T, N>(motion_a, velocity_b, t_max))
+    return {detail::unanswered_contact<T, N>(), -1};
+  if (detail::rigid::magnitude<N>(motion_a.angular_velocity) == R(0) && motion_a.growth == T(0))
+    return first_contact(a, motion_a.velocity, b, velocity_b, t_max, options);
+  // The candidates: triangles whose boxes the body's bounding ball (radius R at the window's
+  // end, grown by the tangency band and 1e-9) meets along its center's path relative to the
+  // mesh; each by its own advancement.
+  using W = detail::Work<T>;
+  const W grown = motion_a.growth == T(0) ? W(1) : 1 + W(motion_a.growth) * W(t_max);
+  const W reach = W(a.radii().maxCoeff()) * grown * (1 + 2 * W(double(options.tolerance)) + W(1e-9)) *
+                  (sizeof(T) < sizeof(double) ? W(1 + 1e-6) : W(1));
+  return detail::mesh_contact<T, N>(a, b, options, (motion_a.velocity - velocity_b).template cast<W>(),
+                                    Vec<W, N>::Constant(reach), t_max, false, [&](std::uint32_t k, T t_end) {
+    return first_contact(a, motion_a, b.triangle(k), velocity_b, t_end, options);
+  });
+}
+
 #define ELLIPSECT_INSTANTIATE(T, N)                                                                                      \
+  template MeshContact<T, N> first_contact<T, N>(const Ellipsoid<T, N>&, const RigidMotion<T, N>&,                       \
+                                                 const TriangleMesh<T, N>&, const VecArg<T, N>&, T,                     \
+                                                 const Options&) noexcept;                                              \
   template class TriangleMesh<T, N>;                                                                                     \
   template MeshRelation classify<T, N>(const Ellipsoid<T, N>&, const TriangleMesh<T, N>&, const Options&) noexcept;    \
   template bool overlap<T, N>(const Ellipsoid<T, N>&, const TriangleMesh<T, N>&, const Options&) noexcept;             \

@@ -1,8 +1,9 @@
 // SIMD build of the certificate filter: Highway compiles this file once per instruction
 // set (foreach_target) and dispatches to the widest one the CPU supports. Built with
 // -ffp-contract=off so that every lane rounds exactly as the scalar code does.
+// (This file, through the library's include path src/.)
 #undef HWY_TARGET_INCLUDE
-#define HWY_TARGET_INCLUDE "batch_kernels.cpp"
+#define HWY_TARGET_INCLUDE "many/batch_kernels.cpp"
 #include <hwy/foreach_target.h>  // IWYU pragma: keep
 
 #include <hwy/highway.h>
