@@ -1,5 +1,6 @@
 // Batch queries: overlap, classify and first_contact over arrays of pairs, several pairs
-// per instruction (SIMD), on all cores.
+// per instruction (SIMD), on all cores; and every other pair query over spans of bodies, on
+// all cores (the section "Every other pair query" below).
 //
 // Contract: out[i] equals the scalar function's answer for pair i bit for bit (every
 // field of a Contact included), at every SIMD width and thread count
@@ -28,6 +29,9 @@
 
 #include <ellipsect/classify.hpp>
 #include <ellipsect/contact.hpp>
+#include <ellipsect/contact_function.hpp>
+#include <ellipsect/distance.hpp>
+#include <ellipsect/intersect2.hpp>
 #include <ellipsect/options.hpp>
 #include <ellipsect/shapes.hpp>
 
@@ -123,6 +127,58 @@ template <class T, int N>
 void first_contact(std::span<const Ellipsoid<T, N>> a, std::span<const Vec<T, N>> velocity_a,
                    std::span<const Ellipsoid<T, N>> b, std::span<const Vec<T, N>> velocity_b,
                    std::span<const T> t_max, std::span<Contact<T, N>> out, const BatchOptions& options = {});
+
+// ---- Every other pair query over spans of bodies ------------------------------------------
+//
+// out[i] is the scalar function's answer for pair i (a[i], b[i], and row i of the other
+// spans) bit for bit, at every thread count: the scalar function on every pair, on the
+// worker pool (parallel.hpp) in chunks of 64 pairs, options.query passed to it. There is no
+// filter: these queries have no early out a batch could vectorize. Spans of unequal sizes
+// throw std::invalid_argument, as above; a direction that closest_approach rejects throws
+// InputError("direction[i]") before any pair is computed.
+template <class T, int N>
+void distance(std::span<const Ellipsoid<T, N>> a, std::span<const Ellipsoid<T, N>> b,
+              std::span<Distance<T, N>> out, const BatchOptions& options = {});
+template <class T, int N>
+void signed_distance(std::span<const Ellipsoid<T, N>> a, std::span<const Ellipsoid<T, N>> b,
+                     std::span<Distance<T, N>> out, const BatchOptions& options = {});
+template <class T, int N>
+void signed_distance_gradient(std::span<const Ellipsoid<T, N>> a, std::span<const Ellipsoid<T, N>> b,
+                              std::span<DistanceGradient<T, N>> out, const BatchOptions& options = {});
+template <class T, int N>
+void perram_wertheim(std::span<const Ellipsoid<T, N>> a, std::span<const Ellipsoid<T, N>> b,
+                     std::span<ContactFunction<T>> out, const BatchOptions& options = {});
+template <class T, int N>
+void perram_wertheim_gradient(std::span<const Ellipsoid<T, N>> a, std::span<const Ellipsoid<T, N>> b,
+                              std::span<ContactFunctionGradient<T, N>> out, const BatchOptions& options = {});
+template <class T, int N>
+void closest_approach_gradient(std::span<const Ellipsoid<T, N>> a, std::span<const Ellipsoid<T, N>> b,
+                               std::span<const Vec<T, N>> direction, std::span<ClosestApproachGradient<T, N>> out,
+                               const BatchOptions& options = {});
+// Linear motion, and rigid motion (each body's RigidMotion).
+template <class T, int N>
+void first_contact_gradient(std::span<const Ellipsoid<T, N>> a, std::span<const Vec<T, N>> velocity_a,
+                            std::span<const Ellipsoid<T, N>> b, std::span<const Vec<T, N>> velocity_b,
+                            std::span<const T> t_max, std::span<ContactGradient<T, N>> out,
+                            const BatchOptions& options = {});
+template <class T, int N>
+void first_contact_gradient(std::span<const Ellipsoid<T, N>> a, std::span<const RigidMotion<T, N>> motion_a,
+                            std::span<const Ellipsoid<T, N>> b, std::span<const RigidMotion<T, N>> motion_b,
+                            std::span<const T> t_max, std::span<ContactGradient<T, N>> out,
+                            const BatchOptions& options = {});
+// Ellipses only (intersect2.hpp).
+template <class T>
+void overlap_area(std::span<const Ellipse2<T>> a, std::span<const Ellipse2<T>> b, std::span<OverlapArea<T>> out,
+                  const BatchOptions& options = {});
+template <class T>
+void intersection_over_union(std::span<const Ellipse2<T>> a, std::span<const Ellipse2<T>> b, std::span<T> out,
+                             const BatchOptions& options = {});
+template <class T>
+void overlap_area_gradient(std::span<const Ellipse2<T>> a, std::span<const Ellipse2<T>> b,
+                           std::span<OverlapAreaGradient<T>> out, const BatchOptions& options = {});
+template <class T>
+void intersection_over_union_gradient(std::span<const Ellipse2<T>> a, std::span<const Ellipse2<T>> b,
+                                      std::span<IouGradient<T>> out, const BatchOptions& options = {});
 
 // Instruction sets the batch functions can use on this CPU, widest first (Highway's
 // names: "AVX3" (AVX-512), "AVX2", "SSE4", "SSSE3", "SCALAR" on x86-64).

@@ -1,9 +1,8 @@
 // Batches of bodies from numpy arrays (Ellipses, Ellipsoids), batch.hpp's Pairs prepared
 // from two of them (ellipsect.pairs), and the queries over pairs: the library's batch
-// functions (overlap, classify, first_contact, overlapping_pairs)
-// or the scalar function on every pair in for_each_index (distance, signed_distance,
-// overlap_area, iou). Arrays are checked (type, dtype, shape, contiguity, rows) before
-// any work; the GIL is released while the library runs.
+// functions (batch.hpp: overlap, classify, first_contact, and every other pair query;
+// overlapping_pairs), their answers converted to arrays. Arrays are checked (type, dtype,
+// shape, contiguity, rows) before any work; the GIL is released while the library runs.
 #include "common.hpp"
 #include "docs.hpp"
 
@@ -48,6 +47,15 @@ template <int N>
 struct Bodies {
   std::vector<Ellipsoid<double, N>> items;
 };
+
+// n answers of a library batch function, call(out), with the GIL released.
+template <class R, class Call>
+std::vector<R> batch_answers(std::size_t n, const Call& call) {
+  std::vector<R> out(n);
+  py::gil_scoped_release release;
+  call(std::span<R>(out));
+  return out;
+}
 
 // n bodies from rows by the library's factory over arrays, make(out) (shapes.hpp), with the
 // GIL released; its RowInputError raised as InputError naming the argument, row and column.
@@ -545,13 +553,15 @@ void def_batch_queries(py::module_& m) {
                   "ContactArrays(status int8 (n,), time (n,), point (n, N), normal (n, N)).",
                   "TypeError: arrays not of numbers.\nValueError: lengths or shapes that differ.")
             .c_str());
-  using Query = Distance<double, N> (*)(const Ellipsoid<double, N>&, const Ellipsoid<double, N>&,
-                                        const Options&) noexcept;
+  using E = std::span<const Ellipsoid<double, N>>;
+  using Query = void (*)(E, E, std::span<Distance<double, N>>, const BatchOptions&);
   for (const auto& [name, query] : {std::pair<const char*, Query>{"distance", &distance<double, N>},
                                     std::pair<const char*, Query>{"signed_distance", &signed_distance<double, N>}}) {
     m.def(name,
           [query](const B& a, const B& b, const Options& o, int threads) {
             const std::size_t n = paired(a, b);
+            const auto r = batch_answers<Distance<double, N>>(
+                n, [&](auto out) { query(a.items, b.items, out, BatchOptions{o, threads}); });
             py::array_t<std::int8_t> status(static_cast<py::ssize_t>(n));
             py::array_t<double> dist(static_cast<py::ssize_t>(n));
             py::array_t<double> pa({py::ssize_t(n), py::ssize_t(N)}), pb({py::ssize_t(n), py::ssize_t(N)}),
@@ -559,22 +569,18 @@ void def_batch_queries(py::module_& m) {
             std::int8_t* s = status.mutable_data();
             double *d = dist.mutable_data(), *x = pa.mutable_data(), *y = pb.mutable_data(),
                    *z = normal.mutable_data();
-            {
-              py::gil_scoped_release release;
-              for_each_index(n, threads, [&](std::size_t i) {
-                const Distance<double, N> r = query(a.items[i], b.items[i], o);
-                s[i] = static_cast<std::int8_t>(r.status);
-                d[i] = r.distance;
-                Eigen::Map<Vec<double, N>>{x + i * N} = r.point_a;
-                Eigen::Map<Vec<double, N>>{y + i * N} = r.point_b;
-                Eigen::Map<Vec<double, N>>{z + i * N} = r.normal;
-              });
+            for (std::size_t i = 0; i < n; ++i) {
+              s[i] = static_cast<std::int8_t>(r[i].status);
+              d[i] = r[i].distance;
+              Eigen::Map<Vec<double, N>>{x + i * N} = r[i].point_a;
+              Eigen::Map<Vec<double, N>>{y + i * N} = r[i].point_b;
+              Eigen::Map<Vec<double, N>>{z + i * N} = r[i].normal;
             }
             return py::reinterpret_steal<DistanceArraysObject>(
                 distance_arrays(status, dist, pa, pb, normal).release());
           },
           py::arg("a"), py::arg("b"), options_arg(), py::arg("threads") = 0,
-          docs::doc(std::string(name) + " of each pair, the scalar function in a thread pool (distance.hpp).",
+          docs::doc(std::string(name) + " of each pair, on all cores (batch.hpp, distance.hpp).",
                     docs::batch_pair,
                     "DistanceArrays(status int8 (n,), distance (n,), point_a, point_b, normal (n, N)).",
                     docs::batch_raises)
@@ -713,29 +719,27 @@ inline const std::string gradient_fields =
 template <int N>
 void def_pair_gradients(py::module_& m) {
   using B = Bodies<N>;
-  // The scalar function on every pair.
-  // query(a, b, options) -> g with gradients g.a, g.b; read(g) -> {status, value}.
-  auto static_query = [&m](const char* name, auto query, auto read, const std::string& summary,
-                           const std::string& value, const std::string& pair = docs::batch_pair) {
+  using E = std::span<const Ellipsoid<double, N>>;
+  // query: the library's batch function, answers g with gradients g.a, g.b; read(g) -> {status, value}.
+  auto static_query = [&m]<class R>(const char* name, void (*query)(E, E, std::span<R>, const BatchOptions&),
+                                    auto read, const std::string& summary, const std::string& value,
+                                    const std::string& pair = docs::batch_pair) {
     m.def(name,
           [query, read](const B& a, const B& b, const Options& o, int threads) {
             const std::size_t n = paired(a, b);
+            const auto g = batch_answers<R>(n, [&](auto out) { query(a.items, b.items, out, BatchOptions{o, threads}); });
             py::array_t<std::int8_t> status(static_cast<py::ssize_t>(n));
             py::array_t<double> values(static_cast<py::ssize_t>(n));
             GradientColumns<N> ga(n), gb(n);
             std::int8_t* s = status.mutable_data();
             double* v = values.mutable_data();
             const auto ra = ga.rows(), rb = gb.rows();
-            {
-              py::gil_scoped_release release;
-              for_each_index(n, threads, [&](std::size_t i) {
-                const auto g = query(a.items[i], b.items[i], o);
-                const auto [status_i, value_i] = read(g);
-                s[i] = static_cast<std::int8_t>(status_i);
-                v[i] = value_i;
-                ra.put(i, g.a);
-                rb.put(i, g.b);
-              });
+            for (std::size_t i = 0; i < n; ++i) {
+              const auto [status_i, value_i] = read(g[i]);
+              s[i] = static_cast<std::int8_t>(status_i);
+              v[i] = value_i;
+              ra.put(i, g[i].a);
+              rb.put(i, g[i].b);
             }
             return py::reinterpret_steal<GradientArraysObject>(
                 gradient_arrays(status, values, ga.center, ga.orientation, ga.radii, gb.center, gb.orientation,
@@ -750,26 +754,20 @@ void def_pair_gradients(py::module_& m) {
   };
   static_query(
       "signed_distance_gradient",
-      [](const Ellipsoid<double, N>& a, const Ellipsoid<double, N>& b, const Options& o) {
-        return signed_distance_gradient(a, b, o);
-      },
+      &signed_distance_gradient<double, N>,
       [](const DistanceGradient<double, N>& g) { return std::pair{g.value.status, g.value.distance}; },
       "The signed distance of each pair and its derivatives by both bodies' parameters (distance.hpp).",
       "the signed distance, status DistanceStatus");
   static_query(
       "perram_wertheim_gradient",
-      [](const Ellipsoid<double, N>& a, const Ellipsoid<double, N>& b, const Options& o) {
-        return perram_wertheim_gradient(a, b, o);
-      },
+      &perram_wertheim_gradient<double, N>,
       [](const ContactFunctionGradient<double, N>& g) { return std::pair{g.value.status, g.value.f}; },
       "The Perram-Wertheim F of each pair and its derivatives by both bodies' parameters (contact_function.hpp).",
       "F, status ContactFunctionStatus");
   if constexpr (N == 2) {
     static_query(
         "overlap_area_gradient",
-        [](const Ellipse2<double>& a, const Ellipse2<double>& b, const Options& o) {
-          return overlap_area_gradient(a, b, o);
-        },
+        &overlap_area_gradient<double>,
         [](const OverlapAreaGradient<double>& g) { return std::pair{g.value.relation, g.value.area}; },
         "The overlap area of each pair of ellipses and its derivatives by both bodies' parameters "
         "(intersect2.hpp).",
@@ -777,9 +775,7 @@ void def_pair_gradients(py::module_& m) {
         "a, b: two Ellipses of equal length; pair i is (a[i], b[i]).\n" + docs::options + "\n" + docs::threads);
     static_query(
         "iou_gradient",
-        [](const Ellipse2<double>& a, const Ellipse2<double>& b, const Options& o) {
-          return intersection_over_union_gradient(a, b, o);
-        },
+        &intersection_over_union_gradient<double>,
         [](const IouGradient<double>& g) { return std::pair{g.relation, g.value}; },
         "The intersection over union of each pair of ellipses and its derivatives by both bodies' parameters "
         "(intersect2.hpp).",
@@ -798,11 +794,10 @@ void def_closest_approach_gradient(py::module_& m) {
           py::ssize_t rows = static_cast<py::ssize_t>(n);
           const auto d = checked(direction, "direction", {N}, rows, "a");
           std::vector<Vec<double, N>> directions(n);
-          for (std::size_t i = 0; i < n; ++i) {  // closest_approach's own checks, named by row
-            directions[i] = row_vec<N>(d.data() + i * N);
-            if (!directions[i].allFinite() || directions[i].isZero(0))
-              throw InputError("direction[" + std::to_string(i) + "]", "must be finite and nonzero");
-          }
+          for (std::size_t i = 0; i < n; ++i) directions[i] = row_vec<N>(d.data() + i * N);
+          const auto g = batch_answers<ClosestApproachGradient<double, N>>(n, [&](auto out) {
+            closest_approach_gradient<double, N>(a.items, b.items, directions, out, BatchOptions{o, threads});
+          });
           py::array_t<std::int8_t> status(static_cast<py::ssize_t>(n));
           py::array_t<double> sigma(static_cast<py::ssize_t>(n));
           py::array_t<double> by_direction({py::ssize_t(n), py::ssize_t(N)});
@@ -810,16 +805,12 @@ void def_closest_approach_gradient(py::module_& m) {
           std::int8_t* s = status.mutable_data();
           double *v = sigma.mutable_data(), *du = by_direction.mutable_data();
           const auto ra = ga.rows(), rb = gb.rows();
-          {
-            py::gil_scoped_release release;
-            for_each_index(n, threads, [&](std::size_t i) {
-              const ClosestApproachGradient<double, N> g = closest_approach_gradient(a.items[i], b.items[i], directions[i], o);
-              s[i] = static_cast<std::int8_t>(g.value.status);
-              v[i] = g.value.distance;
-              ra.put(i, g.a);
-              rb.put(i, g.b);
-              Eigen::Map<Vec<double, N>>{du + i * N} = g.direction;
-            });
+          for (std::size_t i = 0; i < n; ++i) {
+            s[i] = static_cast<std::int8_t>(g[i].value.status);
+            v[i] = g[i].value.distance;
+            ra.put(i, g[i].a);
+            rb.put(i, g[i].b);
+            Eigen::Map<Vec<double, N>>{du + i * N} = g[i].direction;
           }
           return py::reinterpret_steal<ClosestApproachGradientArraysObject>(
               closest_approach_gradient_arrays(status, sigma, ga.center, ga.orientation, ga.radii, gb.center,
@@ -851,6 +842,18 @@ void def_contact_gradient(py::module_& m) {
           const bool rigid = angular_velocity_a || angular_velocity_b;
           const auto wa = angular_velocities<N>(or_none(angular_velocity_a), n, "angular_velocity_a");
           const auto wb = angular_velocities<N>(or_none(angular_velocity_b), n, "angular_velocity_b");
+          const auto g = batch_answers<ContactGradient<double, N>>(n, [&](auto out) {
+            const BatchOptions batch{o, threads};
+            if (rigid) {
+              std::vector<RigidMotion<double, N>> ma(n), mb(n);
+              for (std::size_t i = 0; i < n; ++i)
+                ma[i] = {motion.velocity_a[i], wa[i]}, mb[i] = {motion.velocity_b[i], wb[i]};
+              first_contact_gradient<double, N>(a.items, ma, b.items, mb, motion.t_max, out, batch);
+            } else {
+              first_contact_gradient<double, N>(a.items, motion.velocity_a, b.items, motion.velocity_b, motion.t_max,
+                                                out, batch);
+            }
+          });
           py::array_t<std::int8_t> status(static_cast<py::ssize_t>(n));
           py::array_t<double> time(static_cast<py::ssize_t>(n));
           GradientColumns<N> ga(n), gb(n);
@@ -863,30 +866,18 @@ void def_contact_gradient(py::module_& m) {
                  *wa_out = dwa.mutable_data(), *wb_out = dwb.mutable_data(), *x = point.mutable_data();
           const auto ra = ga.rows(), rb = gb.rows();
           const auto pa = ja.rows(), pb = jb.rows();
-          {
-            py::gil_scoped_release release;
-            for_each_index(n, threads, [&](std::size_t i) {
-              ContactGradient<double, N> g;
-              if (rigid) {
-                g = first_contact_gradient<double, N>(a.items[i], RigidMotion<double, N>{motion.velocity_a[i], wa[i]},
-                                                      b.items[i], RigidMotion<double, N>{motion.velocity_b[i], wb[i]},
-                                                      motion.t_max[i], o);
-              } else {
-                g = first_contact_gradient<double, N>(a.items[i], motion.velocity_a[i], b.items[i],
-                                                      motion.velocity_b[i], motion.t_max[i], o);
-              }
-              s[i] = static_cast<std::int8_t>(g.value.status);
-              t[i] = g.value.time;
-              ra.put(i, g.a);
-              rb.put(i, g.b);
-              Eigen::Map<Vec<double, N>>{va + i * N} = g.velocity_a;
-              Eigen::Map<Vec<double, N>>{vb + i * N} = g.velocity_b;
-              put_rotation<N>(wa_out, i, g.angular_velocity_a);
-              put_rotation<N>(wb_out, i, g.angular_velocity_b);
-              Eigen::Map<Vec<double, N>>{x + i * N} = g.value.point;
-              pa.put(i, g.point.a, g.point.velocity_a, g.point.angular_velocity_a);
-              pb.put(i, g.point.b, g.point.velocity_b, g.point.angular_velocity_b);
-            });
+          for (std::size_t i = 0; i < n; ++i) {
+            s[i] = static_cast<std::int8_t>(g[i].value.status);
+            t[i] = g[i].value.time;
+            ra.put(i, g[i].a);
+            rb.put(i, g[i].b);
+            Eigen::Map<Vec<double, N>>{va + i * N} = g[i].velocity_a;
+            Eigen::Map<Vec<double, N>>{vb + i * N} = g[i].velocity_b;
+            put_rotation<N>(wa_out, i, g[i].angular_velocity_a);
+            put_rotation<N>(wb_out, i, g[i].angular_velocity_b);
+            Eigen::Map<Vec<double, N>>{x + i * N} = g[i].value.point;
+            pa.put(i, g[i].point.a, g[i].point.velocity_a, g[i].point.angular_velocity_a);
+            pb.put(i, g[i].point.b, g[i].point.velocity_b, g[i].point.angular_velocity_b);
           }
           const py::object jacobian = contact_point_jacobian_arrays(
               ja.center, ja.orientation, ja.radii, jb.center, jb.orientation, jb.radii, ja.velocity, jb.velocity,
@@ -958,29 +949,26 @@ void def_earliest_contact(py::module_& m) {
 // overlap_area and iou over pairs of ellipses.
 void def_areas(py::module_& m) {
   using B = Bodies<2>;
-  using Query = double (*)(const Ellipse2<double>&, const Ellipse2<double>&, const Options&);
-  for (const auto& [name, query] : {std::pair<const char*, Query>{"overlap_area",
-                                                                  [](const Ellipse2<double>& a, const Ellipse2<double>& b,
-                                                                     const Options& o) {
-                                                                    return overlap_area(a, b, o).area;
-                                                                  }},
-                                    std::pair<const char*, Query>{"iou", [](const Ellipse2<double>& a,
-                                                                            const Ellipse2<double>& b,
-                                                                            const Options& o) {
-                                                                    return intersection_over_union(a, b, o);
-                                                                  }}}) {
+  using E = std::span<const Ellipse2<double>>;
+  using Query = void (*)(E, E, std::span<double>, const BatchOptions&);
+  const Query area = [](E a, E b, std::span<double> out, const BatchOptions& o) {
+    std::vector<OverlapArea<double>> areas(out.size());
+    overlap_area<double>(a, b, areas, o);
+    for (std::size_t i = 0; i < out.size(); ++i) out[i] = areas[i].area;
+  };
+  for (const auto& [name, query] : {std::pair<const char*, Query>{"overlap_area", area},
+                                    std::pair<const char*, Query>{"iou", &intersection_over_union<double>}}) {
     m.def(name,
           [query](const B& a, const B& b, const Options& o, int threads) {
             const std::size_t n = paired(a, b);
             py::array_t<double> out(static_cast<py::ssize_t>(n));
-            double* p = out.mutable_data();
+            const std::span<double> values(out.mutable_data(), n);
             py::gil_scoped_release release;
-            for_each_index(n, threads, [&](std::size_t i) { p[i] = query(a.items[i], b.items[i], o); });
+            query(a.items, b.items, values, BatchOptions{o, threads});
             return out;
           },
           py::arg("a"), py::arg("b"), options_arg(), py::arg("threads") = 0,
-          docs::doc(std::string(name) + " of each pair of ellipses, the scalar function in a thread pool "
-                                        "(intersect2.hpp).",
+          docs::doc(std::string(name) + " of each pair of ellipses, on all cores (batch.hpp, intersect2.hpp).",
                     "a, b: two Ellipses of equal length.\n" + docs::options + "\n" + docs::threads,
                     "float64 array (n,).", docs::batch_raises)
               .c_str());

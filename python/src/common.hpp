@@ -1,9 +1,8 @@
 // Shared pieces of the Python module: the enums as Python IntEnums, InputError as a
-// ValueError subclass, Eigen values as numpy arrays, a parallel loop.
+// ValueError subclass, Eigen values as numpy arrays.
 #pragma once
 
 #include <ellipsect/ellipsect.hpp>
-#include <ellipsect/parallel.hpp>
 
 #include <Eigen/SVD>
 
@@ -146,17 +145,6 @@ void def_equality(py::class_<X>& c, Numbers numbers) {
         for (const double v : numbers(x)) values.append(v);
         return py::hash(py::tuple(values));
       });
-}
-
-// Calls f(i) for every i in [0, n) on up to `threads` threads (0: every hardware thread) of
-// the library's pool (ellipsect/parallel.hpp), in chunks of 256; each i writes its own
-// output slot, so results do not depend on the thread count.
-template <class F>
-void for_each_index(std::size_t n, int threads, const F& f) {
-  constexpr std::size_t chunk = 256;
-  ellipsect::parallel_for((n + chunk - 1) / chunk, threads, [&](std::size_t c) {
-    for (std::size_t i = c * chunk; i < std::min(n, (c + 1) * chunk); ++i) f(i);
-  });
 }
 
 void def_errors(py::module_& m);

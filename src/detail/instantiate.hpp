@@ -19,3 +19,21 @@
   INSTANTIATE(double, 2)                             \
   INSTANTIATE(double, 3)
 #endif
+
+// What every convex obstacle (obstacles.hpp: half-space, triangle, box, capsule) answers, its
+// header's declarations, for T in N dimensions: the type, classify, overlap, distance,
+// signed_distance and its gradient (by the obstacle's Gradient type), first_contact under
+// linear and under rigid motion (obstacle_motion.hpp's ELLIPSECT_RIGID_OBSTACLE_CONTACT).
+#define ELLIPSECT_INSTANTIATE_OBSTACLE(Shape, Gradient, T, N)                                                       \
+  template class Shape<T, N>;                                                                                     \
+  template Relation classify<T, N>(const Ellipsoid<T, N>&, const Shape<T, N>&, const Options&) noexcept;          \
+  template bool overlap<T, N>(const Ellipsoid<T, N>&, const Shape<T, N>&, const Options&) noexcept;               \
+  template Distance<T, N> distance<T, N>(const Ellipsoid<T, N>&, const Shape<T, N>&, const Options&) noexcept;    \
+  template Distance<T, N> signed_distance<T, N>(const Ellipsoid<T, N>&, const Shape<T, N>&, const Options&) noexcept; \
+  template DistanceGradient<T, N, Gradient<T, N>> signed_distance_gradient<T, N>(const Ellipsoid<T, N>&,           \
+                                                                                 const Shape<T, N>&,               \
+                                                                                 const Options&) noexcept;         \
+  template Contact<T, N> first_contact<T, N>(const Ellipsoid<T, N>&, const VecArg<T, N>&, const Shape<T, N>&,      \
+                                             const VecArg<T, N>&, T, const Options&) noexcept;                    \
+  template Contact<T, N> first_contact<T, N>(const Ellipsoid<T, N>&, const RigidMotion<T, N>&, const Shape<T, N>&, \
+                                             const VecArg<T, N>&, T, const Options&) noexcept;

@@ -6,7 +6,8 @@
 // radius): a lower bound on the distance whatever the accuracy of n.
 //
 // The obstacle's part is ObstacleTraits<Shape>, specialized in the obstacle's own file
-// (obstacles/<shape>.cpp), which also instantiates rigid_contact for it:
+// (obstacles/<shape>.cpp), which defines its public first_contact with the macro at the end
+// and instantiates it with its other queries (instantiate.hpp, ELLIPSECT_INSTANTIATE_OBSTACLE):
 //   static Lowest lowest(const Vec<R, N>& n, const Shape&)   least n . x and its terms' size
 //                                                            (-inf where unbounded along -n)
 //   static std::optional<Vec<R, N>> inner_point(const Shape&)  a point inside (or none)
@@ -189,3 +190,13 @@ Contact<T, N> rigid_contact(const Ellipsoid<T, N>& a, const RigidMotion<T, N>& m
 }
 
 }  // namespace ellipsect::detail::obstacle
+
+// The public first_contact under rigid motion against the obstacle Shape (declared in its
+// header), through rigid_contact; in namespace ellipsect, after Shape's ObstacleTraits.
+#define ELLIPSECT_RIGID_OBSTACLE_CONTACT(Shape)                                                                   \
+  template <class T, int N>                                                                                       \
+  Contact<T, N> first_contact(const Ellipsoid<T, N>& a, const RigidMotion<T, N>& motion_a, const Shape<T, N>& b,   \
+                              const VecArg<T, N>& velocity_b, T t_max, const Options& options) noexcept {         \
+    return detail::obstacle::rigid_contact<T, N>(a, motion_a, b, velocity_b, t_max, options);                     \
+  }
+// (Instantiated with the obstacle's other queries: instantiate.hpp, ELLIPSECT_INSTANTIATE_OBSTACLE.)

@@ -411,11 +411,7 @@ struct ObstacleTraits<Box<T, N>> {
 };
 }  // namespace detail::obstacle
 
-template <class T, int N>
-Contact<T, N> first_contact(const Ellipsoid<T, N>& a, const RigidMotion<T, N>& motion_a, const Box<T, N>& b,
-                            const VecArg<T, N>& velocity_b, T t_max, const Options& options) noexcept {
-  return detail::obstacle::rigid_contact<T, N>(a, motion_a, b, velocity_b, t_max, options);
-}
+ELLIPSECT_RIGID_OBSTACLE_CONTACT(Box)
 
 // ---- The factories -----------------------------------------------------------------------
 
@@ -427,18 +423,7 @@ Box<T, N> Box<T, N>::translated(const Vec<T, N>& offset) const {
                                                   half_extents()));
 }
 
-#define ELLIPSECT_INSTANTIATE(T, N)                                                                                  \
-  template Contact<T, N> first_contact<T, N>(const Ellipsoid<T, N>&, const RigidMotion<T, N>&, const Box<T, N>&,     \
-                                             const VecArg<T, N>&, T, const Options&) noexcept;                       \
-  template class Box<T, N>;                                                                                          \
-  template DistanceGradient<T, N, BoxGradient<T, N>> signed_distance_gradient<T, N>(                                \
-      const Ellipsoid<T, N>&, const Box<T, N>&, const Options&) noexcept;                                                                                         \
-  template Relation classify<T, N>(const Ellipsoid<T, N>&, const Box<T, N>&, const Options&) noexcept;            \
-  template bool overlap<T, N>(const Ellipsoid<T, N>&, const Box<T, N>&, const Options&) noexcept;                 \
-  template Contact<T, N> first_contact<T, N>(const Ellipsoid<T, N>&, const VecArg<T, N>&, const Box<T, N>&,       \
-                                             const VecArg<T, N>&, T, const Options&) noexcept;       \
-  template Distance<T, N> signed_distance<T, N>(const Ellipsoid<T, N>&, const Box<T, N>&, const Options&) noexcept; \
-  template Distance<T, N> distance<T, N>(const Ellipsoid<T, N>&, const Box<T, N>&, const Options&) noexcept;
+#define ELLIPSECT_INSTANTIATE(T, N) ELLIPSECT_INSTANTIATE_OBSTACLE(Box, BoxGradient, T, N)
 ELLIPSECT_FOR_EACH_TYPE_AND_DIM(ELLIPSECT_INSTANTIATE)
 #undef ELLIPSECT_INSTANTIATE
 

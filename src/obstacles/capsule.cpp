@@ -233,11 +233,7 @@ struct ObstacleTraits<Capsule<T, N>> {
 };
 }  // namespace detail::obstacle
 
-template <class T, int N>
-Contact<T, N> first_contact(const Ellipsoid<T, N>& a, const RigidMotion<T, N>& motion_a, const Capsule<T, N>& b,
-                            const VecArg<T, N>& velocity_b, T t_max, const Options& options) noexcept {
-  return detail::obstacle::rigid_contact<T, N>(a, motion_a, b, velocity_b, t_max, options);
-}
+ELLIPSECT_RIGID_OBSTACLE_CONTACT(Capsule)
 
 // ---- The factories -----------------------------------------------------------------------
 
@@ -261,18 +257,7 @@ Capsule<T, N> Capsule<T, N>::translated(const Vec<T, N>& offset) const {
   return c;
 }
 
-#define ELLIPSECT_INSTANTIATE(T, N)                                                                                 \
-  template Contact<T, N> first_contact<T, N>(const Ellipsoid<T, N>&, const RigidMotion<T, N>&, const Capsule<T, N>&, \
-                                             const VecArg<T, N>&, T, const Options&) noexcept;                      \
-  template class Capsule<T, N>;                                                                                     \
-  template Relation classify<T, N>(const Ellipsoid<T, N>&, const Capsule<T, N>&, const Options&) noexcept;        \
-  template bool overlap<T, N>(const Ellipsoid<T, N>&, const Capsule<T, N>&, const Options&) noexcept;             \
-  template Distance<T, N> signed_distance<T, N>(const Ellipsoid<T, N>&, const Capsule<T, N>&, const Options&) noexcept; \
-  template DistanceGradient<T, N, CapsuleGradient<T, N>> signed_distance_gradient<T, N>(                              \
-      const Ellipsoid<T, N>&, const Capsule<T, N>&, const Options&) noexcept;                                        \
-  template Distance<T, N> distance<T, N>(const Ellipsoid<T, N>&, const Capsule<T, N>&, const Options&) noexcept;  \
-  template Contact<T, N> first_contact<T, N>(const Ellipsoid<T, N>&, const VecArg<T, N>&, const Capsule<T, N>&,   \
-                                             const VecArg<T, N>&, T, const Options&) noexcept;
+#define ELLIPSECT_INSTANTIATE(T, N) ELLIPSECT_INSTANTIATE_OBSTACLE(Capsule, CapsuleGradient, T, N)
 ELLIPSECT_FOR_EACH_TYPE_AND_DIM(ELLIPSECT_INSTANTIATE)
 #undef ELLIPSECT_INSTANTIATE
 
