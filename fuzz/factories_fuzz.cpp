@@ -207,19 +207,21 @@ void options(Bytes& in) {
   FUZZ_CHECK(t == (tolerance_ok ? "" : "tolerance"), << "tolerance " << hex(tolerance) << ": \"" << t << "\"");
   FUZZ_CHECK(!tolerance_ok || same_bits(kept_tolerance, tolerance), << "tolerance kept as " << hex(kept_tolerance));
   int kept_iterations = 0;
-  const std::string i = field_of([&] { kept_iterations = Options{.max_iterations = iterations}.max_iterations; });
-  FUZZ_CHECK(i == (iterations_ok ? "" : "max_iterations"), << "max_iterations " << iterations << ": \"" << i << "\"");
-  FUZZ_CHECK(!iterations_ok || kept_iterations == iterations, << "max_iterations kept as " << kept_iterations);
+  const std::string i =
+      field_of([&] { kept_iterations = Options{.max_contact_iterations = iterations}.max_contact_iterations; });
+  FUZZ_CHECK(i == (iterations_ok ? "" : "max_contact_iterations"),
+             << "max_contact_iterations " << iterations << ": \"" << i << "\"");
+  FUZZ_CHECK(!iterations_ok || kept_iterations == iterations, << "max_contact_iterations kept as " << kept_iterations);
   Options o;
   const std::string s = field_of([&] { o.max_motion_steps = steps; });
   FUZZ_CHECK(s == (steps_ok ? "" : "max_motion_steps"), << "max_motion_steps " << steps << ": \"" << s << "\"");
   FUZZ_CHECK(o.max_motion_steps == (steps_ok ? steps : 10000), << "max_motion_steps after assignment " << o.max_motion_steps);
   const std::string first = !tolerance_ok     ? "tolerance"
-                            : !iterations_ok  ? "max_iterations"
+                            : !iterations_ok  ? "max_contact_iterations"
                             : !steps_ok       ? "max_motion_steps"
                                               : "";
   const std::string all = field_of([&] {
-    (void)Options{.tolerance = tolerance, .max_iterations = iterations, .max_motion_steps = steps};
+    (void)Options{.tolerance = tolerance, .max_contact_iterations = iterations, .max_motion_steps = steps};
   });
   FUZZ_CHECK(all == first, << "all three at once: \"" << all << "\", expected \"" << first << "\"");
 }

@@ -38,31 +38,53 @@ void add_common(CLI::App& cmd, Common& c, std::vector<double>& window, std::stri
       ->default_str("auto");
 }
 
-// The queries' Options from --tolerance, --max-iterations and --max-motion-steps (absent:
-// the defaults); a value Options rejects is a usage error naming the option.
+// The queries' Options from --tolerance and one option per cap, named as its field with
+// dashes (--max-contact-iterations, ...; absent: the defaults); a value Options rejects is a
+// usage error naming the option.
 struct OptionValues {
   std::optional<double> tolerance;
-  std::optional<std::int64_t> max_iterations, max_motion_steps;
+  std::optional<std::int64_t> max_contact_iterations, max_distance_iterations, max_contact_function_iterations,
+      max_slide_rounds, max_motion_steps, max_slabs;
 };
 
+// --max-...: the cap of Options' member `cap`, what it caps in `what`.
+template <class Cap>
+void add_cap(CLI::App& cmd, std::optional<std::int64_t>& value, Cap ellipsect::Options::*cap, const char* what) {
+  std::string option = "--" + std::string(Cap::field);
+  std::replace(option.begin(), option.end(), '_', '-');
+  cmd.add_option(option, value,
+                 std::string("Cap on ") + what + ", in [1, " + std::to_string(Cap::max) + "] (default " +
+                     std::to_string(ellipsect::Options{}.*cap) + ")")
+      ->type_name("N");
+}
+
 void add_query_options(CLI::App& cmd, OptionValues& v) {
+  using ellipsect::Options;
   cmd.add_option("--tolerance", v.tolerance,
                  "Relative tangency band of the queries, in [1e-14, 1e-9], or 0 for exact relations (default 1e-12; docs/method.md)")
       ->type_name("X");
-  cmd.add_option("--max-iterations", v.max_iterations,
-                 "Cap on the queries' iterations, in [1, 100000] (default 64); reaching it is did_not_converge")
-      ->type_name("N");
-  cmd.add_option("--max-motion-steps", v.max_motion_steps,
-                 "Cap on the advancement steps of first contact under rigid motion, in [1, 1000000] (default 10000)")
-      ->type_name("N");
+  add_cap(cmd, v.max_contact_iterations, &Options::max_contact_iterations,
+          "Newton's iterations on the contact time under linear motion; reaching it is did_not_converge");
+  add_cap(cmd, v.max_distance_iterations, &Options::max_distance_iterations,
+          "the evaluations of each distance descent; reaching it is did_not_converge");
+  add_cap(cmd, v.max_contact_function_iterations, &Options::max_contact_function_iterations,
+          "the Perram-Wertheim maximization's iterations; reaching it is did_not_converge");
+  add_cap(cmd, v.max_slide_rounds, &Options::max_slide_rounds, "the rounds of collide-and-slide");
+  add_cap(cmd, v.max_motion_steps, &Options::max_motion_steps,
+          "the advancement steps of first contact under rigid motion; reaching it is did_not_converge");
+  add_cap(cmd, v.max_slabs, &Options::max_slabs, "the slabs of the earliest-contact search in a periodic box");
 }
 
 ellipsect::Options finish_query_options(const OptionValues& v) {
   ellipsect::Options o;
   try {
     if (v.tolerance) o.tolerance = *v.tolerance;
-    if (v.max_iterations) o.max_iterations = *v.max_iterations;
+    if (v.max_contact_iterations) o.max_contact_iterations = *v.max_contact_iterations;
+    if (v.max_distance_iterations) o.max_distance_iterations = *v.max_distance_iterations;
+    if (v.max_contact_function_iterations) o.max_contact_function_iterations = *v.max_contact_function_iterations;
+    if (v.max_slide_rounds) o.max_slide_rounds = *v.max_slide_rounds;
     if (v.max_motion_steps) o.max_motion_steps = *v.max_motion_steps;
+    if (v.max_slabs) o.max_slabs = *v.max_slabs;
   } catch (const ellipsect::InputError& e) {
     // what() is "ellipsect: <field>: <detail>"; the option is the field with dashes.
     std::string option = "--" + e.field();
@@ -133,7 +155,7 @@ int main(int argc, char** argv) {
       "  ellipsect check examples/scenes/bodies_10k.csv --format csv -o overlaps.csv\n"
       "  ellipsect check examples/scenes/swept_3d.json --query relation,distance\n"
       "  ellipsect check pairs.csv --window 0 10 -o results.json --stats\n"
-      "  ellipsect check examples/scenes/swept_2d.json --tolerance 1e-9 --max-iterations 128");
+      "  ellipsect check examples/scenes/swept_2d.json --tolerance 1e-9 --max-contact-iterations 128");
 
   CLI::App* r = app.add_subcommand("render", "Draw the scene at one time as SVG (or PNG through rsvg-convert)");
   add_common(*r, render.common, render_window, render_progress);

@@ -120,7 +120,7 @@ struct PairContact {
 // In a periodic box the window is cut into slabs short enough that each swept box stays
 // under half a side (bodies must be smaller than a quarter of the side: InputError "box",
 // also where a growing body reaches a quarter of the side before the contact);
-// more than Options::max_motion_steps slabs without a contact gives did_not_converge with
+// more than Options::max_slabs slabs without a contact gives did_not_converge with
 // the start of the next slab as the lower bound (pair (0, 0)).
 // Throws std::invalid_argument where the sizes of bodies and motions differ, InputError
 // naming "motions[k].velocity", "motions[k].angular_velocity" or "motions[k].growth" where

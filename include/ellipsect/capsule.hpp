@@ -30,7 +30,7 @@
 //   first_contact With the capsule moving relative to the body at w, the gap
 //                 L(t) = max_n (G(n) + t n . w) is convex in t (a maximum of affine
 //                 functions), with slope n*(t) . w: Newton from t = 0 climbs monotonically to
-//                 its first root (Eberly's h(t)), at most Options::max_iterations steps.
+//                 its first root (Eberly's h(t)), at most Options::max_contact_iterations steps.
 //                 Stops when L(t) falls to 1e-14 of the pair's size (a hit), the slope is >= 0
 //                 (the gap never closes: no contact), or the step passes t_max.
 // Every query runs on the pair moved by minus the body's center (the segment's points less
@@ -129,7 +129,7 @@ DistanceGradient<T, N, CapsuleGradient<T, N>> signed_distance_gradient(const Ell
                                                                        const Options& options = {}) noexcept;
 
 // The body moves as center + t * velocity_a, the capsule as its points + t * velocity_b;
-// statuses as for two bodies (contact.hpp), did_not_converge when Options::max_iterations
+// statuses as for two bodies (contact.hpp), did_not_converge when Options::max_contact_iterations
 // Newton steps end short of the contact (the time reached is a lower bound; point and normal
 // NaN); iterations the Newton steps.
 template <class T, int N>

@@ -43,7 +43,7 @@ enum class ContactStatus {
   overlapping_at_start,  // interiors already intersect at t = 0; no point or normal
   no_contact_in_window,  // separated throughout [0, t_max] (includes "never touch" and a
                          // contact time beyond the largest finite T)
-  did_not_converge,      // Options::max_iterations reached; time is the last iterate
+  did_not_converge,      // Options::max_contact_iterations reached; time is the last iterate
   invalid_input,         // a velocity is not finite, or t_max is NaN or negative
 };
 

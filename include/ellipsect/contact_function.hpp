@@ -20,7 +20,7 @@
 // F(lambda) = lambda (1 - lambda) sum_i k_i^2 / (1 - lambda + lambda e_i^2) with the weights on
 // the two bodies carried separately. Its maximizer is the root of the decreasing
 // F'(lambda), found by Newton safeguarded by a bracket (bisection when a step leaves it),
-// from the maximizer for two balls, at most Options::max_iterations steps. Pairs whose
+// from the maximizer for two balls, at most Options::max_contact_function_iterations steps. Pairs whose
 // aspect ratios multiply beyond 1e12 are solved in the world frame instead: there e spreads
 // over that product, and its rounding relative to the largest reached the thinnest (two
 // needles of aspect ratio 1e8: F off by 28%); C(lambda) is applied through the QR
@@ -73,7 +73,7 @@ enum class ContactFunctionStatus {
   ok,                // converged: the values carry the stated accuracy
   concentric,        // perram_wertheim only: the centers are equal, F = 0 for every lambda;
                      // f = f_upper = 0 and lambda is NaN (no maximizer)
-  did_not_converge,  // Options::max_iterations steps without converging (not seen on the
+  did_not_converge,  // Options::max_contact_function_iterations steps without converging (not seen on the
                      // tested pairs with the default cap of 64: on 2000 pairs of each
                      // scenario category at most 25 steps, 5.8 (2D) and 6.5 (3D) on average;
                      // needles of aspect ratio 1e8, 10 to 19); the values are the last

@@ -63,7 +63,7 @@ enum class DistanceStatus {
   separated,         // gap larger than the tangency band: distance >= +0 (see Distance)
   touching,          // within Options::tolerance of touching (the band of classify)
   overlapping,       // interiors intersect (includes containment and equal bodies)
-  did_not_converge,  // Options::max_iterations evaluations in a descent without converging
+  did_not_converge,  // Options::max_distance_iterations evaluations in a descent without converging
                      // (not seen on the tested pairs with the default cap). The fields are
                      // finite and certified: see Distance.
 };

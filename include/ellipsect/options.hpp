@@ -16,10 +16,10 @@
 //
 // Validation. Options are input: each field is a value type that checks its value when it
 // is constructed or assigned and throws InputError naming the field ("tolerance",
-// "max_iterations", "max_motion_steps") with the value and the accepted range. So an
+// "max_contact_iterations", ...) with the value and the accepted range. So an
 // Options cannot hold an invalid value, and the queries, which read the fields through
 // their implicit conversions to double and int, need no check. Designated initializers
-// (Options{.tolerance = 1e-9, .max_iterations = 16}) and assignments (o.tolerance = 1e-9)
+// (Options{.tolerance = 1e-9, .max_motion_steps = 100}) and assignments (o.tolerance = 1e-9)
 // work as for plain members.
 #pragma once
 
@@ -37,8 +37,12 @@ namespace detail {
 // decimal digits (src/options.cpp).
 [[noreturn]] void reject_tolerance(double value, double low, double high);
 [[noreturn]] void reject_option(const char* field, const char* digits, std::uintmax_t low, std::uintmax_t high);
-inline constexpr char max_iterations_field[] = "max_iterations";
+inline constexpr char max_contact_iterations_field[] = "max_contact_iterations";
+inline constexpr char max_distance_iterations_field[] = "max_distance_iterations";
+inline constexpr char max_contact_function_iterations_field[] = "max_contact_function_iterations";
+inline constexpr char max_slide_rounds_field[] = "max_slide_rounds";
 inline constexpr char max_motion_steps_field[] = "max_motion_steps";
+inline constexpr char max_slabs_field[] = "max_slabs";
 }  // namespace detail
 
 // Options::tolerance: a relative gap in [min, max]; NaN, infinities, 0, negative values and
@@ -141,29 +145,42 @@ private:
   double value_;
 };
 
+// One cap per algorithm, named by what it caps; each loop so capped is bounded by it alone.
+// Reaching a cap is a status, never an answer: did_not_converge for the solvers (with what
+// the status's documentation says of the values), blocked for the slide's rounds. The caps
+// outside Options are reported as statuses too: PackingStatus::collision_limit
+// (PackingOptions::max_collisions, packing.hpp) and Verdict::undecided (the Niemitalo
+// tests' max_level, polygonal2.hpp). Every status named here is tested at a small cap in its
+// family's unit tests.
 struct Options {
   // Relative tangency band (see above), in [Tolerance::min, Tolerance::max] = [1e-14, 1e-9],
   // or Tolerance::exact = 0. Pairs whose gap lies within the band are reported as touching;
   // outside it, answers are exact up to the accuracy stated per query.
   Tolerance tolerance = 1e-12;
-  // Cap on the iterations of every bounded loop below, each loop capped on its own, in
-  // [1, 100000]; reaching it is a status, never an answer:
-  //   the linear contact-time Newton (contact.hpp)     ContactStatus::did_not_converge
-  //   the capsule's contact-time Newton (capsule.hpp)  ContactStatus::did_not_converge
-  //   each distance descent (distance.hpp)             DistanceStatus::did_not_converge
-  //   the Perram-Wertheim maximization                 ContactFunctionStatus::did_not_converge
-  //     (contact_function.hpp)
-  //   the rounds of collide_and_slide (slide.hpp)      SlideStatus::blocked (displacement left)
-  IterationCap<detail::max_iterations_field, 100000> max_iterations = 64;
-  // Cap on the advancement steps of first_contact under rigid motion (contact.hpp), where
-  // each step costs one signed distance, and on the slabs of earliest_contact's search
-  // (broad_phase.hpp), in [1, 1000000]. Reaching it is ContactStatus::did_not_converge, with
+  // Newton's iterations on the contact time's convex h(t) (Eberly): first_contact under
+  // linear motion of two bodies (contact.hpp) and of a body and a capsule (capsule.hpp), in
+  // [1, 100000]. Reached: ContactStatus::did_not_converge, the time the last iterate.
+  IterationCap<detail::max_contact_iterations_field, 100000> max_contact_iterations = 64;
+  // The evaluations of each descent on the sphere of directions of distance and
+  // signed_distance of two bodies (distance.hpp), in [1, 100000]. Reached:
+  // DistanceStatus::did_not_converge.
+  IterationCap<detail::max_distance_iterations_field, 100000> max_distance_iterations = 64;
+  // The iterations of the Perram-Wertheim maximization: perram_wertheim, closest_approach
+  // and their gradients (contact_function.hpp), in [1, 100000]. Reached:
+  // ContactFunctionStatus::did_not_converge, with certified bounds.
+  IterationCap<detail::max_contact_function_iterations_field, 100000> max_contact_function_iterations = 64;
+  // The rounds of collide_and_slide, one contact and one slide each (slide.hpp), in
+  // [1, 100000]. Reached with displacement left: SlideStatus::blocked.
+  IterationCap<detail::max_slide_rounds_field, 100000> max_slide_rounds = 64;
+  // The advancement steps of first_contact under rigid motion, each one signed distance:
+  // two bodies (contact.hpp), a body and an obstacle, and each pair of earliest_contact's
+  // search (broad_phase.hpp), in [1, 1000000]. Reached: ContactStatus::did_not_converge, with
   // a certified lower bound on the contact time.
-  // The caps outside Options are reported as statuses too: PackingStatus::collision_limit
-  // (PackingOptions::max_collisions, packing.hpp) and Verdict::undecided (the Niemitalo
-  // tests' max_level, polygonal2.hpp). Every status named here is tested at a small cap in
-  // its family's unit tests.
   IterationCap<detail::max_motion_steps_field, 1000000> max_motion_steps = 10000;
+  // The slabs of earliest_contact's search in a periodic box (broad_phase.hpp), each a time
+  // window of the swept candidates, in [1, 1000000]. Reached: PairContact's status
+  // did_not_converge, its time a lower bound.
+  IterationCap<detail::max_slabs_field, 1000000> max_slabs = 10000;
 };
 
 }  // namespace ellipsect

@@ -46,7 +46,7 @@
 //     the rounding of each move and of the end), and the displacement is never exceeded
 //     beyond that rounding: each round's remaining displacement is the previous one's,
 //     minus the move, projected;
-//   * at most Options::max_iterations rounds (default 64; `blocked` when displacement is left);
+//   * at most Options::max_slide_rounds rounds (default 64; `blocked` when displacement is left);
 //   * a body that starts overlapping an obstacle is not moved (overlapping_at_start); one
 //     that starts touching slides along it or leaves it.
 // Touching is classify's tangency band (options.hpp).
@@ -67,7 +67,7 @@ enum class SlideStatus {
   moved,                 // the whole displacement, in contact with nothing on the way
   slid,                  // stopped at contacts or touched half-spaces and slid along them
                          // until nothing of the displacement was left
-  blocked,               // Options::max_iterations rounds, displacement left
+  blocked,               // Options::max_slide_rounds rounds, displacement left
   overlapping_at_start,  // the body overlaps a half-space at the start: not moved
   invalid_input,         // a displacement that is not finite or moves the center beyond T
 };

@@ -907,10 +907,14 @@ class MeshRelation:
     def triangle(self) -> int: ...
 
 class Options:
-    max_iterations: int
+    max_contact_function_iterations: int
+    max_contact_iterations: int
+    max_distance_iterations: int
     max_motion_steps: int
+    max_slabs: int
+    max_slide_rounds: int
     tolerance: float
-    def __init__(self, tolerance: float = ..., max_iterations: object = ..., max_motion_steps: object = ...) -> None: ...
+    def __init__(self, tolerance: float = ..., max_contact_iterations: object = ..., max_distance_iterations: object = ..., max_contact_function_iterations: object = ..., max_slide_rounds: object = ..., max_motion_steps: object = ..., max_slabs: object = ...) -> None: ...
     def __getstate__(self) -> tuple: ...
     def __setstate__(self, arg0: tuple) -> None: ...
 

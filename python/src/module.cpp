@@ -947,8 +947,6 @@ void def_scalar(py::module_& m) {
   // Options: each field is validated by its C++ type, in the constructor, the setters and
   // unpickling alike (InputError naming the field). A cap is any Python integer (int, numpy
   // integers; a float is a TypeError), one beyond long long rejected with its digits.
-  using MaxIterations = decltype(Options::max_iterations);
-  using MaxMotionSteps = decltype(Options::max_motion_steps);
   const auto cap = []<class Cap>(std::type_identity<Cap>, const py::handle& given) -> Cap {
     const auto value = py::reinterpret_steal<py::int_>(PyNumber_Index(given.ptr()));
     if (!value) throw py::error_already_set();
@@ -960,30 +958,57 @@ void def_scalar(py::module_& m) {
     }
     return n;
   };
-  py::class_<Options>(m, "Options", "Tolerance and iteration caps, validated (options.hpp).")
-      .def(py::init([cap](double tolerance, const py::object& max_iterations, const py::object& max_motion_steps) {
-             return Options{tolerance, cap(std::type_identity<MaxIterations>{}, max_iterations),
-                            cap(std::type_identity<MaxMotionSteps>{}, max_motion_steps)};
+  // The caps in Options' order: the constructor's and the pickle's arguments after tolerance.
+  static constexpr auto caps =
+      std::make_tuple(&Options::max_contact_iterations, &Options::max_distance_iterations,
+                      &Options::max_contact_function_iterations, &Options::max_slide_rounds,
+                      &Options::max_motion_steps, &Options::max_slabs);
+  using Given = std::array<py::object, std::tuple_size_v<decltype(caps)>>;
+  // Options from a tolerance and the caps' Python values, each checked as it is set (the
+  // first bad one, in Options' order, is named).
+  const auto options_from = [cap](double tolerance, const Given& given) {
+    Options o{tolerance};
+    std::size_t k = 0;
+    std::apply([&]<class... Cap>(Cap Options::*... member) { ((o.*member = cap(std::type_identity<Cap>{}, given[k++])), ...); },
+               caps);
+    return o;
+  };
+  const Options defaults;
+  py::class_<Options> options(m, "Options", "Tolerance and one iteration cap per algorithm, validated (options.hpp).");
+  options
+      .def(py::init([options_from](double tolerance, const py::object& contact, const py::object& distance,
+                                   const py::object& contact_function, const py::object& slide,
+                                   const py::object& motion, const py::object& slabs) {
+             return options_from(tolerance, {contact, distance, contact_function, slide, motion, slabs});
            }),
-           py::arg("tolerance") = double(Options{}.tolerance), py::arg("max_iterations") = int(Options{}.max_iterations),
-           py::arg("max_motion_steps") = int(Options{}.max_motion_steps))
+           py::arg("tolerance") = double(defaults.tolerance),
+           py::arg("max_contact_iterations") = int(defaults.max_contact_iterations),
+           py::arg("max_distance_iterations") = int(defaults.max_distance_iterations),
+           py::arg("max_contact_function_iterations") = int(defaults.max_contact_function_iterations),
+           py::arg("max_slide_rounds") = int(defaults.max_slide_rounds),
+           py::arg("max_motion_steps") = int(defaults.max_motion_steps),
+           py::arg("max_slabs") = int(defaults.max_slabs))
       .def_property(
           "tolerance", [](const Options& o) { return o.tolerance.value(); },
-          [](Options& o, double tolerance) { o.tolerance = tolerance; })
-      .def_property(
-          "max_iterations", [](const Options& o) { return int(o.max_iterations); },
-          [cap](Options& o, const py::object& n) { o.max_iterations = cap(std::type_identity<MaxIterations>{}, n); })
-      .def_property(
-          "max_motion_steps", [](const Options& o) { return int(o.max_motion_steps); },
-          [cap](Options& o, const py::object& n) { o.max_motion_steps = cap(std::type_identity<MaxMotionSteps>{}, n); })
-      .def(py::pickle(
-          [](const Options& o) {
-            return py::make_tuple(o.tolerance.value(), int(o.max_iterations), int(o.max_motion_steps));
-          },
-          [cap](const py::tuple& t) {
-            return Options{t[0].cast<double>(), cap(std::type_identity<MaxIterations>{}, t[1]),
-                           cap(std::type_identity<MaxMotionSteps>{}, t[2])};
-          }));
+          [](Options& o, double tolerance) { o.tolerance = tolerance; });
+  std::apply(
+      [&]<class... Cap>(Cap Options::*... member) {
+        (options.def_property(
+             Cap::field, [member](const Options& o) { return int(o.*member); },
+             [cap, member](Options& o, const py::object& n) { o.*member = cap(std::type_identity<Cap>{}, n); }),
+         ...);
+      },
+      caps);
+  options.def(py::pickle(
+      [](const Options& o) {
+        return std::apply([&](auto... member) { return py::make_tuple(o.tolerance.value(), int(o.*member)...); },
+                          caps);
+      },
+      [options_from](const py::tuple& t) {
+        Given given;
+        for (std::size_t k = 0; k < given.size(); ++k) given[k] = t[k + 1];
+        return options_from(t[0].cast<double>(), given);
+      }));
 
   py::class_<Ellipse2<double>> ellipse(m, "Ellipse", "A validated ellipse (shapes.hpp).");
   ellipse.def(py::init([](const Row<2>& center, const Row<2>& radii, std::optional<double> angle,

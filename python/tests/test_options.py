@@ -10,18 +10,29 @@ import ellipsect
 
 BAD_TOLERANCES = [math.nan, math.inf, -math.inf, -1e-12, 5e-324, 9e-15, 1.1e-9, 1e-6, 1.0]
 BAD_CAPS = [0, -1, -(2**31), 2**31 - 1, 2**40, 2**64, 10**30, -(10**30)]
-CAP_MAX = {"max_iterations": 100000, "max_motion_steps": 1000000}
+# One cap per algorithm, its largest value and its default.
+CAPS = {"max_contact_iterations": (100000, 64), "max_distance_iterations": (100000, 64),
+        "max_contact_function_iterations": (100000, 64), "max_slide_rounds": (100000, 64),
+        "max_motion_steps": (1000000, 10000), "max_slabs": (1000000, 10000)}
+
+
+def caps_of(o):
+    return tuple(getattr(o, field) for field in CAPS)
 
 
 def test_defaults_and_range_ends():
     o = ellipsect.Options()
-    assert (o.tolerance, o.max_iterations, o.max_motion_steps) == (1e-12, 64, 10000)
-    low = ellipsect.Options(tolerance=1e-14, max_iterations=1, max_motion_steps=np.int64(1))
-    assert (low.tolerance, low.max_iterations, low.max_motion_steps) == (1e-14, 1, 1)
-    high = ellipsect.Options(tolerance=1e-9, max_iterations=100000, max_motion_steps=1000000)
-    assert (high.tolerance, high.max_iterations, high.max_motion_steps) == (1e-9, 100000, 1000000)
+    assert o.tolerance == 1e-12 and caps_of(o) == tuple(default for _, default in CAPS.values())
+    low = ellipsect.Options(tolerance=1e-14, **{field: np.int64(1) for field in CAPS})
+    assert low.tolerance == 1e-14 and caps_of(low) == (1,) * len(CAPS)
+    high = ellipsect.Options(tolerance=1e-9, **{field: top for field, (top, _) in CAPS.items()})
+    assert high.tolerance == 1e-9 and caps_of(high) == tuple(top for top, _ in CAPS.values())
     again = pickle.loads(pickle.dumps(high))
-    assert (again.tolerance, again.max_iterations, again.max_motion_steps) == (1e-9, 100000, 1000000)
+    assert again.tolerance == 1e-9 and caps_of(again) == caps_of(high)
+    # Each cap is its own: setting one leaves the others.
+    for field in CAPS:
+        one = ellipsect.Options(**{field: 3})
+        assert caps_of(one) == tuple(3 if f == field else d for f, (_, d) in CAPS.items())
 
 
 @pytest.mark.parametrize("value", BAD_TOLERANCES)
@@ -39,14 +50,14 @@ def test_bad_tolerance_names_the_field(value):
 def test_message_gives_the_value_and_the_range():
     with pytest.raises(ellipsect.InputError, match=r"tolerance: must be 0 or in \[1e-14, 1e-09\] \(got nan\)"):
         ellipsect.Options(tolerance=math.nan)
-    with pytest.raises(ellipsect.InputError, match=r"max_iterations: must be in \[1, 100000\] \(got 10{30}\)"):
-        ellipsect.Options(max_iterations=10**30)
+    with pytest.raises(ellipsect.InputError, match=r"max_slide_rounds: must be in \[1, 100000\] \(got 10{30}\)"):
+        ellipsect.Options(max_slide_rounds=10**30)
 
 
-@pytest.mark.parametrize("field", ["max_iterations", "max_motion_steps"])
+@pytest.mark.parametrize("field", list(CAPS))
 @pytest.mark.parametrize("value", BAD_CAPS + ["max + 1"])
 def test_bad_cap_names_the_field(field, value):
-    value = CAP_MAX[field] + 1 if value == "max + 1" else value
+    value = CAPS[field][0] + 1 if value == "max + 1" else value
     with pytest.raises(ellipsect.InputError) as info:
         ellipsect.Options(**{field: value})
     assert info.value.field == field
@@ -57,7 +68,7 @@ def test_bad_cap_names_the_field(field, value):
     assert info.value.field == field and getattr(o, field) == before
 
 
-@pytest.mark.parametrize("field", ["max_iterations", "max_motion_steps"])
+@pytest.mark.parametrize("field", list(CAPS))
 def test_a_cap_is_an_integer(field):
     with pytest.raises(TypeError):
         ellipsect.Options(**{field: 10.0})
@@ -69,11 +80,11 @@ def test_a_cap_is_an_integer(field):
 def test_unpickling_validates():
     o = ellipsect.Options.__new__(ellipsect.Options)
     with pytest.raises(ellipsect.InputError) as info:
-        o.__setstate__((math.nan, 64, 10000))
+        o.__setstate__((math.nan, 64, 64, 64, 64, 10000, 10000))
     assert info.value.field == "tolerance"
     with pytest.raises(ellipsect.InputError) as info:
-        o.__setstate__((1e-12, 0, 10000))
-    assert info.value.field == "max_iterations"
+        o.__setstate__((1e-12, 64, 0, 64, 64, 10000, 10000))
+    assert info.value.field == "max_distance_iterations"
 
 
 def test_exact_tangency_is_touching_for_every_query_at_the_smallest_band():

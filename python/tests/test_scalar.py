@@ -29,7 +29,7 @@ def test_bodies_and_their_fields():
     assert "Ellipsoid(center=[0, 0, 0]" in repr(s)
     with pytest.raises(ValueError, match="not both"):
         ellipsect.Ellipse([0, 0], [1, 1], angle=0.0, rotation=np.eye(2))
-    for body in (e, s, ellipsect.Options(tolerance=1e-10, max_iterations=10)):
+    for body in (e, s, ellipsect.Options(tolerance=1e-10, max_contact_iterations=10)):
         again = pickle.loads(pickle.dumps(body))
         assert type(again) is type(body)
     assert pickle.loads(pickle.dumps(e)).radii.tolist() == e.radii.tolist()

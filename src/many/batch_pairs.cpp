@@ -29,40 +29,33 @@ void each_pair(std::span<R> out, std::initializer_list<std::size_t> sizes, int t
 
 }  // namespace
 
-template <class T, int N>
-void distance(std::span<const Ellipsoid<T, N>> a, std::span<const Ellipsoid<T, N>> b, std::span<Distance<T, N>> out,
-              const BatchOptions& options) {
-  each_pair(out, {a.size(), b.size()}, options.threads,
-            [&](std::size_t i) { return distance(a[i], b[i], options.query); });
-}
-
-template <class T, int N>
-void signed_distance(std::span<const Ellipsoid<T, N>> a, std::span<const Ellipsoid<T, N>> b,
-                     std::span<Distance<T, N>> out, const BatchOptions& options) {
-  each_pair(out, {a.size(), b.size()}, options.threads,
-            [&](std::size_t i) { return signed_distance(a[i], b[i], options.query); });
-}
-
-template <class T, int N>
-void signed_distance_gradient(std::span<const Ellipsoid<T, N>> a, std::span<const Ellipsoid<T, N>> b,
-                              std::span<DistanceGradient<T, N>> out, const BatchOptions& options) {
-  each_pair(out, {a.size(), b.size()}, options.threads,
-            [&](std::size_t i) { return signed_distance_gradient(a[i], b[i], options.query); });
-}
-
-template <class T, int N>
-void perram_wertheim(std::span<const Ellipsoid<T, N>> a, std::span<const Ellipsoid<T, N>> b,
-                     std::span<ContactFunction<T>> out, const BatchOptions& options) {
-  each_pair(out, {a.size(), b.size()}, options.threads,
-            [&](std::size_t i) { return perram_wertheim(a[i], b[i], options.query); });
-}
-
-template <class T, int N>
-void perram_wertheim_gradient(std::span<const Ellipsoid<T, N>> a, std::span<const Ellipsoid<T, N>> b,
-                              std::span<ContactFunctionGradient<T, N>> out, const BatchOptions& options) {
-  each_pair(out, {a.size(), b.size()}, options.threads,
-            [&](std::size_t i) { return perram_wertheim_gradient(a[i], b[i], options.query); });
-}
+// The queries of two bodies alone: pair i's answer QUERY(a[i], b[i], options.query); the
+// result type is the rest of the arguments (it holds commas). Bodies, then ellipses.
+#define ELLIPSECT_PAIRWISE_BODY(QUERY)                                                                            \
+  {                                                                                                               \
+    each_pair(out, {a.size(), b.size()}, options.threads,                                                         \
+              [&](std::size_t i) { return QUERY(a[i], b[i], options.query); });                                   \
+  }
+#define ELLIPSECT_PAIRWISE(QUERY, ...)                                                                            \
+  template <class T, int N>                                                                                       \
+  void QUERY(std::span<const Ellipsoid<T, N>> a, std::span<const Ellipsoid<T, N>> b, std::span<__VA_ARGS__> out,  \
+             const BatchOptions& options) ELLIPSECT_PAIRWISE_BODY(QUERY)
+#define ELLIPSECT_PAIRWISE_ELLIPSES(QUERY, ...)                                                                   \
+  template <class T>                                                                                              \
+  void QUERY(std::span<const Ellipse2<T>> a, std::span<const Ellipse2<T>> b, std::span<__VA_ARGS__> out,          \
+             const BatchOptions& options) ELLIPSECT_PAIRWISE_BODY(QUERY)
+ELLIPSECT_PAIRWISE(distance, Distance<T, N>)
+ELLIPSECT_PAIRWISE(signed_distance, Distance<T, N>)
+ELLIPSECT_PAIRWISE(signed_distance_gradient, DistanceGradient<T, N>)
+ELLIPSECT_PAIRWISE(perram_wertheim, ContactFunction<T>)
+ELLIPSECT_PAIRWISE(perram_wertheim_gradient, ContactFunctionGradient<T, N>)
+ELLIPSECT_PAIRWISE_ELLIPSES(overlap_area, OverlapArea<T>)
+ELLIPSECT_PAIRWISE_ELLIPSES(intersection_over_union, T)
+ELLIPSECT_PAIRWISE_ELLIPSES(overlap_area_gradient, OverlapAreaGradient<T>)
+ELLIPSECT_PAIRWISE_ELLIPSES(intersection_over_union_gradient, IouGradient<T>)
+#undef ELLIPSECT_PAIRWISE_ELLIPSES
+#undef ELLIPSECT_PAIRWISE
+#undef ELLIPSECT_PAIRWISE_BODY
 
 template <class T, int N>
 void closest_approach_gradient(std::span<const Ellipsoid<T, N>> a, std::span<const Ellipsoid<T, N>> b,
@@ -95,34 +88,6 @@ void first_contact_gradient(std::span<const Ellipsoid<T, N>> a, std::span<const 
             [&](std::size_t i) {
               return first_contact_gradient<T, N>(a[i], motion_a[i], b[i], motion_b[i], t_max[i], options.query);
             });
-}
-
-template <class T>
-void overlap_area(std::span<const Ellipse2<T>> a, std::span<const Ellipse2<T>> b, std::span<OverlapArea<T>> out,
-                  const BatchOptions& options) {
-  each_pair(out, {a.size(), b.size()}, options.threads,
-            [&](std::size_t i) { return overlap_area(a[i], b[i], options.query); });
-}
-
-template <class T>
-void intersection_over_union(std::span<const Ellipse2<T>> a, std::span<const Ellipse2<T>> b, std::span<T> out,
-                             const BatchOptions& options) {
-  each_pair(out, {a.size(), b.size()}, options.threads,
-            [&](std::size_t i) { return intersection_over_union(a[i], b[i], options.query); });
-}
-
-template <class T>
-void overlap_area_gradient(std::span<const Ellipse2<T>> a, std::span<const Ellipse2<T>> b,
-                           std::span<OverlapAreaGradient<T>> out, const BatchOptions& options) {
-  each_pair(out, {a.size(), b.size()}, options.threads,
-            [&](std::size_t i) { return overlap_area_gradient(a[i], b[i], options.query); });
-}
-
-template <class T>
-void intersection_over_union_gradient(std::span<const Ellipse2<T>> a, std::span<const Ellipse2<T>> b,
-                                      std::span<IouGradient<T>> out, const BatchOptions& options) {
-  each_pair(out, {a.size(), b.size()}, options.threads,
-            [&](std::size_t i) { return intersection_over_union_gradient(a[i], b[i], options.query); });
 }
 
 #define ELLIPSECT_PAIR_SPANS(T, N) std::span<const Ellipsoid<T, N>>, std::span<const Ellipsoid<T, N>>

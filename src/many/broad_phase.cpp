@@ -391,7 +391,7 @@ PairContact<T, N> earliest(std::span<const Ellipsoid<T, N>> bodies, std::span<co
   ImagePair<N> stopped_pair;
   double t0 = 0.0;
   for (int slabs = 0;; ++slabs) {
-    if (box != nullptr && slabs == options.max_motion_steps) {
+    if (box != nullptr && slabs == options.max_slabs) {
       best.contact = no_answer<T, N>(ContactStatus::did_not_converge);
       best.contact.time = T(t0);
       return best;

@@ -119,7 +119,7 @@ Contact<T, N> contact_at_body(const Ellipsoid<T, N>& a, const VecArg<T, N>& velo
   for (int k = 0; k < 2; ++k) size = std::max(size, a.radii().maxCoeff() + b.radius() + (b.point(k) - a.center()).norm());
   const T close = T(1e-14) * size;
   T t = 0;
-  for (int step = 0; step < options.max_iterations; ++step) {
+  for (int step = 0; step < options.max_contact_iterations; ++step) {
     const T gap = s.gap - b.radius();
     if (gap <= close) {
       out.status = ContactStatus::hit;

@@ -172,7 +172,7 @@ Slide<T, N> slide_through(const Ellipsoid<T, N>& body, const VecArg<T, N>& displ
   // The obstacles hit by the previous round's move, with their normals facing the body.
   std::vector<std::pair<std::size_t, Vec<T, N>>> hit_last;
   bool constrained = false;  // a touched obstacle took some of the displacement
-  for (int round = 0; round < options.max_iterations; ++round) {
+  for (int round = 0; round < options.max_slide_rounds; ++round) {
     const Ellipsoid<T, N> now = at(body, center);
     // Touched: within the tangency band, or just hit (a move shortened by its rounding can
     // stop short of the band).

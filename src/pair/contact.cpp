@@ -130,7 +130,7 @@ class ContactSolve {
   // Newton on delta(t) = |P(t)| - 1 from the left, from t where delta > tol: convexity keeps
   // every step before the first root.
   Contact<T, N> newton(R t, R delta, R tmax, detail::BranchPoint<R, N> p) noexcept {
-    for (int it = 1; it <= options_.max_iterations; ++it) {
+    for (int it = 1; it <= options_.max_contact_iterations; ++it) {
       out_.iterations = it;
       const R slope = w_.dot(p.point) / p.norm;
       if (!(slope < R(0))) {  // moving apart from here on: the minimum of delta is behind us

@@ -258,7 +258,7 @@ Solved<R, N> solve(const Ellipsoid<T, N>& s, const Ellipsoid<T, N>& o, const Vec
   if (aspect_s * aspect_o > R(reduced_frame_aspect_limit)) {
     const WorldFrame<R, N> world{factor<R>(s), factor<R>(o), dir, std::max(aspect_s, aspect_o)};
     out.max = maximize<R>((world.bs * dir).norm(), (world.bo * dir).norm(),
-                          [&](R u, R v) { return world.terms(u, v); }, options.max_iterations);
+                          [&](R u, R v) { return world.terms(u, v); }, options.max_contact_function_iterations);
     world.terms(out.max.u, out.max.v, &out.at);
     out.rounding = R(4 * detail::reduced_frame_ulps) * eps * std::max(aspect_s, aspect_o);
     return out;
@@ -267,7 +267,7 @@ Solved<R, N> solve(const Ellipsoid<T, N>& s, const Ellipsoid<T, N>& o, const Vec
   const Vec<R, N> k = red.to_z * dir;
   const Vec<R, N> e2 = red.e.cwiseAbs2(), k2 = k.cwiseAbs2();
   out.max = maximize<R>(k.norm(), red.e.cwiseProduct(k).norm(), [&](R u, R v) { return terms<R, N>(e2, k2, u, v); },
-                        options.max_iterations);
+                        options.max_contact_function_iterations);
   // In the Z frame y = k / D (D_i = u + v e_i^2); in the world y = to_z^T (k / D),
   // M_S^-1 y = to_world (k / D), M_O^-1 y = to_world (e^2 k / D), and |k / D| is S's level.
   Vec<R, N> z;

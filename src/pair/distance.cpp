@@ -149,7 +149,7 @@ Distance<T, N> solve(const Ellipsoid<T, N>& s, const Ellipsoid<T, N>& o, bool a_
     return out;
   }
   // The first descent starts from the quick direction; `starts` holds the others.
-  auto best = detail::descend<R, N>(g, quick.normal, options.max_iterations);
+  auto best = detail::descend<R, N>(g, quick.normal, options.max_distance_iterations);
   out.iterations = best.iterations;
   std::array<Vec<R, N>, 1 + penetration_starts<N>> starts;
   int count = 0;
@@ -178,7 +178,7 @@ Distance<T, N> solve(const Ellipsoid<T, N>& s, const Ellipsoid<T, N>& o, bool a_
     for (int i = 0; i < found; ++i) starts[count++] = sampled[i];
   }
   for (int i = 0; i < count; ++i) {
-    const auto d = detail::descend<R, N>(g, starts[i], options.max_iterations);
+    const auto d = detail::descend<R, N>(g, starts[i], options.max_distance_iterations);
     out.iterations += d.iterations;
     // The smallest phi wins (an unconverged one lower than every converged one makes the
     // answer uncertain); within rounding, a converged descent wins.

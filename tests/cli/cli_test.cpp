@@ -900,7 +900,7 @@ TEST(CliDistance, UnknownQueryNamesListTheAvailableOnes) {
 }
 
 // ------------------------------------------------------------------------------------------
-// Query options: --tolerance, --max-iterations, --max-motion-steps
+// Query options: --tolerance, the caps (--max-contact-iterations, ..., --max-motion-steps)
 // ------------------------------------------------------------------------------------------
 
 // Each invalid value is a usage error (exit 1) naming the option and the accepted range,
@@ -915,11 +915,11 @@ TEST(CliOptions, InvalidValuesNameTheOption) {
       {{"--tolerance", "1e-3"}, "--tolerance: must be 0 or in [1e-14, 1e-09] (got 0.001)"},
       {{"--tolerance", "1e-15"}, "--tolerance: must be 0 or in [1e-14, 1e-09] (got 1e-15)"},
       {{"--tolerance", "tiny"}, "--tolerance"},
-      {{"--max-iterations", "0"}, "--max-iterations: must be in [1, 100000] (got 0)"},
-      {{"--max-iterations", "-3"}, "--max-iterations: must be in [1, 100000] (got -3)"},
-      {{"--max-iterations", "100001"}, "--max-iterations: must be in [1, 100000] (got 100001)"},
-      {{"--max-iterations", "4294967360"}, "--max-iterations: must be in [1, 100000] (got 4294967360)"},
-      {{"--max-iterations", "2.5"}, "--max-iterations"},
+      {{"--max-contact-iterations", "0"}, "--max-contact-iterations: must be in [1, 100000] (got 0)"},
+      {{"--max-contact-iterations", "-3"}, "--max-contact-iterations: must be in [1, 100000] (got -3)"},
+      {{"--max-contact-iterations", "100001"}, "--max-contact-iterations: must be in [1, 100000] (got 100001)"},
+      {{"--max-contact-iterations", "4294967360"}, "--max-contact-iterations: must be in [1, 100000] (got 4294967360)"},
+      {{"--max-contact-iterations", "2.5"}, "--max-contact-iterations"},
       {{"--max-motion-steps", "0"}, "--max-motion-steps: must be in [1, 1000000] (got 0)"},
       {{"--max-motion-steps", "1000001"}, "--max-motion-steps: must be in [1, 1000000] (got 1000001)"},
   };
@@ -961,10 +961,10 @@ TEST(CliOptions, OptionsReachTheQueries) {
 
   write_file(dir / "circles.json", circles_scene);
   const std::string circles = (dir / "circles.json").string();
-  const Outcome capped = run_cli({"check", circles, "--max-iterations", "1"}, dir);
+  const Outcome capped = run_cli({"check", circles, "--max-contact-iterations", "1"}, dir);
   ASSERT_EQ(capped.code, 0) << describe(capped);
   EXPECT_EQ(parse_json(capped.out)["results"][0]["contact"]["status"], "did_not_converge");
-  const Outcome enough = run_cli({"check", circles, "--max-iterations", "100000", "--max-motion-steps", "1000000"}, dir);
+  const Outcome enough = run_cli({"check", circles, "--max-contact-iterations", "100000", "--max-motion-steps", "1000000"}, dir);
   ASSERT_EQ(enough.code, 0) << describe(enough);
   EXPECT_EQ(parse_json(enough.out)["results"][0]["contact"]["status"], "hit");
 }

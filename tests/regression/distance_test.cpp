@@ -94,9 +94,9 @@ void check_unconverged_bounds() {
       const auto c = scenarios::make_case<N>(category, seed);
       const auto r = ref::signed_distance<N>(ref::to_ref(c.a), ref::to_ref(c.b));
       const double scale = scale_of<N>(c.a, c.b, ref::to_double(r.distance));
-      for (int cap = 1; cap <= 6; ++cap) {  // Options::max_iterations is at least 1
+      for (int cap = 1; cap <= 6; ++cap) {  // Options::max_distance_iterations is at least 1
         Options options;
-        options.max_iterations = cap;
+        options.max_distance_iterations = cap;
         const auto got = signed_distance(c.a, c.b, options);
         if (got.status != DistanceStatus::did_not_converge) continue;
         ++unconverged;

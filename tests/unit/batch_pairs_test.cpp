@@ -188,7 +188,7 @@ TEST(BatchPairs, EllipsesEqualScalar) {
 TEST(BatchPairs, OptionsReachThePairs) {
   const Cases<3> c(2);
   std::vector<Distance<double, 3>> out(c.size());
-  const Options capped{.max_iterations = 1};
+  const Options capped{.max_distance_iterations = 1};
   signed_distance<double, 3>(c.a, c.b, out, BatchOptions{capped, 0});
   std::size_t capped_answers = 0;
   for (std::size_t i = 0; i < c.size(); ++i) {

@@ -108,6 +108,20 @@ TEST(Capsule, BallFallsOntoALyingCapsule) {
   EXPECT_NEAR(g.time, 5, 1e-6);
 }
 
+// Options::max_contact_iterations caps the contact-time Newton: a graze (a double root,
+// which Newton approaches linearly) stopped after one step is did_not_converge, its time an
+// iterate short of the contact.
+TEST(Capsule, ContactIterationCapIsReported) {
+  const auto graze = make_ball<double, 3>(V3(4.5, 0, 5), 1.0);
+  const auto lying = make_capsule<double, 3>(V3(-3, 0, 0), V3(3, 0, 0), 0.5);
+  const Contact<double, 3> full = first_contact(graze, V3(0, 0, -1), lying, V3::Zero(), inf);
+  ASSERT_EQ(full.status, ContactStatus::hit);
+  const Contact<double, 3> one =
+      first_contact(graze, V3(0, 0, -1), lying, V3::Zero(), inf, Options{.max_contact_iterations = 1});
+  EXPECT_EQ(one.status, ContactStatus::did_not_converge);
+  EXPECT_LT(one.time, full.time);
+}
+
 TEST(Capsule, StatusesAtTheStartAndBadMotion) {
   const auto ball = make_ball<double, 3>(V3(0, 0, 1.5), 1.0);
   const auto lying = make_capsule<double, 3>(V3(-3, 0, 0), V3(3, 0, 0), 0.5);

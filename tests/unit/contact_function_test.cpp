@@ -130,12 +130,12 @@ TEST(PerramWertheim, TinyOffsets) {
   }
 }
 
-// Options::max_iterations reached: the status says so and the bounds hold the 50-digit value.
+// Options::max_contact_function_iterations reached: the status says so and the bounds hold the 50-digit value.
 TEST(PerramWertheim, DidNotConvergeGivesBounds) {
   const auto a = make_ellipsoid<double>({0, 0, 0}, Quat<double>(0.8, 0.6, 0, 0), {3, 0.2, 1});
   const auto b = make_ellipsoid<double>({2, 1.5, -1}, Quat<double>(0.6, 0, 0.8, 0), {0.05, 2, 4});
   Options once;
-  once.max_iterations = 1;
+  once.max_contact_function_iterations = 1;
   const auto f = perram_wertheim(a, b, once);
   ASSERT_EQ(f.status, ContactFunctionStatus::did_not_converge);
   EXPECT_EQ(f.iterations, 1);

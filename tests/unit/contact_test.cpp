@@ -137,11 +137,11 @@ TEST(FirstContact, IterationCapIsReported) {
   const auto a = make_ellipse<double>({0, 0}, 0.3, {3, 1});
   const auto b = make_ellipse<double>({10, 1}, -0.2, {1, 2});
   Options o;
-  o.max_iterations = 1;
+  o.max_contact_iterations = 1;
   const auto c = contact2(a, {0, 0}, b, {-1, 0}, inf, o);
   EXPECT_EQ(c.status, ContactStatus::did_not_converge);
   EXPECT_EQ(c.iterations, 1);
-  o.max_iterations = 64;
+  o.max_contact_iterations = 64;
   EXPECT_EQ(contact2(a, {0, 0}, b, {-1, 0}, inf, o).status, ContactStatus::hit);
 }
 

@@ -182,7 +182,7 @@ TEST(Distance, IterationCapIsAStatus) {
   const auto b = make_ellipsoid<double>(Vec3<double>(2, 3, 1), Eigen::Quaterniond(0.3, 0.5, 0.1, 0.8).normalized(),
                                         Vec3<double>(4, 0.02, 0.5));
   Options options;
-  options.max_iterations = 1;
+  options.max_distance_iterations = 1;
   const auto d = distance(a, b, options);
   EXPECT_EQ(d.status, DistanceStatus::did_not_converge);
   EXPECT_EQ(d.iterations, 1);

@@ -189,7 +189,7 @@ TEST(EarliestContact, StoppedSearchGivesALowerBound) {
   // Too many slabs in a periodic box: the bound is the end of the last slab searched.
   const PeriodicBox<3> box{{6.0, 6.0, 6.0}};
   Options one;
-  one.max_motion_steps = 1;
+  one.max_slabs = 1;
   std::vector<Ellipsoid3<double>> pair{make_ball<double, 3>(Vec3<double>(1, 1, 1), 0.1),
                                        make_ball<double, 3>(Vec3<double>(1, 4, 4), 0.1)};
   std::vector<RigidMotion<double, 3>> parallel(2);

@@ -13,6 +13,7 @@
 #include <limits>
 #include <span>
 #include <string>
+#include <tuple>
 #include <type_traits>
 #include <vector>
 
@@ -27,9 +28,12 @@ constexpr double nan = std::numeric_limits<double>::quiet_NaN();
 
 // Options stays an aggregate of plain values: designated initializers, constant
 // expressions and memcpy keep working.
-constexpr Options designated{.tolerance = 1e-10, .max_iterations = 16, .max_motion_steps = 100};
-static_assert(designated.tolerance == 1e-10 && designated.max_iterations == 16 && designated.max_motion_steps == 100);
-static_assert(2 * Options{}.tolerance == 2e-12 && Options{}.max_iterations == 64 && Options{}.max_motion_steps == 10000);
+constexpr Options designated{.tolerance = 1e-10, .max_distance_iterations = 16, .max_motion_steps = 100};
+static_assert(designated.tolerance == 1e-10 && designated.max_distance_iterations == 16 &&
+              designated.max_contact_iterations == 64 && designated.max_motion_steps == 100);
+static_assert(2 * Options{}.tolerance == 2e-12 && Options{}.max_contact_iterations == 64 &&
+              Options{}.max_distance_iterations == 64 && Options{}.max_contact_function_iterations == 64 &&
+              Options{}.max_slide_rounds == 64 && Options{}.max_motion_steps == 10000 && Options{}.max_slabs == 10000);
 static_assert(std::is_aggregate_v<Options> && std::is_trivially_copyable_v<Options>);
 
 TEST(Options, InvalidToleranceNamesTheField) {
@@ -50,24 +54,34 @@ TEST(Options, InvalidToleranceNamesTheField) {
   }
 }
 
+// Each cap of Options: a member pointer, in Options' order.
+constexpr auto caps = std::make_tuple(&Options::max_contact_iterations, &Options::max_distance_iterations,
+                                      &Options::max_contact_function_iterations, &Options::max_slide_rounds,
+                                      &Options::max_motion_steps, &Options::max_slabs);
+
+template <class F>
+void for_each_cap(const F& f) {
+  std::apply([&](auto... member) { (f(member), ...); }, caps);
+}
+
 TEST(Options, InvalidCapsNameTheField) {
-  for (const std::int64_t n : {std::int64_t(0), std::int64_t(-1), std::int64_t(std::numeric_limits<int>::min()),
-                               std::int64_t(100001), std::int64_t(std::numeric_limits<int>::max()),
-                               std::int64_t(1) << 32, std::numeric_limits<std::int64_t>::min()}) {
-    expect_field([&] { (void)Options{.max_iterations = n}; }, "max_iterations");
+  for_each_cap([]<class Cap>(Cap Options::*member) {
+    const std::string field = Cap::field;
+    const int before = Options{}.*member;
+    for (const std::int64_t n : {std::int64_t(0), std::int64_t(-1), std::int64_t(std::numeric_limits<int>::min()),
+                                 std::int64_t(Cap::max) + 1, std::int64_t(std::numeric_limits<int>::max()),
+                                 std::int64_t(1) << 32, std::numeric_limits<std::int64_t>::min()}) {
+      Options o;
+      expect_field([&] { o.*member = n; }, field);
+      EXPECT_EQ(o.*member, before) << field << ": a rejected assignment leaves the old value";
+    }
+    // Unsigned values beyond int are rejected as given, not wrapped into the range.
     Options o;
-    expect_field([&] { o.max_iterations = n; }, "max_iterations");
-    EXPECT_EQ(o.max_iterations, 64);
-  }
-  for (const std::int64_t n : {std::int64_t(0), std::int64_t(-5), std::int64_t(1000001), std::int64_t(1) << 32}) {
-    expect_field([&] { (void)Options{.max_motion_steps = n}; }, "max_motion_steps");
-    Options o;
-    expect_field([&] { o.max_motion_steps = n; }, "max_motion_steps");
-    EXPECT_EQ(o.max_motion_steps, 10000);
-  }
-  // Unsigned values beyond int are rejected as given, not wrapped into the range.
-  expect_field([] { (void)Options{.max_iterations = std::numeric_limits<std::uint64_t>::max()}; }, "max_iterations");
-  expect_field([] { (void)Options{.max_motion_steps = (std::uint64_t(1) << 32) + 5}; }, "max_motion_steps");
+    expect_field([&] { o.*member = std::numeric_limits<std::uint64_t>::max(); }, field);
+    expect_field([&] { o.*member = (std::uint64_t(1) << 32) + 5; }, field);
+  });
+  expect_field([] { (void)Options{.max_contact_iterations = 0}; }, "max_contact_iterations");
+  expect_field([] { (void)Options{.max_slabs = 1000001}; }, "max_slabs");
   try {
     (void)Options{.max_motion_steps = std::numeric_limits<std::uint64_t>::max()};
     ADD_FAILURE() << "no InputError";
@@ -76,17 +90,20 @@ TEST(Options, InvalidCapsNameTheField) {
   }
 }
 
-TEST(Options, TheRangeEndsAreAccepted) {
+TEST(Options, TheRangeEndsAreAcceptedAndEachCapIsItsOwn) {
   EXPECT_EQ(Options{.tolerance = Tolerance::min}.tolerance, 1e-14);
   EXPECT_EQ(Options{.tolerance = Tolerance::max}.tolerance, 1e-9);
-  const Options low{.max_iterations = 1, .max_motion_steps = std::size_t(1)};
-  EXPECT_EQ(low.max_iterations, 1);
-  EXPECT_EQ(low.max_motion_steps, 1);
-  Options high;
-  high.max_iterations = 100000;
-  high.max_motion_steps = 1000000;
-  EXPECT_EQ(high.max_iterations, 100000);
-  EXPECT_EQ(high.max_motion_steps, 1000000);
+  for_each_cap([]<class Cap>(Cap Options::*member) {
+    Options o;
+    o.*member = std::size_t(1);
+    EXPECT_EQ(o.*member, 1) << Cap::field;
+    o.*member = Cap::max;
+    EXPECT_EQ(o.*member, Cap::max) << Cap::field;
+    // The other caps keep their defaults.
+    for_each_cap([&]<class Other>(Other Options::*other) {
+      if constexpr (!std::is_same_v<Other, Cap>) EXPECT_EQ(o.*other, Options{}.*other) << Cap::field << " moved " << Other::field;
+    });
+  });
 }
 
 // The answer every query should give, and what each reports for it.

@@ -98,7 +98,7 @@ TEST(CollideAndSlide, StartStatesAndBadInput) {
   EXPECT_EQ(collide_and_slide(ball, V3(1, 1, 1), std::span<const HalfSpace<double, 3>>()).status, SlideStatus::moved);
   // A round cap of 1: stopped at the floor with displacement left.
   Options one;
-  one.max_iterations = 1;
+  one.max_slide_rounds = 1;
   EXPECT_EQ(collide_and_slide(ball, V3(4, 0, -3), std::span(floor), one).status, SlideStatus::blocked);
 }
 

@@ -215,7 +215,7 @@ Vec2<double> touching_point(const Ellipse2<double>& body, const Triangle<double,
 // repeated index makes a segment) towards the target (tx, ty): the slide, its path round by
 // round with the triangle hit and the contact point of each round that ended at a contact,
 // and at the end the mesh's relation and each triangle touched with its contact point.
-// Slide holds no per-round record, so the rounds are replayed: with Options::max_iterations
+// Slide holds no per-round record, so the rounds are replayed: with Options::max_slide_rounds
 // = k the slide makes its first k rounds (slide.hpp), those of the uncapped call (the
 // triangle queries are closed forms, untouched by the cap: triangle.hpp); k runs to the
 // first cap at which the slide is not blocked, which is the number of rounds.
@@ -238,8 +238,8 @@ Answer mesh_slide(const Params& p) {
   std::vector<double> path = list(e.center()), hit_points;
   std::vector<int> hits;
   if (s.status == SlideStatus::moved || s.status == SlideStatus::slid || s.status == SlideStatus::blocked) {
-    for (Options cap; rounds < Options{}.max_iterations;) {
-      cap.max_iterations = ++rounds;
+    for (Options cap; rounds < Options{}.max_slide_rounds;) {
+      cap.max_slide_rounds = ++rounds;
       const Slide<double, 2> r = collide_and_slide(e, displacement, mesh, cap);
       path.insert(path.end(), {r.body.center().x(), r.body.center().y()});
       if (r.contacts > static_cast<int>(hits.size())) {

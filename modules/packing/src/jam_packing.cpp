@@ -6,6 +6,7 @@
 #include "mechanics.hpp"
 
 #include <algorithm>
+#include <iterator>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -20,12 +21,9 @@ using packing::inertia;
 using packing::volume;
 
 std::string_view to_string(PackingStatus s) noexcept {
-  switch (s) {
-    case PackingStatus::jammed: return "jammed";
-    case PackingStatus::collision_limit: return "collision_limit";
-    case PackingStatus::no_start: return "no_start";
-  }
-  return "?";
+  static constexpr std::string_view names[] = {"jammed", "collision_limit", "no_start"};  // in the enum's order
+  const auto k = static_cast<std::size_t>(s);
+  return k < std::size(names) ? names[k] : "?";
 }
 
 GrowthSchedule::GrowthSchedule(std::vector<GrowthStage> stages) : stages_(std::move(stages)) {
