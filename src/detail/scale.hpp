@@ -56,17 +56,19 @@ inline constexpr int native_exponent = 64;
 inline constexpr int ratio_bits = 160;
 inline constexpr int offset_bits = 340;
 
-enum class Range { native, scaled, wide };
+enum class Range : std::uint8_t { native, scaled, wide };
 
+// Eight bytes, so that it returns in one register (|F| < 2^15).
 struct Scale {
   Range range = Range::native;
-  int exponent = 0;  // E: the query runs on the bodies times 2^-E (Range::scaled)
-  int time = 0;      // F: and on times times 2^F (first contact: time_exponent)
+  std::int16_t time = 0;  // F: and on times times 2^F (first contact: time_exponent)
+  int exponent = 0;       // E: the query runs on the bodies times 2^-E (Range::scaled)
   // Whether the query runs on its inputs as given, in the working type.
   bool as_given() const noexcept { return range == Range::native && time == 0; }
   // Whether the working type holds the query's squares and cubes (else the wide type).
   bool representable() const noexcept { return range != Range::wide; }
 };
+static_assert(sizeof(Scale) == 8);
 
 // Largest magnitude of a vector's coordinates.
 template <class D>
@@ -85,9 +87,9 @@ Scale scale_of(T r_max, T r_min, T coordinate) noexcept {
     if (r_max >= 0x1p-64 && r_max < 0x1p65 && r_min >= r_max * 0x1p-160 && coordinate <= r_max * 0x1p340) return {};
     const int e = ilogb(r_max);
     if (ilogb(r_min) < e - ratio_bits || (coordinate > 0 && ilogb(coordinate) > e + offset_bits))
-      return {Range::wide, 0};
+      return {Range::wide};
     if (e >= -native_exponent && e <= native_exponent) return {};
-    return {Range::scaled, e};
+    return {Range::scaled, 0, e};
   }
 }
 
@@ -223,15 +225,17 @@ struct Units {
   }
 };
 
-// Runs the query at the scale: query.template operator()<W>(units) with W = R and the
-// inputs as given (native), W = R and rescaled Units (lengths beyond the native window, or
-// time rescaled), or W the wide type and the inputs as given (wide). The query converts
-// its inputs and answers through the Units it is given.
-template <class R, class Query>
-[[gnu::always_inline]] inline auto at_scale(const Scale& scale, Query&& query) {
-  if (scale.as_given()) return query.template operator()<R>(Units<false>{});
-  if (scale.range == Range::wide) return query.template operator()<WideFloat>(Units<false>{});
-  return query.template operator()<R>(Units<true>{scale.exponent, scale.time});
+// Runs the query at the scale: query.template operator()<W>(units, args...) with W = R and
+// the inputs as given (native), W = R and rescaled Units (lengths beyond the native window,
+// or time rescaled), or W the wide type and the inputs as given (wide). The query converts
+// its inputs and answers through the Units it is given. A query that captures its inputs
+// passes no args; one whose native path is only a few dozen instructions (overlap) passes
+// them as args to a function object instead, so that nothing is built before the branch.
+template <class R, class Query, class... Args>
+[[gnu::always_inline]] inline auto at_scale(const Scale& scale, Query&& query, const Args&... args) {
+  if (scale.as_given()) [[likely]] return query.template operator()<R>(Units<false>{}, args...);
+  if (scale.range == Range::wide) return query.template operator()<WideFloat>(Units<false>{}, args...);
+  return query.template operator()<R>(Units<true>{scale.exponent, scale.time}, args...);
 }
 
 // For a query that scales its inputs itself (the half-space gaps, the polytope support, the
