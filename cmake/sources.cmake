@@ -8,3 +8,7 @@ file(GLOB_RECURSE ellipsect_sources CONFIGURE_DEPENDS ${ellipsect_source_root}/*
 # (A unity build compiles files with options of their own alone.)
 set_source_files_properties(${ellipsect_source_root}/many/batch_kernels.cpp ${ellipsect_source_root}/obstacles/half_space.cpp
                             ${ellipsect_source_root}/obstacles/triangle.cpp PROPERTIES COMPILE_OPTIONS -ffp-contract=off)
+# The files that compute in rationals (detail/rational.hpp): GMP's where the build has it
+# (the library), Boost's own otherwise (the page). Each is compiled alone, so that every
+# file sees one rational type.
+set(ellipsect_exact_sources ${ellipsect_source_root}/pair/exact_relation.cpp ${ellipsect_source_root}/geometry/enclosing.cpp)

@@ -11,6 +11,7 @@
 #include <ellipsect/contact.hpp>
 #include <ellipsect/contact_function.hpp>
 #include <ellipsect/distance.hpp>
+#include <ellipsect/geometry.hpp>
 #include <ellipsect/gpu.hpp>
 #include <ellipsect/gradient.hpp>
 #include <ellipsect/half_space.hpp>

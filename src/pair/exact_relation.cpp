@@ -25,14 +25,8 @@
 // (it terminates: distinct roots of rational polynomials are a positive distance apart).
 #include "detail/exact_relation.hpp"
 
-#include "detail/axes.hpp"
 #include "detail/instantiate.hpp"
-
-#if ELLIPSECT_EXACT_GMP
-#include <boost/multiprecision/gmp.hpp>
-#else
-#include <boost/multiprecision/cpp_int.hpp>
-#endif
+#include "detail/rational.hpp"
 
 #include <array>
 #include <cstddef>
@@ -43,13 +37,7 @@ namespace ellipsect::detail {
 
 namespace {
 
-// GMP's rationals where the build has GMP (CMakeLists.txt), Boost's own otherwise (the
-// WebAssembly page): the same results, GMP about ten times sooner.
-#if ELLIPSECT_EXACT_GMP
-using Q = boost::multiprecision::mpq_rational;
-#else
-using Q = boost::multiprecision::cpp_rational;
-#endif
+using namespace rational;
 
 // Coefficients from the constant term up, no zero leading coefficient (0 is empty).
 using Poly = std::vector<Q>;
@@ -57,8 +45,6 @@ using Poly = std::vector<Q>;
 void trim(Poly& p) {
   while (!p.empty() && p.back() == 0) p.pop_back();
 }
-
-using Z = decltype(numerator(Q()));
 
 // p times the positive rational that makes its coefficients coprime integers: the same
 // signs everywhere, the shortest numbers (every polynomial kept below is so reduced).
@@ -198,87 +184,12 @@ Poly interpolate(const std::vector<Q>& x, std::vector<Q> y) {
   return primitive(std::move(p));
 }
 
-template <int N> using QVec = std::array<Q, N>;
-template <int N> using QMat = std::array<QVec<N>, N>;
-
-template <int N>
-Q dot(const QVec<N>& u, const QVec<N>& v) {
-  Q s = 0;
-  for (int i = 0; i < N; ++i) s += u[i] * v[i];
-  return s;
-}
-
-template <int N>
-QVec<N> times(const QMat<N>& m, const QVec<N>& v) {
-  QVec<N> r;
-  for (int i = 0; i < N; ++i) r[i] = dot<N>(m[i], v);
-  return r;
-}
-
-// det m and, where it is nonzero, det m * u^T m^-1 v, by Gaussian elimination.
-template <int N>
-std::pair<Q, Q> det_and_form(QMat<N> m, const QVec<N>& u, QVec<N> v) {
-  Q det = 1;
-  for (int c = 0; c < N; ++c) {
-    int p = c;
-    while (p < N && m[p][c] == 0) ++p;
-    if (p == N) return {Q(0), Q(0)};
-    if (p != c) {
-      std::swap(m[p], m[c]);
-      std::swap(v[p], v[c]);
-      det = -det;
-    }
-    det *= m[c][c];
-    for (int r = c + 1; r < N; ++r) {
-      if (m[r][c] == 0) continue;
-      const Q f = m[r][c] / m[c][c];
-      for (int k = c; k < N; ++k) m[r][k] -= f * m[c][k];
-      v[r] -= f * v[c];
-    }
-  }
-  QVec<N> x;
-  for (int r = N - 1; r >= 0; --r) {
-    Q s = v[r];
-    for (int k = r + 1; k < N; ++k) s -= m[r][k] * x[k];
-    x[r] = s / m[r][r];
-  }
-  return {det, det * dot<N>(u, x)};
-}
-
 template <int N>
 QMat<N> combination(const Q& s, const QMat<N>& a, const Q& t, const QMat<N>& b) {
   QMat<N> m;
   for (int i = 0; i < N; ++i)
     for (int j = 0; j < N; ++j) m[i][j] = s * a[i][j] + t * b[i][j];
   return m;
-}
-
-template <int N>
-struct Body {
-  QVec<N> center;
-  QMat<N> quadric;  // axes diag(radii)^-2 axes^T
-};
-
-// The body every query computes with: double's stored axes as given; float's their
-// orthonormal polar factor in double (detail/axes.hpp), exact from there.
-template <class T, int N>
-Body<N> exact_body(const Ellipsoid<T, N>& e) {
-  const Mat<double, N> axes = work_axes<double>(e);
-  Body<N> b;
-  std::array<Q, N> inv_r2;
-  for (int k = 0; k < N; ++k) {
-    const Q r = Q(double(e.radii()[k]));
-    inv_r2[k] = 1 / (r * r);
-  }
-  for (int i = 0; i < N; ++i) {
-    b.center[i] = Q(double(e.center()[i]));
-    for (int j = 0; j < N; ++j) {
-      Q s = 0;
-      for (int k = 0; k < N; ++k) s += Q(axes(i, k)) * Q(axes(j, k)) * inv_r2[k];
-      b.quadric[i][j] = s;
-    }
-  }
-  return b;
 }
 
 // Whether the closed bodies are apart (-1), touch (0) or their interiors meet (+1).
