@@ -11,7 +11,8 @@ HalfSpace (3D), a Box2 / Box3, a Capsule2 / Capsule3, a Triangle2 / Triangle3 or
 TriangleMesh2 / TriangleMesh3 (the answer then names the triangle); collide_and_slide moves
 a body through a list of half-spaces or a mesh. Among many bodies,
 overlapping_pairs and earliest_contact (open space or a periodic box); jam_packing
-compresses growing bodies to a jammed packing. Every number comes
+compresses growing bodies to a jammed packing; enclosing_ellipsoid gives the certified
+minimum-volume ellipse or ellipsoid of a point cloud. Every number comes
 from the library; batch answers equal the scalar ones bit for bit. Pictures: ellipsect.plot;
 Dask: ellipsect.dask. Derivatives: signed_distance_gradient, perram_wertheim_gradient,
 closest_approach_gradient, first_contact_gradient (the time and the point), and in 2D
@@ -48,6 +49,7 @@ from ._ellipsect import (  # noqa: F401
     Ellipses,
     Ellipsoid,
     Ellipsoids,
+    Enclosing,
     GradientArrays,
     HalfPlane,
     HalfSpace,
@@ -90,6 +92,7 @@ from ._ellipsect import (  # noqa: F401
     closest_point_quartic,
     distance,
     earliest_contact,
+    enclosing_ellipsoid,
     gpu_info,
     first_contact,
     first_contact_gradient,
@@ -145,6 +148,7 @@ __all__ = [
     "Ellipses",
     "Ellipsoid",
     "Ellipsoids",
+    "Enclosing",
     "GradientArrays",
     "HalfPlane",
     "HalfSpace",
@@ -187,6 +191,7 @@ __all__ = [
     "collide_and_slide",
     "distance",
     "earliest_contact",
+    "enclosing_ellipsoid",
     "first_contact",
     "first_contact_gradient",
     "gpu_info",

@@ -250,6 +250,7 @@ inline py::array_t<std::int64_t> integers(py::handle obj, const std::string& nam
 void def_scalar(py::module_& m);
 void def_batch(py::module_& m);
 void def_packing(py::module_& m);
+void def_geometry(py::module_& m);
 
 }  // namespace ellipsect::python
 

@@ -1099,6 +1099,7 @@ PYBIND11_MODULE(_ellipsect, m) {
   ellipsect::python::def_scalar(m);
   ellipsect::python::def_batch(m);
   ellipsect::python::def_packing(m);
+  ellipsect::python::def_geometry(m);
   m.def("simd_target", &ellipsect::simd_target,
         ellipsect::python::docs::doc("The instruction set the batch functions use (batch.hpp).", "(none)", "str.")
             .c_str());

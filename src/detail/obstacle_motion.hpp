@@ -6,7 +6,8 @@
 // radius): a lower bound on the distance whatever the accuracy of n.
 //
 // The obstacle's part is ObstacleTraits<Shape>, specialized in the obstacle's own file
-// (obstacles/<shape>.cpp), which defines its public first_contact with the macro at the end
+// (obstacles/<shape>.cpp; a polytope's derives lowest and coordinate from its
+// PolytopeTraits through PolytopeObstacle), which defines its public first_contact with the macro at the end
 // and instantiates it with its other queries (instantiate.hpp, ELLIPSECT_INSTANTIATE_OBSTACLE):
 //   static Lowest lowest(const Vec<R, N>& n, const Shape&)   least n . x and its terms' size
 //                                                            (-inf where unbounded along -n)
@@ -19,6 +20,7 @@
 #include <ellipsect/distance.hpp>
 
 #include "contact_start.hpp"
+#include "polytope_distance.hpp"
 #include "reduce.hpp"
 #include "rigid_motion.hpp"
 #include "scale.hpp"
@@ -62,6 +64,17 @@ T largest(const std::array<Vec<T, N>, K>& points) noexcept {
   for (const auto& p : points) out = std::max(out, detail::max_abs(p));
   return out;
 }
+
+// The lowest point and largest coordinate of a convex polytope (a triangle, a box), from its
+// vertices (PolytopeTraits, polytope_distance.hpp): its ObstacleTraits derive from this and add
+// inner_point.
+template <class T, int N, class Shape>
+struct PolytopeObstacle {
+  static Lowest lowest(const Vec<R, N>& n, const Shape& shape) noexcept {
+    return lowest_of(n, PolytopeTraits<Shape>::vertices(shape), R(0));
+  }
+  static T coordinate(const Shape& shape) noexcept { return largest(PolytopeTraits<Shape>::vertices(shape)); }
+};
 
 // A convex shape at rest as the second party of the advancement.
 template <class T, int N, class Shape>

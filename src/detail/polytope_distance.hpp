@@ -359,6 +359,16 @@ W status_band(const Options& options, W radius, W spread, W coordinate) noexcept
          W(16) * W(std::numeric_limits<T>::epsilon()) * (radius + coordinate);
 }
 
+// A convex polytope's description, specialized in the shape's own file (obstacles/NAME.cpp),
+// for the mechanisms that consume it: the polytope distance (below) and the rigid
+// advancement's lowest point and largest coordinate (obstacle_motion.hpp, PolytopeObstacle):
+//   static std::array<Vec<T, N>, K> vertices(const Shape&)   at most 8
+//   static constexpr std::array<std::array<int, 2>, E> edges  vertex pairs
+//   static constexpr std::array<std::array<int, 3>, F> faces  three vertices of each face (3D;
+//                                                             none in 2D, where the edges are)
+template <class Shape>
+struct PolytopeTraits;
+
 // The signed distance with classify's relation as status, `classify()` asked only where the
 // gap leaves it in doubt (status_band).
 template <class T, int N, class Classify>
@@ -383,6 +393,15 @@ Distance<T, N> polytope_signed_distance(const Ellipsoid<T, N>& body, std::span<c
                             : W(s.gap) < -band                        ? Relation::overlapping
                                                                       : classify();
   return distance_of(s, T(0), relation);
+}
+
+// The same for a polytope shape, from its PolytopeTraits.
+template <class T, int N, class Shape, class Classify>
+Distance<T, N> polytope_signed_distance(const Ellipsoid<T, N>& body, const Shape& shape, const Options& options,
+                                        Classify&& classify, Near near = {}) noexcept {
+  using P = PolytopeTraits<Shape>;
+  const auto vertices = P::vertices(shape);
+  return polytope_signed_distance<T, N>(body, vertices, P::edges, P::faces, options, classify, near);
 }
 
 // distance() from signed_distance(): overlapping bodies get 0 and NaN points and normal.

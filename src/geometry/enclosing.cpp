@@ -113,23 +113,33 @@ std::vector<std::size_t> extreme_points(const std::vector<V<N>>& y) {
   return chosen;
 }
 
-// ln det M(u), M(u) = sum_i u_i q_i q_i^T with q_i = (z_i, 1), and its factorization.
+// ln det M(u), M(u) = sum_i u_i q_i q_i^T with q_i = (z_i, 1), and its factorization, in long
+// double: the weights' excess max omega / n - 1 is resolved to about 1e-13 where double's
+// rounding leaves it at 1e-10 (for points nearly all on the optimum's boundary).
+using L = long double;
+using LVector = Eigen::Matrix<L, Eigen::Dynamic, 1>;
+using LMatrix = Eigen::Matrix<L, Eigen::Dynamic, Eigen::Dynamic>;
+
 template <int N>
 struct Lifted {
   static constexpr int n = N + 1;
-  using Q = Eigen::Matrix<double, n, 1>;
-  Eigen::LDLT<Eigen::Matrix<double, n, n>> ldlt;
-  double log_det = 0;
+  using Q = Eigen::Matrix<L, n, 1>;
+  Eigen::LDLT<Eigen::Matrix<L, n, n>> ldlt;
+  L log_det = 0;
   Lifted(const std::vector<V<N>>& z, const std::vector<double>& u) {
-    Eigen::Matrix<double, n, n> m = Eigen::Matrix<double, n, n>::Zero();
-    for (std::size_t i = 0; i < z.size(); ++i) m.noalias() += u[i] * lift(z[i]) * lift(z[i]).transpose();
+    Eigen::Matrix<L, n, n> m = Eigen::Matrix<L, n, n>::Zero();
+    for (std::size_t i = 0; i < z.size(); ++i) m.noalias() += L(u[i]) * lift(z[i]) * lift(z[i]).transpose();
     ldlt.compute(m);
     log_det = ldlt.vectorD().array().log().sum();
   }
   static Q lift(const V<N>& z) {
     Q q;
-    q << z, 1.0;
+    q << z.template cast<L>(), L(1);
     return q;
+  }
+  L omega(const V<N>& z) const {
+    const Q q = lift(z);
+    return q.dot(ldlt.solve(q));
   }
 };
 
@@ -144,28 +154,28 @@ bool newton_step(std::vector<double>& u, const std::vector<V<N>>& z, const Lifte
   for (std::size_t i = 0; i < u.size(); ++i)
     if (u[i] > 0) s.push_back(i);
   const Eigen::Index k = Eigen::Index(s.size());
-  Eigen::Matrix<double, Lift::n, Eigen::Dynamic> q(Lift::n, k);
+  Eigen::Matrix<L, Lift::n, Eigen::Dynamic> q(Lift::n, k);
   for (Eigen::Index i = 0; i < k; ++i) q.col(i) = Lift::lift(z[s[std::size_t(i)]]);
-  const Eigen::MatrixXd g = q.transpose() * at.ldlt.solve(q);
-  Eigen::MatrixXd h = g.cwiseProduct(g);
-  h.diagonal().array() += 1e-12 * h.diagonal().maxCoeff();
-  const Eigen::LDLT<Eigen::MatrixXd> hl(h);
-  const Eigen::VectorXd a = hl.solve(Eigen::VectorXd(g.diagonal())), b = hl.solve(Eigen::VectorXd::Ones(k));
-  const double lambda = a.sum() / b.sum();
-  const Eigen::VectorXd du = a - lambda * b;  // sum du = 0
-  double t = 1;
+  const LMatrix g = q.transpose() * at.ldlt.solve(q);
+  LMatrix h = g.cwiseProduct(g);
+  h.diagonal().array() += L(1e-12) * h.diagonal().maxCoeff();
+  const Eigen::LDLT<LMatrix> hl(h);
+  const LVector a = hl.solve(LVector(g.diagonal())), b = hl.solve(LVector::Ones(k));
+  const L lambda = a.sum() / b.sum();
+  const LVector du = a - lambda * b;  // sum du = 0
+  L t = 1;
   std::size_t blocking = s.size();
   for (Eigen::Index i = 0; i < k; ++i)
-    if (du[i] < 0 && -u[s[std::size_t(i)]] / du[i] < t) {
-      t = -u[s[std::size_t(i)]] / du[i];
+    if (du[i] < 0 && -L(u[s[std::size_t(i)]]) / du[i] < t) {
+      t = -L(u[s[std::size_t(i)]]) / du[i];
       blocking = std::size_t(i);
     }
   // Within about 1e-9 of the face's optimum (Newton's decrement) the full step is taken:
   // there ln det M grows by less than its rounding.
-  const bool close = Eigen::VectorXd(g.diagonal()).dot(du) < 1e-9;
+  const bool close = LVector(g.diagonal()).dot(du) < L(1e-9);
   for (int halving = 0; halving < 30; ++halving, t /= 2, blocking = s.size()) {
     std::vector<double> next = u;
-    for (Eigen::Index i = 0; i < k; ++i) next[s[std::size_t(i)]] = std::max(0.0, u[s[std::size_t(i)]] + t * du[i]);
+    for (Eigen::Index i = 0; i < k; ++i) next[s[std::size_t(i)]] = double(std::max(L(0), L(u[s[std::size_t(i)]]) + t * du[i]));
     if (blocking < s.size()) next[s[blocking]] = 0;
     const double total = std::accumulate(next.begin(), next.end(), 0.0);
     for (double& v : next) v /= total;
@@ -187,18 +197,17 @@ enum class Ascent { reached, stalled, capped };
 template <int N>
 Ascent ascend(Working<N>& w, double eps, std::int64_t& budget, std::int64_t& iterations) {
   constexpr int n = N + 1;
-  std::vector<double> omega(w.z.size());
+  std::vector<L> omega(w.z.size());
   double best = std::numeric_limits<double>::infinity();
   for (int since = 0;; ++since) {
     const Lifted<N> at(w.z, w.u);
     std::size_t up = 0, down = w.z.size();
     for (std::size_t i = 0; i < w.z.size(); ++i) {
-      const auto q = Lifted<N>::lift(w.z[i]);
-      omega[i] = q.dot(at.ldlt.solve(q));
+      omega[i] = at.omega(w.z[i]);
       if (omega[i] > omega[up]) up = i;
       if (w.u[i] > 0 && (down == w.z.size() || omega[i] < omega[down])) down = i;
     }
-    const double plus = omega[up] / n - 1, minus = 1 - omega[down] / n;
+    const double plus = double(omega[up] / n - 1), minus = double(1 - omega[down] / n);
     if (plus <= eps) return Ascent::reached;
     if (budget <= 0) return Ascent::capped;
     // No halving of the excess in 100 steps: the weights are at their rounding's floor
@@ -209,12 +218,12 @@ Ascent ascend(Working<N>& w, double eps, std::int64_t& budget, std::int64_t& ite
     ++iterations;
     if (w.u[up] > 0 && newton_step<N>(w.u, w.z, at)) continue;
     if (plus >= minus || w.u[down] >= 1) {
-      const double beta = (omega[up] - n) / (n * (omega[up] - 1));
+      const double beta = double((omega[up] - n) / (n * (omega[up] - 1)));
       for (double& u : w.u) u *= 1 - beta;
       w.u[up] += beta;
     } else {
       const double most = w.u[down] / (1 - w.u[down]);
-      const double beta = omega[down] > 1 ? std::min((n - omega[down]) / (n * (omega[down] - 1)), most) : most;
+      const double beta = omega[down] > 1 ? std::min(double((n - omega[down]) / (n * (omega[down] - 1))), most) : most;
       for (double& u : w.u) u *= 1 + beta;
       w.u[down] = beta == most ? 0 : w.u[down] - beta;
     }
@@ -236,6 +245,11 @@ Frame<N> frame_of(const Working<N>& w, const Frame<N>& frame) {
   return out;
 }
 
+InputError unrepresentable() {
+  return InputError("points", "no ellipsoid stored in the type holds them: its aspect ratio would exceed 1e8 (points close to "
+                              "a line or plane) or its radii the type's range");
+}
+
 // The body of the weights' ellipsoid grown to hold every point (rho, geometry.hpp), in T:
 // its axes the eigenvectors of S_u, its radii sqrt(N rho lambda) 2^k, about the center.
 template <class T, int N>
@@ -252,7 +266,7 @@ Ellipsoid<T, N> body_of(const Cloud<T, N>& cloud, const Frame<N>& frame) {
   try {
     return Ellipsoid<T, N>::from_axes(center.template cast<T>(), eig.eigenvectors().template cast<T>(), radii);
   } catch (const InputError&) {
-    throw InputError("points", "are too close to a line or plane: their enclosing ellipsoid's aspect ratio exceeds 1e8");
+    throw unrepresentable();
   }
 }
 
@@ -287,10 +301,12 @@ double excess_form(const detail::rational::Body<N>& b, const Vec<double, N>& p) 
   return q <= 1 ? 0 : static_cast<double>(q) * (1 + 2 * std::numeric_limits<double>::epsilon());
 }
 
-// The body grown by the least factor (up to a few ulps) that makes it hold every point.
+// The body grown by the least factor (up to a few ulps) that makes it hold every point: each
+// round grows it by the largest excess and a margin of ulps that doubles, so that a few
+// rounds suffice (the margin passes any rounding within 60).
 template <class T, int N>
 Ellipsoid<T, N> grown_to_hold(Ellipsoid<T, N> body, std::span<const Vec<T, N>> points) {
-  for (int round = 0;; ++round) {
+  for (int round = 0; round < 60; ++round) {
     const Form<T, N> form(body);
     double worst = 0;
     std::vector<std::size_t> unsure;
@@ -307,8 +323,13 @@ Ellipsoid<T, N> grown_to_hold(Ellipsoid<T, N> body, std::span<const Vec<T, N>> p
     }
     // Grow by sqrt(worst) and a margin of ulps of T that doubles each round.
     const T factor = T(std::sqrt(worst) * (1 + std::ldexp(double(std::numeric_limits<T>::epsilon()), round + 2)));
-    body = Ellipsoid<T, N>::from_axes(body.center(), body.axes(), Vec<T, N>(body.radii() * factor));
+    try {
+      body = Ellipsoid<T, N>::from_axes(body.center(), body.axes(), Vec<T, N>(body.radii() * factor));
+    } catch (const InputError&) {
+      throw unrepresentable();
+    }
   }
+  throw unrepresentable();
 }
 
 // vol(body) / (the weights' lower bound) - 1, in rationals, rounded up (geometry.hpp):
@@ -360,16 +381,19 @@ EnclosingEllipsoid<T, N> enclosing_ellipsoid(std::span<const Vec<T, N>> points, 
   std::vector<char> in_set(cloud.y.size(), 0);
   for (std::size_t i : w.index) in_set[i] = 1;
   Frame<N> frame;
-  bool converged = false, stalled = false;
+  bool capped = false, stalled = false;
   for (const double eps : {std::max(tight, 1e-4), tight}) {
     for (;;) {
       ++out.passes;
       w.z.clear();
       for (std::size_t i : w.index) w.z.push_back(frame.whiten(cloud.y[i]));
       const Ascent ascent = ascend<N>(w, eps, budget, out.iterations);
-      stalled = stalled || ascent == Ascent::stalled;
       frame = frame_of<N>(w, frame);
-      if (ascent == Ascent::capped) break;
+      capped = ascent == Ascent::capped;
+      stalled = stalled || ascent == Ascent::stalled;
+      // Capped, or at the rounding's floor: the weights are as good as they get (the body
+      // is grown to hold every point all the same, and its gap certified).
+      if (ascent != Ascent::reached) break;
       // The points the weights' ellipsoid leaves out by more than eps: the worst 32 join.
       std::vector<std::pair<double, std::size_t>> out_of;
       for (std::size_t i = 0; i < cloud.y.size(); ++i) {
@@ -377,10 +401,7 @@ EnclosingEllipsoid<T, N> enclosing_ellipsoid(std::span<const Vec<T, N>> points, 
         const double omega = frame.omega(cloud.y[i]);
         if (omega > (1 + eps) * n) out_of.emplace_back(omega, i);
       }
-      if (out_of.empty()) {
-        converged = true;
-        break;
-      }
+      if (out_of.empty()) break;
       const std::size_t join = std::min<std::size_t>(out_of.size(), 32);
       std::partial_sort(out_of.begin(), out_of.begin() + std::ptrdiff_t(join), out_of.end(), std::greater<>());
       // Unweighted points well inside leave the set (a core set of tens of points).
@@ -400,10 +421,9 @@ EnclosingEllipsoid<T, N> enclosing_ellipsoid(std::span<const Vec<T, N>> points, 
       }
       w = std::move(kept);
     }
-    if (!converged) break;
-    if (eps != tight) converged = false;
+    if (capped) break;
   }
-  out.status = converged ? EnclosingStatus::optimal : EnclosingStatus::did_not_converge;
+
   for (std::size_t k = 0; k < w.index.size(); ++k)
     if (w.u[k] > 0) {
       out.support.push_back(w.index[k]);
@@ -411,8 +431,9 @@ EnclosingEllipsoid<T, N> enclosing_ellipsoid(std::span<const Vec<T, N>> points, 
     }
   out.body = grown_to_hold<T, N>(body_of<T, N>(cloud, frame), points);
   out.volume_gap = certified_gap<T, N>(out.body, points, out.support, out.weights);
-  if (converged && out.volume_gap > options.volume_gap)
-    out.status = stalled ? EnclosingStatus::did_not_converge : EnclosingStatus::rounding_limited;
+  out.status = out.volume_gap <= options.volume_gap ? EnclosingStatus::optimal
+               : capped || stalled                 ? EnclosingStatus::did_not_converge
+                                                   : EnclosingStatus::rounding_limited;
   return out;
 }
 

@@ -42,10 +42,40 @@ Vec<T, N> Box<T, N>::corner(int k) const noexcept {
   return x;
 }
 
+// The box as a polytope (detail/polytope_distance.hpp): its 2^N corners (corner k at +h_i
+// where bit i of k is set), the edges between corners differing in one bit, and (3D) the
+// faces, three corners each with bit i fixed.
+template <class T, int N>
+struct detail::PolytopeTraits<Box<T, N>> {
+  static constexpr int count = 1 << N;
+  static std::array<Vec<T, N>, count> vertices(const Box<T, N>& b) noexcept {
+    std::array<Vec<T, N>, count> out;
+    for (int k = 0; k < count; ++k) out[std::size_t(k)] = b.corner(k);
+    return out;
+  }
+  static constexpr auto edges = [] {
+    std::array<std::array<int, 2>, N * count / 2> e{};
+    std::size_t n = 0;
+    for (int i = 0; i < N; ++i)
+      for (int k = 0; k < count; ++k)
+        if (!((k >> i) & 1)) e[n++] = {k, k | (1 << i)};
+    return e;
+  }();
+  static constexpr auto faces = [] {
+    std::array<std::array<int, 3>, N == 3 ? 2 * N : 0> f{};
+    if constexpr (N == 3)
+      for (int i = 0; i < N; ++i)
+        for (int side = 0; side < 2; ++side) {
+          const int base = side << i;
+          f[std::size_t(2 * i + side)] = {base, base | (1 << ((i + 1) % N)), base | (1 << ((i + 2) % N))};
+        }
+    return f;
+  }();
+};
+
 template <class T, int N>
 std::array<Triangle<T, N>, N == 2 ? 2 : 12> Box<T, N>::triangles() const noexcept {
-  std::array<Vec<T, N>, 1 << N> corners;  // each computed once, shared by its triangles
-  for (int k = 0; k < (1 << N); ++k) corners[k] = corner(k);
+  const auto corners = detail::PolytopeTraits<Box<T, N>>::vertices(*this);  // each computed once, shared by its triangles
   const auto tri = [&](int p, int q, int r) { return make_triangle<T, N>(corners[p], corners[q], corners[r]); };
   if constexpr (N == 2) {
     return {tri(0, 1, 3), tri(0, 3, 2)};
@@ -300,25 +330,9 @@ Distance<T, N> signed_distance(const Ellipsoid<T, N>& a_world, const Box<T, N>& 
   const BoxAtBody<T, N> p(a_world, b_world);
   const Ellipsoid<T, N>& a = p.a;
   const Box<T, N>& b = p.b;
-  constexpr int count = 1 << N;
-  std::array<Vec<T, N>, count> corners;
-  for (int k = 0; k < count; ++k) corners[k] = b.corner(k);
-  // Edges: corners differing in one bit; faces (3D): three corners with bit i fixed.
-  std::array<std::array<int, 2>, N * count / 2> edges;
-  std::array<std::array<int, 3>, 2 * N> faces;
-  int e = 0;
-  for (int i = 0; i < N; ++i) {
-    for (int k = 0; k < count; ++k)
-      if (!((k >> i) & 1)) edges[e++] = {k, k | (1 << i)};
-    const int j = (i + 1) % N, l = (i + 2) % N;
-    for (int side = 0; side < 2; ++side) {
-      const int base = side << i;
-      faces[2 * i + side] = {base, base | (1 << j), base | (1 << l)};
-    }
-  }
+  using P = detail::PolytopeTraits<Box<T, N>>;
   Distance<T, N> out = detail::polytope_signed_distance<T, N>(
-      a, corners, edges, std::span<const std::array<int, 3>>(faces.data(), N == 3 ? faces.size() : 0), options,
-      [&] { return classify_at_body(a, b, options); }, near_features(a, b, edges, faces));
+      a, b, options, [&] { return classify_at_body(a, b, options); }, near_features(a, b, P::edges, P::faces));
   out.point_a += p.shift;
   out.point_b += p.shift;
   return out;
@@ -395,19 +409,10 @@ DistanceGradient<T, N, BoxGradient<T, N>> signed_distance_gradient(const Ellipso
 
 namespace detail::obstacle {
 template <class T, int N>
-struct ObstacleTraits<Box<T, N>> {
-  static std::array<Vec<T, N>, 1 << N> corners(const Box<T, N>& b) noexcept {
-    std::array<Vec<T, N>, 1 << N> out;
-    for (int k = 0; k < (1 << N); ++k) out[std::size_t(k)] = b.corner(k);
-    return out;
-  }
-  static Lowest lowest(const Vec<R, N>& n, const Box<T, N>& b) noexcept {
-    return lowest_of<T, N, (1 << N)>(n, corners(b), 0);
-  }
+struct ObstacleTraits<Box<T, N>> : PolytopeObstacle<T, N, Box<T, N>> {
   static std::optional<Vec<R, N>> inner_point(const Box<T, N>& b) noexcept {
     return Vec<R, N>(b.center().template cast<R>());
   }
-  static T coordinate(const Box<T, N>& b) noexcept { return largest<T, N, (1 << N)>(corners(b)); }
 };
 }  // namespace detail::obstacle
 

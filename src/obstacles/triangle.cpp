@@ -572,13 +572,22 @@ Contact<T, N> first_contact(const Ellipsoid<T, N>& a, const VecArg<T, N>& veloci
   });
 }
 
+// The triangle as a polytope (detail/polytope_distance.hpp): its vertices, three edges and, in
+// 3D, one face.
+template <class T, int N>
+struct detail::PolytopeTraits<Triangle<T, N>> {
+  static std::array<Vec<T, N>, 3> vertices(const Triangle<T, N>& t) noexcept { return {t.vertex(0), t.vertex(1), t.vertex(2)}; }
+  static constexpr std::array<std::array<int, 2>, 3> edges{{{0, 1}, {1, 2}, {2, 0}}};
+  static constexpr auto faces = [] {
+    std::array<std::array<int, 3>, N == 3 ? 1 : 0> f{};
+    if constexpr (N == 3) f[0] = {0, 1, 2};
+    return f;
+  }();
+};
+
 template <class T, int N>
 Distance<T, N> signed_distance(const Ellipsoid<T, N>& a, const Triangle<T, N>& b, const Options& options) noexcept {
-  static constexpr std::array<std::array<int, 2>, 3> edges{{{0, 1}, {1, 2}, {2, 0}}};
-  static constexpr std::array<std::array<int, 3>, 1> face{{{0, 1, 2}}};
-  const std::array<Vec<T, N>, 3> v{b.vertex(0), b.vertex(1), b.vertex(2)};
-  return detail::polytope_signed_distance<T, N>(a, v, edges, std::span<const std::array<int, 3>>(face.data(), N == 3 ? 1 : 0),
-                                                options, [&] { return classify(a, b, options); });
+  return detail::polytope_signed_distance<T, N>(a, b, options, [&] { return classify(a, b, options); });
 }
 
 template <class T, int N>
@@ -632,15 +641,9 @@ Distance<T, N> distance(const Ellipsoid<T, N>& a, const Triangle<T, N>& b, const
 
 namespace detail::obstacle {
 template <class T, int N>
-struct ObstacleTraits<Triangle<T, N>> {
-  static Lowest lowest(const Vec<R, N>& n, const Triangle<T, N>& t) noexcept {
-    return lowest_of<T, N, 3>(n, {t.vertex(0), t.vertex(1), t.vertex(2)}, 0);
-  }
+struct ObstacleTraits<Triangle<T, N>> : PolytopeObstacle<T, N, Triangle<T, N>> {
   static std::optional<Vec<R, N>> inner_point(const Triangle<T, N>& t) noexcept {
     return (t.vertex(0).template cast<R>() + t.vertex(1).template cast<R>() + t.vertex(2).template cast<R>()) / 3;
-  }
-  static T coordinate(const Triangle<T, N>& t) noexcept {
-    return largest<T, N, 3>({t.vertex(0), t.vertex(1), t.vertex(2)});
   }
 };
 }  // namespace detail::obstacle

@@ -211,8 +211,9 @@ void rigid_contact_of_zero_length_capsules() {
       case ref::ContactKind::hit: {
         ASSERT_EQ(got.status, ContactStatus::hit);
         ASSERT_LE(Real(got.time), want.time * (1 + Real(1e-15))) << "late by " << ref::to_double(Real(got.time) - want.time);
-        if (want.approach_sine >= Real(1e-3))
+        if (want.approach_sine >= Real(1e-3)) {
           ASSERT_NEAR(got.time, ref::to_double(want.time), 1e-9 * size / rates);
+        }
         break;
       }
       case ref::ContactKind::none: ASSERT_EQ(got.status, ContactStatus::no_contact_in_window); break;

@@ -101,7 +101,9 @@ TEST(Options, TheRangeEndsAreAcceptedAndEachCapIsItsOwn) {
     EXPECT_EQ(o.*member, Cap::max) << Cap::field;
     // The other caps keep their defaults.
     for_each_cap([&]<class Other>(Other Options::*other) {
-      if constexpr (!std::is_same_v<Other, Cap>) EXPECT_EQ(o.*other, Options{}.*other) << Cap::field << " moved " << Other::field;
+      if constexpr (!std::is_same_v<Other, Cap>) {
+        EXPECT_EQ(o.*other, Options{}.*other) << Cap::field << " moved " << Other::field;
+      }
     });
   });
 }

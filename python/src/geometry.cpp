@@ -1,0 +1,76 @@
+// enclosing_ellipsoid (geometry.hpp) from Python: points as an (n, N) array in, an Enclosing
+// namedtuple out (the body an Ellipse or Ellipsoid); the solve runs with the GIL released.
+#include "common.hpp"
+#include "docs.hpp"
+
+#include <ellipsect/geometry.hpp>
+
+namespace ellipsect::python {
+
+namespace {
+
+py::object enclosing_tuple;
+
+template <int N>
+py::object enclose(const py::array_t<double>& rows, const EnclosingOptions& options) {
+  const double* p = rows.data();
+  std::vector<Vec<double, N>> points(static_cast<std::size_t>(rows.shape(0)));
+  for (std::size_t i = 0; i < points.size(); ++i) points[i] = Eigen::Map<const Vec<double, N>>(p + i * N);
+  EnclosingEllipsoid<double, N> e;
+  try {
+    py::gil_scoped_release release;
+    e = enclosing_ellipsoid<double, N>(points, options);
+  } catch (const RowInputError& error) {
+    throw InputError("points[" + std::to_string(error.row()) + "]", error.detail());
+  }
+  py::array_t<std::int64_t> support(static_cast<py::ssize_t>(e.support.size()));
+  py::array_t<double> weights(static_cast<py::ssize_t>(e.weights.size()));
+  for (std::size_t k = 0; k < e.support.size(); ++k) {
+    support.mutable_at(py::ssize_t(k)) = std::int64_t(e.support[k]);
+    weights.mutable_at(py::ssize_t(k)) = e.weights[k];
+  }
+  return enclosing_tuple(std::string(to_string(e.status)), py::cast(e.body), e.volume_gap, e.iterations, e.passes,
+                         support, weights);
+}
+
+}  // namespace
+
+void def_geometry(py::module_& m) {
+  enclosing_tuple = py::module_::import("collections")
+                        .attr("namedtuple")("Enclosing",
+                                            py::make_tuple("status", "body", "volume_gap", "iterations", "passes",
+                                                           "support", "weights"),
+                                            py::arg("module") = "ellipsect");
+  m.attr("Enclosing") = enclosing_tuple;
+  m.def(
+      "enclosing_ellipsoid",
+      [](const ArrayLike& points, double volume_gap, std::int64_t max_enclosing_iterations) {
+        const py::array a = numbers(points, "points");
+        if (a.ndim() != 2 || (a.shape(1) != 2 && a.shape(1) != 3))
+          throw py::value_error("points: expected shape (n, 2) or (n, 3), got " +
+                                shape_text(std::vector<py::ssize_t>(a.shape(), a.shape() + a.ndim())));
+        const int dim = int(a.shape(1));
+        py::ssize_t n = -1;
+        const auto rows = checked(points, "points", {dim}, n, "points");
+        EnclosingOptions o;
+        o.volume_gap = volume_gap;
+        o.max_enclosing_iterations = max_enclosing_iterations;
+        return dim == 2 ? enclose<2>(rows, o) : enclose<3>(rows, o);
+      },
+      py::arg("points"), py::arg("volume_gap") = 1e-9, py::arg("max_enclosing_iterations") = 1'000'000,
+      docs::doc("The minimum-volume ellipse or ellipsoid holding every point (geometry.hpp): every point inside the "
+                "body as stored, certified; its volume within a certified volume_gap of the minimum.",
+                "points: (n, 2) or (n, 3), at least N + 1 points spanning the plane or space.\nvolume_gap: the gap "
+                "to reach, vol(body) <= (1 + volume_gap) min volume, in [1e-12, 1].\nmax_enclosing_iterations: the "
+                "weight updates of the solve, in [1, 10000000].",
+                "Enclosing: status ('optimal', 'rounding_limited': the body as stored cannot carry the requested "
+                "gap, volume_gap says how much; 'did_not_converge'), body (Ellipse or Ellipsoid), volume_gap (a "
+                "certified bound), iterations, passes, support (the indices of the points that carry the "
+                "certificate), weights (theirs).",
+                "InputError: a point that is not finite (points[i]); fewer than N + 1 points, or points within 1e-9 "
+                "of their extent from a line or plane (points); an option out of range, named.\nValueError: "
+                "points of the wrong shape.\nTypeError: points that are not real numbers.")
+          .c_str());
+}
+
+}  // namespace ellipsect::python
