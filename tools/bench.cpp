@@ -89,6 +89,9 @@ int bench(const Input& in, const BenchOptions& opt) {
       sink.fetch_add(one_pass(0), std::memory_order_relaxed);  // warm-up
       std::atomic<std::uint64_t> passes{0};
       const auto start = Clock::now();
+      // Exactly `threads` threads, each timing its own passes: a measurement of that thread
+      // count, which the shared pool (parallel.hpp: up to its workers, late ones not waited
+      // for) does not promise; the program's work runs on the pool.
       std::vector<std::thread> pool;
       for (int t = 0; t < threads; ++t)
         pool.emplace_back([&, t] {
