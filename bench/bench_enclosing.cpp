@@ -27,6 +27,8 @@
 // iterations (ellipsect's weight updates).
 #include <ellipsect/geometry.hpp>
 
+#include "scenarios/scenarios.hpp"
+
 #include <benchmark/benchmark.h>
 
 #ifdef ELLIPSECT_HAVE_CGAL
@@ -55,23 +57,13 @@ template <int N>
 using Cloud = std::vector<Vec<double, N>>;
 
 template <int N>
-Mat<double, N> rotation(std::mt19937_64& rng) {
-  std::normal_distribution<double> g;
-  Mat<double, N> a;
-  for (int i = 0; i < N; ++i)
-    for (int j = 0; j < N; ++j) a(i, j) = g(rng);
-  Eigen::HouseholderQR<Eigen::Matrix<double, N, N>> qr(a);
-  return qr.householderQ();
-}
-
-template <int N>
 Cloud<N> make_cloud(const std::string& kind, int m) {
   std::mt19937_64 rng(4848 + m + 7 * N + int(kind.size()));
   std::uniform_real_distribution<double> u(-1, 1);
   std::normal_distribution<double> g;
   const Vec3<double> scale3(1, 2, 0.5);
   const Vec<double, N> scale = scale3.head<N>();
-  const Mat<double, N> r = rotation<N>(rng);
+  const Mat<double, N> r = scenarios::detail::orthogonal<N>(rng);
   Cloud<N> out;
   for (int i = 0; i < m; ++i) {
     Vec<double, N> p;

@@ -8,6 +8,8 @@
 
 #include <ellipsect/shapes.hpp>
 
+#include <Eigen/QR>
+
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -81,6 +83,18 @@ Mat<double, N> rotation(Rng& rng) {
     const Vec<double, 4> q = unit_vector<4>(rng);
     return Eigen::Quaterniond(q[0], q[1], q[2], q[3]).toRotationMatrix();
   }
+}
+
+// A uniformly random rotation or reflection: the orthogonal factor of a Gaussian matrix's QR
+// (Householder), for the clouds of the enclosing ellipsoid's tests and benchmark.
+template <int N>
+Mat<double, N> orthogonal(Rng& rng) {
+  std::normal_distribution<double> g;
+  Mat<double, N> a;
+  for (int i = 0; i < N; ++i)
+    for (int j = 0; j < N; ++j) a(i, j) = g(rng);
+  const Eigen::HouseholderQR<Eigen::Matrix<double, N, N>> qr(a);
+  return qr.householderQ();
 }
 
 // Radii with the given largest aspect ratio, log-uniform, overall size `size`.

@@ -247,6 +247,15 @@ inline py::array_t<std::int64_t> integers(py::handle obj, const std::string& nam
   return py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>::ensure(a);
 }
 
+// The rows of a C-contiguous (n, N) float64 array (checked()) as points.
+template <int N>
+std::vector<Vec<double, N>> rows_of(const py::array_t<double>& rows) {
+  const double* p = rows.data();
+  std::vector<Vec<double, N>> out(static_cast<std::size_t>(rows.shape(0)));
+  for (std::size_t i = 0; i < out.size(); ++i) out[i] = Eigen::Map<const Vec<double, N>>(p + i * N);
+  return out;
+}
+
 void def_scalar(py::module_& m);
 void def_batch(py::module_& m);
 void def_packing(py::module_& m);

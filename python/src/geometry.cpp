@@ -13,9 +13,7 @@ py::object enclosing_tuple;
 
 template <int N>
 py::object enclose(const py::array_t<double>& rows, const EnclosingOptions& options) {
-  const double* p = rows.data();
-  std::vector<Vec<double, N>> points(static_cast<std::size_t>(rows.shape(0)));
-  for (std::size_t i = 0; i < points.size(); ++i) points[i] = Eigen::Map<const Vec<double, N>>(p + i * N);
+  const std::vector<Vec<double, N>> points = rows_of<N>(rows);
   EnclosingEllipsoid<double, N> e;
   try {
     py::gil_scoped_release release;

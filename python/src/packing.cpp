@@ -13,9 +13,7 @@ py::object packing_tuple;
 
 template <int N>
 py::object jam(const py::array_t<double>& rows, const PackingOptions& options) {
-  const double* r = rows.data();
-  std::vector<Vec<double, N>> radii(static_cast<std::size_t>(rows.shape(0)));
-  for (std::size_t i = 0; i < radii.size(); ++i) radii[i] = Eigen::Map<const Vec<double, N>>(r + i * N);
+  const std::vector<Vec<double, N>> radii = rows_of<N>(rows);
   Packing<N> p;
   {
     py::gil_scoped_release release;

@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <limits>
 #include <numeric>
 #include <string>
@@ -19,12 +20,9 @@
 namespace ellipsect {
 
 std::string_view to_string(EnclosingStatus s) noexcept {
-  switch (s) {
-    case EnclosingStatus::optimal: return "optimal";
-    case EnclosingStatus::rounding_limited: return "rounding_limited";
-    case EnclosingStatus::did_not_converge: return "did_not_converge";
-  }
-  return "unknown";
+  static constexpr std::string_view names[] = {"optimal", "rounding_limited", "did_not_converge"};  // in the enum's order
+  const auto k = static_cast<std::size_t>(s);
+  return k < std::size(names) ? names[k] : "?";
 }
 
 namespace {

@@ -4,6 +4,8 @@
 // under translation and scale, thin and large clouds, the cap, and bad input.
 #include <ellipsect/geometry.hpp>
 
+#include "scenarios/scenarios.hpp"
+
 #include <boost/multiprecision/cpp_bin_float.hpp>
 #include <gtest/gtest.h>
 
@@ -82,16 +84,6 @@ void expect_certified(const EnclosingEllipsoid<T, N>& e, const Points<T, N>& poi
   }
 }
 
-template <int N>
-Mat<double, N> rotation(std::mt19937_64& rng) {
-  std::normal_distribution<double> g;
-  Mat<double, N> a;
-  for (int i = 0; i < N; ++i)
-    for (int j = 0; j < N; ++j) a(i, j) = g(rng);
-  Eigen::HouseholderQR<Eigen::Matrix<double, N, N>> qr(a);
-  return qr.householderQ();
-}
-
 // The 2^N corners of the box of half-extents h, turned by r, about c: the optimum is the
 // box's circumscribed ellipsoid, radii sqrt(N) h (by symmetry, the weights uniform).
 template <int N>
@@ -117,7 +109,7 @@ TEST(EnclosingEllipsoid, BoxCornersGiveTheCircumscribedEllipsoid) {
   for (int trial = 0; trial < 20; ++trial) {
     const Vec3<double> h(1, 0.5 + trial, std::pow(10.0, trial % 5 - 2));
     const Vec3<double> c(trial, -3, 7e-3);
-    const auto points = box_corners<3>(h, rotation<3>(rng), c);
+    const auto points = box_corners<3>(h, scenarios::detail::orthogonal<3>(rng), c);
     const auto e = enclosing_ellipsoid<double, 3>(points);
     SCOPED_TRACE(trial);
     EXPECT_EQ(e.status, EnclosingStatus::optimal);
@@ -127,7 +119,7 @@ TEST(EnclosingEllipsoid, BoxCornersGiveTheCircumscribedEllipsoid) {
     EXPECT_LT((e.body.center() - c).norm(), 1e-9 * h.maxCoeff());
   }
   const Vec2<double> h2(3, 1e-3);
-  const auto points2 = box_corners<2>(h2, rotation<2>(rng), Vec2<double>(1, 2));
+  const auto points2 = box_corners<2>(h2, scenarios::detail::orthogonal<2>(rng), Vec2<double>(1, 2));
   const auto e2 = enclosing_ellipsoid<double, 2>(points2);
   EXPECT_EQ(e2.status, EnclosingStatus::optimal);
   const F opt2 = log_box_optimum<2>(h2);
@@ -155,7 +147,7 @@ TEST(EnclosingEllipsoid, NoLargerThanAnEllipsoidHoldingThePoints) {
   std::uniform_real_distribution<double> unit(0, 1);
   for (int trial = 0; trial < 10; ++trial) {
     const Vec3<double> radii(1, 1 + trial, std::pow(10.0, trial % 4));
-    const Mat3<double> r = rotation<3>(rng);
+    const Mat3<double> r = scenarios::detail::orthogonal<3>(rng);
     const Vec3<double> c(-1e6 * trial, 2, 3);
     Points<double, 3> points;
     for (int i = 0; i < 400; ++i) {
@@ -209,7 +201,7 @@ TEST(EnclosingEllipsoid, ScaleAndTranslationInvariant) {
 TEST(EnclosingEllipsoid, ThinAndLargeClouds) {
   std::mt19937_64 rng(4);
   std::uniform_real_distribution<double> u(-1, 1);
-  const Mat3<double> r = rotation<3>(rng);
+  const Mat3<double> r = scenarios::detail::orthogonal<3>(rng);
   Points<double, 3> needle;
   for (int i = 0; i < 2000; ++i) needle.push_back(r * Vec3<double>(u(rng), 1e-4 * u(rng), 1e-2 * u(rng)));
   const auto e = enclosing_ellipsoid<double, 3>(needle);
@@ -239,7 +231,7 @@ TEST(EnclosingEllipsoid, DuplicatesAreHarmless) {
 TEST(EnclosingEllipsoid, CapReachedStillCertified) {
   std::mt19937_64 rng(5);
   const Vec3<double> h(1, 2, 3);
-  const auto points = box_corners<3>(h, rotation<3>(rng), Vec3<double>(0, 0, 0));
+  const auto points = box_corners<3>(h, scenarios::detail::orthogonal<3>(rng), Vec3<double>(0, 0, 0));
   const auto e = enclosing_ellipsoid<double, 3>(points, {.max_enclosing_iterations = 1});
   EXPECT_EQ(e.status, EnclosingStatus::did_not_converge);
   EXPECT_EQ(e.iterations, 1);
