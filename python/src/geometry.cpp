@@ -11,9 +11,10 @@ namespace {
 
 py::object enclosing_tuple;
 
+// The solve without the GIL, its row errors named as the Python argument, the result as the
+// namedtuple.
 template <int N>
-py::object enclose(const py::array_t<double>& rows, const EnclosingOptions& options) {
-  const std::vector<Vec<double, N>> points = rows_of<N>(rows);
+py::object enclose(const std::vector<Vec<double, N>>& points, const EnclosingOptions& options) {
   EnclosingEllipsoid<double, N> e;
   try {
     py::gil_scoped_release release;
@@ -53,7 +54,7 @@ void def_geometry(py::module_& m) {
         EnclosingOptions o;
         o.volume_gap = volume_gap;
         o.max_enclosing_iterations = max_enclosing_iterations;
-        return dim == 2 ? enclose<2>(rows, o) : enclose<3>(rows, o);
+        return dim == 2 ? enclose<2>(rows_of<2>(rows), o) : enclose<3>(rows_of<3>(rows), o);
       },
       py::arg("points"), py::arg("volume_gap") = 1e-9, py::arg("max_enclosing_iterations") = 1'000'000,
       docs::doc("The minimum-volume ellipse or ellipsoid holding every point (geometry.hpp): every point inside the "
