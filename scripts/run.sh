@@ -22,7 +22,7 @@ cd "$(dirname "$0")/.."
 # and its picture); the others add the test, benchmark, page and Python sets.
 cxx_packages=(g++ cmake ninja-build ccache pkg-config libeigen3-dev libhwy-dev libboost-dev libgmp-dev libcli11-dev
               nlohmann-json3-dev librsvg2-bin)
-packages=("${cxx_packages[@]}" libgtest-dev libgmock-dev libbenchmark-dev libfcl-dev libccd-dev libcgal-dev
+packages=("${cxx_packages[@]}" libgtest-dev libgmock-dev libbenchmark-dev libfcl-dev libccd-dev libcgal-dev libopencv-dev
           clang libclang-rt-14-dev)
 # ---- web (the demo page, web/): Emscripten, Chromium for its browser test, Node and npm
 # for playwright-core. npm only where no npm is on the PATH (a Node from elsewhere bundles

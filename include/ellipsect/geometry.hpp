@@ -31,11 +31,28 @@
 // is tens of points.
 //
 // Input: at least N + 1 finite points that span R^N. Empty input, a NaN or infinite
-// coordinate (RowInputError: its row and "points"), fewer points, or points within 1e-8 of
+// coordinate (RowInputError: its row and "points"), fewer points, or points within 1e-9 of
 // their extent from a line or plane (an ellipsoid that thin is not representable:
 // Ellipsoid::max_aspect_ratio) throw InputError("points") saying which.
+//
+// Of shapes. A mesh: of its vertices (every vertex given, InputError "mesh"). Boxes: of
+// their corners as Box::corner computes them (the polytope every box query takes; "boxes").
+// Bodies (ellipsoids; capsules as their two end balls, whose hull they are; "bodies",
+// "capsules"): the least ellipsoid holding their union, a convex program over ellipsoids
+// (an SDP) solved on points of their boundaries by cutting planes: each round encloses the
+// points, then adds for every body the current ellipsoid leaves out its farthest point
+// (max over the body of the ellipsoid's form: a trust-region problem, solved exactly up to
+// rounding); at most 100 rounds. The points lie inside the bodies as stored (checked in
+// rationals), so their weights bound the union's optimum from below: the gap is certified
+// as for points. Containment: every body inside the returned body as stored, by the exact
+// classification (classify.hpp, Tolerance::exact: a_contains_b or equal), the body grown by
+// ulps until it holds. The support then names the body (capsule, box) of each certifying
+// point, support_points holds the points.
 #pragma once
 
+#include <ellipsect/box.hpp>
+#include <ellipsect/capsule.hpp>
+#include <ellipsect/mesh.hpp>
 #include <ellipsect/options.hpp>
 #include <ellipsect/shapes.hpp>
 
@@ -78,13 +95,137 @@ struct EnclosingEllipsoid {
   double volume_gap = 0;  // certified: vol(body) <= (1 + volume_gap) min volume
   std::int64_t iterations = 0;  // weight updates
   int passes = 0;               // passes over all the points
-  // The points that carry the certificate (indices into the input) and their weights u
-  // (summing to 1 up to rounding): the points on the boundary of the optimum.
+  // The points that carry the certificate, their weights u (summing to 1 up to rounding)
+  // and where each comes from (an index into the input: the point, vertex, box, capsule or
+  // body): the points on the boundary of the optimum.
   std::vector<std::size_t> support;
+  std::vector<Vec<T, N>> support_points;
   std::vector<double> weights;
 };
 
 template <class T, int N>
 EnclosingEllipsoid<T, N> enclosing_ellipsoid(std::span<const Vec<T, N>> points, const EnclosingOptions& options = {});
+template <class T, int N>
+EnclosingEllipsoid<T, N> enclosing_ellipsoid(const TriangleMesh<T, N>& mesh, const EnclosingOptions& options = {});
+template <class T, int N>
+EnclosingEllipsoid<T, N> enclosing_ellipsoid(std::span<const Box<T, N>> boxes, const EnclosingOptions& options = {});
+template <class T, int N>
+EnclosingEllipsoid<T, N> enclosing_ellipsoid(std::span<const Capsule<T, N>> capsules, const EnclosingOptions& options = {});
+template <class T, int N>
+EnclosingEllipsoid<T, N> enclosing_ellipsoid(std::span<const Ellipsoid<T, N>> bodies, const EnclosingOptions& options = {});
+
+// ---------------------------------------------------------------------------------------------
+// Fits: the least-squares ellipse or ellipsoid of a point cloud (edge pixels, a scan), with its
+// residuals and the covariance of its parameters.
+//
+// Math. The fit minimizes the sum of squared orthogonal distances S = sum_i d_i^2, d_i the
+// signed distance of point i to the body's boundary (closest_point, point.hpp), over the
+// body's parameters: center, orientation, radii. It starts from an algebraic fit, on the points
+// moved by their mean and scaled by a power of two near their RMS radius:
+//   2D  Fitzgibbon, Pilu and Fisher's ellipse-specific direct fit (constraint 4ac - b^2 = 1), in
+//       Halir and Flusser's stable form (scatter split into its quadratic and linear blocks, a
+//       3x3 reduced eigenproblem);
+//   3D  Li and Griffiths' ellipsoid-specific fit (constraint 4J - I^2 = 1, k = 4: a generalized
+//       eigenproblem on the 6x6 reduced scatter);
+// and Taubin's fit of the general conic (quadric) where that is an ellipse (ellipsoid), and the
+// cloud's RMS ball: the one of these closest to the points (orthogonal RMS) starts
+// Levenberg-Marquardt, first along the conic's coefficients a (the boundary moves by
+// -(m(y) . da) / |grad Q(y)|, m the monomials: the conics through points are a linear family, so
+// the long valleys of short arcs are straight there), then on (center, rotation increment, log
+// radii), its Jacobian exact by the envelope theorem:
+//   dd/dcenter = -n,  dd/dphi = -(y - c) x n,  dd/dlog r_k = -(axes^T n)_k (axes^T (y - c))_k,
+// y the closest point, n the outward unit normal there (gradient.hpp's world rotation vector
+// phi). Each accepted step lowers S (within its rounding near the stationary point), so the
+// answer is never farther from the points than the start.
+// Taubin's conic also decides whether the points are an ellipse at all: where it is a
+// hyperbola, parabola or line pair whose residual (Taubin's first-order RMS distance) is below
+// half the best ellipse's (and above 1e-8 of the cloud's RMS radius), or where the ellipse runs
+// away towards a parabola (radii beyond 1e4 times the cloud's RMS radius: the points then lie on
+// less than about 1e-4 radians of it and determine no ellipse), the status says not_an_ellipse.
+//
+// Guarantees:
+//   residuals     rms_residual = sqrt(S / n) and max_residual = max |d_i| are those of the body
+//                 as stored, recomputed by closest_point on it (in T), not estimates;
+//   descent       rms_residual <= algebraic_rms_residual (up to rounding, 1e-14 of the points'
+//                 coordinates) whatever the status;
+//   converged     a stationary point of S: the Gauss-Newton step fell below fit_tolerance
+//                 (center in units of the cloud's RMS radius, radii relative, orientation in
+//                 radians; that step then taken), or the residuals are orthogonal to every
+//                 column of the Jacobian to a cosine of fit_tolerance, or no step lowers S
+//                 beyond its rounding. Tested: at fit_tolerance 1e-10, against a 50-digit
+//                 Gauss-Newton by another route (distances by bisection on the secular
+//                 equation, derivatives by differences) on noisy clouds, the parameters within
+//                 1e-9 of the 50-digit stationary point (of the largest radius; angles in
+//                 radians), the gradient's cosine below 1e-8; at the default, points on an
+//                 ellipse (ellipsoid) give it back within 1e-9 of its largest radius (aspect
+//                 ratios to 1e3, scales 1e-6 and 1e6, 1e6 radii from the origin), near circles
+//                 of 10^4 points within the noise's average, and noisy clouds and 30 degree
+//                 arcs are stationary to a cosine of 1e-6 by differences of closest_point;
+//   covariance    sigma^2 (J^T J)^+ with sigma^2 = S / (n - P), J the Jacobian at the answer
+//                 in the parameters (center, orientation, radii): gradient.hpp's order, the
+//                 orientation the world rotation vector (2D: the angle) at the answer's axes,
+//                 P = 5 in 2D, 9 in 3D; tested against the scatter of 300 fits to fresh noise
+//                 (standard deviations within 25%). rank is J's; below P (an exact circle's
+//                 angle, a spheroid's turn about its axis) the pseudo-inverse reads 0 along
+//                 the undetermined directions. n = P: the points are interpolated and the
+//                 covariance is NaN.
+// Short arcs determine an ellipse poorly: on a 30 degree arc with noise of 1e-3 of the radius
+// the least-squares ellipse's center is off by tens of percent of the radius (the covariance
+// says so), or the ellipse runs off towards a parabola (not_an_ellipse).
+// Cost: one pass of closest_point over the points per iteration, tens of iterations
+// (bench/RESULTS.md).
+//
+// Input: at least 5 (2D) or 9 (3D) finite points. A NaN or infinite coordinate (RowInputError:
+// its row and "points"), fewer points, or points within 1e-8 of their spread from a line or
+// plane (or all equal) throw InputError("points") saying which.
+
+namespace detail {
+inline constexpr RealRange fit_tolerance_range{"fit_tolerance", 1e-15, 1e-3, true, true};
+inline constexpr char max_fit_iterations_field[] = "max_fit_iterations";
+}  // namespace detail
+
+struct FitOptions {
+  // The stationarity to reach (FitStatus::converged above), in [1e-15, 1e-3].
+  RealOption<detail::fit_tolerance_range> fit_tolerance = 1e-8;
+  // The Levenberg-Marquardt steps tried, each one pass over the points, in [1, 100000].
+  // Reached: FitStatus::did_not_converge, the body the best iterate (never farther than the
+  // algebraic fit).
+  IterationCap<detail::max_fit_iterations_field, 100000> max_fit_iterations = 200;
+};
+
+enum class FitStatus {
+  converged,         // a stationary point of the sum of squared orthogonal distances
+  did_not_converge,  // max_fit_iterations reached, or the steps stalled short of fit_tolerance:
+                     // the body the best iterate
+  not_an_ellipse,    // the points are a hyperbola, parabola or line pair (hyperboloid, ...)
+                     // rather than an ellipse (ellipsoid): the general conic fits them markedly
+                     // better, or the ellipse runs away; the body the best ellipse found, its
+                     // residuals saying how far it is
+};
+std::string_view to_string(FitStatus s) noexcept;
+
+// The number of fitted parameters: center, orientation, radii.
+template <int N>
+inline constexpr int fit_parameter_count = 2 * N + (N == 2 ? 1 : 3);
+
+template <class T, int N>
+struct EllipsoidFit {
+  static constexpr int parameters = fit_parameter_count<N>;
+  FitStatus status = FitStatus::converged;
+  Ellipsoid<T, N> body;          // the least-squares body, world frame
+  double rms_residual = 0;       // sqrt(mean d_i^2) of the body as stored, world units
+  double max_residual = 0;       // max |d_i|
+  // The covariance of (center, orientation, radii) (gradient.hpp's order; the orientation a
+  // world rotation vector at body's axes, in 2D the angle), world units.
+  Eigen::Matrix<double, parameters, parameters, Eigen::DontAlign> covariance =
+      Eigen::Matrix<double, parameters, parameters, Eigen::DontAlign>::Zero();
+  int rank = 0;                  // of the Jacobian: parameters where every one is determined
+  int iterations = 0;            // Levenberg-Marquardt steps tried
+  Ellipsoid<T, N> algebraic;     // the algebraic fit the refinement started from
+  double algebraic_rms_residual = 0;  // its RMS orthogonal residual
+};
+
+template <class T, int N>
+EllipsoidFit<T, N> fit_ellipsoid(std::span<const Vec<T, N>> points, const FitOptions& options = {});
 
 }  // namespace ellipsect

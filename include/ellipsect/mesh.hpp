@@ -40,6 +40,8 @@ public:
   static TriangleMesh from_arrays(std::span<const T> vertices, std::span<const std::int64_t> triangles);
 
   std::size_t vertex_count() const noexcept { return vertices_.size() / N; }
+  // The vertices as given: N coordinates per vertex, row after row.
+  std::span<const T> vertices() const noexcept { return vertices_; }
   std::size_t triangle_count() const noexcept { return triangles_.size(); }
   // Triangle k (InputError "triangle" when k is out of range).
   Triangle<T, N> triangle(std::size_t k) const;

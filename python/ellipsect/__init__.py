@@ -12,7 +12,8 @@ TriangleMesh2 / TriangleMesh3 (the answer then names the triangle); collide_and_
 a body through a list of half-spaces or a mesh. Among many bodies,
 overlapping_pairs and earliest_contact (open space or a periodic box); jam_packing
 compresses growing bodies to a jammed packing; enclosing_ellipsoid gives the certified
-minimum-volume ellipse or ellipsoid of a point cloud. Every number comes
+minimum-volume ellipse or ellipsoid of a point cloud, fit_ellipsoid its least-squares
+ellipse or ellipsoid (orthogonal distances, with residuals and covariance). Every number comes
 from the library; batch answers equal the scalar ones bit for bit. Pictures: ellipsect.plot;
 Dask: ellipsect.dask. Derivatives: signed_distance_gradient, perram_wertheim_gradient,
 closest_approach_gradient, first_contact_gradient (the time and the point), and in 2D
@@ -50,6 +51,7 @@ from ._ellipsect import (  # noqa: F401
     Ellipsoid,
     Ellipsoids,
     Enclosing,
+    Fit,
     GradientArrays,
     HalfPlane,
     HalfSpace,
@@ -93,6 +95,7 @@ from ._ellipsect import (  # noqa: F401
     distance,
     earliest_contact,
     enclosing_ellipsoid,
+    fit_ellipsoid,
     gpu_info,
     first_contact,
     first_contact_gradient,
@@ -149,6 +152,7 @@ __all__ = [
     "Ellipsoid",
     "Ellipsoids",
     "Enclosing",
+    "Fit",
     "GradientArrays",
     "HalfPlane",
     "HalfSpace",
@@ -192,6 +196,7 @@ __all__ = [
     "distance",
     "earliest_contact",
     "enclosing_ellipsoid",
+    "fit_ellipsoid",
     "first_contact",
     "first_contact_gradient",
     "gpu_info",

@@ -43,11 +43,6 @@ std::string row_field(const std::string& field, py::ssize_t row) {
   return arg + "[" + index + "]";
 }
 
-template <int N>
-struct Bodies {
-  std::vector<Ellipsoid<double, N>> items;
-};
-
 // n answers of a library batch function, call(out), with the GIL released.
 template <class R, class Call>
 std::vector<R> batch_answers(std::size_t n, const Call& call) {

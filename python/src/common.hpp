@@ -193,6 +193,21 @@ public:
 };
 
 // The `options` argument of every query, shown as Options() in signatures and stubs.
+// The Ellipses / Ellipsoids classes (batch.cpp): n bodies, as the batch functions take them.
+template <int N>
+struct Bodies {
+  std::vector<Ellipsoid<double, N>> items;
+};
+
+// TriangleMesh2 / TriangleMesh3 (module.cpp): a mesh with the arrays it was built from (the
+// library keeps the triangles, not the index array), for the `vertices` and `triangles`
+// properties and pickling.
+template <int N>
+struct Mesh : TriangleMesh<double, N> {
+  std::vector<double> vertices;
+  std::vector<std::int64_t> triangles;
+};
+
 inline py::arg_v options_arg() { return py::arg_v("options", Options{}, "Options()"); }
 
 // An optional ArrayLike (None: absent) as a handle that is None when absent.

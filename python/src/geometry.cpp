@@ -1,5 +1,6 @@
-// enclosing_ellipsoid (geometry.hpp) from Python: points as an (n, N) array in, an Enclosing
-// namedtuple out (the body an Ellipse or Ellipsoid); the solve runs with the GIL released.
+// enclosing_ellipsoid (geometry.hpp) from Python: points as an (n, N) array, or bodies, boxes,
+// capsules or a mesh, in; an Enclosing namedtuple out (the body an Ellipse or Ellipsoid); the
+// solve runs with the GIL released.
 #include "common.hpp"
 #include "docs.hpp"
 
@@ -11,25 +12,60 @@ namespace {
 
 py::object enclosing_tuple;
 
-// The solve without the GIL, its row errors named as the Python argument, the result as the
-// namedtuple.
+// The namedtuple of a solve's answer.
 template <int N>
-py::object enclose(const std::vector<Vec<double, N>>& points, const EnclosingOptions& options) {
-  EnclosingEllipsoid<double, N> e;
-  try {
-    py::gil_scoped_release release;
-    e = enclosing_ellipsoid<double, N>(points, options);
-  } catch (const RowInputError& error) {
-    throw InputError("points[" + std::to_string(error.row()) + "]", error.detail());
-  }
+py::object enclosing_of(const EnclosingEllipsoid<double, N>& e) {
   py::array_t<std::int64_t> support(static_cast<py::ssize_t>(e.support.size()));
   py::array_t<double> weights(static_cast<py::ssize_t>(e.weights.size()));
+  py::array_t<double> points({static_cast<py::ssize_t>(e.support.size()), py::ssize_t(N)});
   for (std::size_t k = 0; k < e.support.size(); ++k) {
     support.mutable_at(py::ssize_t(k)) = std::int64_t(e.support[k]);
     weights.mutable_at(py::ssize_t(k)) = e.weights[k];
+    Eigen::Map<Vec<double, N>>{points.mutable_data() + k * N} = e.support_points[k];
   }
   return enclosing_tuple(std::string(to_string(e.status)), py::cast(e.body), e.volume_gap, e.iterations, e.passes,
-                         support, weights);
+                         support, points, weights);
+}
+
+// The solve of `input` without the GIL, its row errors named as the Python argument.
+template <int N, class Input>
+py::object enclose(const Input& input, const EnclosingOptions& options) {
+  EnclosingEllipsoid<double, N> e;
+  try {
+    py::gil_scoped_release release;
+    e = enclosing_ellipsoid<double, N>(input, options);
+  } catch (const RowInputError& error) {
+    throw InputError("points[" + std::to_string(error.row()) + "]", error.detail());
+  }
+  return enclosing_of<N>(e);
+}
+
+EnclosingOptions enclosing_options(double volume_gap, std::int64_t max_enclosing_iterations) {
+  EnclosingOptions o;
+  o.volume_gap = volume_gap;
+  o.max_enclosing_iterations = max_enclosing_iterations;
+  return o;
+}
+
+// The overloads of shapes, in N dimensions: bodies (an Ellipses / Ellipsoids array or a list
+// of Ellipse / Ellipsoid), boxes, capsules (lists), a mesh.
+template <int N>
+void def_shape_overloads(py::module_& m, const std::string& doc) {
+  const auto def = [&](auto call) {
+    m.def("enclosing_ellipsoid", call, py::arg("shapes"), py::arg("volume_gap") = 1e-9,
+          py::arg("max_enclosing_iterations") = 1'000'000, doc.c_str());
+  };
+  def([](const Bodies<N>& b, double gap, std::int64_t cap) { return enclose<N>(b.items, enclosing_options(gap, cap)); });
+  def([](const std::vector<Ellipsoid<double, N>>& b, double gap, std::int64_t cap) {
+    return enclose<N>(b, enclosing_options(gap, cap));
+  });
+  def([](const std::vector<Box<double, N>>& b, double gap, std::int64_t cap) { return enclose<N>(b, enclosing_options(gap, cap)); });
+  def([](const std::vector<Capsule<double, N>>& c, double gap, std::int64_t cap) {
+    return enclose<N>(c, enclosing_options(gap, cap));
+  });
+  def([](const Mesh<N>& mesh, double gap, std::int64_t cap) {
+    return enclose<N>(static_cast<const TriangleMesh<double, N>&>(mesh), enclosing_options(gap, cap));
+  });
 }
 
 }  // namespace
@@ -38,9 +74,21 @@ void def_geometry(py::module_& m) {
   enclosing_tuple = py::module_::import("collections")
                         .attr("namedtuple")("Enclosing",
                                             py::make_tuple("status", "body", "volume_gap", "iterations", "passes",
-                                                           "support", "weights"),
+                                                           "support", "support_points", "weights"),
                                             py::arg("module") = "ellipsect");
   m.attr("Enclosing") = enclosing_tuple;
+  // The shapes first: an array of numbers matches none of them.
+  const std::string shapes_doc = docs::doc(
+      "The minimum-volume ellipse or ellipsoid holding shapes (geometry.hpp): every shape inside the body as stored "
+      "(bodies by the exact classification), its volume within a certified volume_gap of the minimum.",
+      "shapes: Ellipses / Ellipsoids, or a list of Ellipse / Ellipsoid (their union), of Box2 / Box3 (their "
+      "corners), of Capsule2 / Capsule3 (their end balls); or a TriangleMesh2 / TriangleMesh3 (its vertices).\n"
+      "volume_gap, max_enclosing_iterations: as for points.",
+      "Enclosing, support naming the body, box, capsule or vertex of each support point.",
+      "InputError: no shapes (bodies, boxes, capsules, mesh); shapes within 1e-9 of their extent from a line or "
+      "plane.");
+  def_shape_overloads<2>(m, shapes_doc);
+  def_shape_overloads<3>(m, shapes_doc);
   m.def(
       "enclosing_ellipsoid",
       [](const ArrayLike& points, double volume_gap, std::int64_t max_enclosing_iterations) {
@@ -51,9 +99,7 @@ void def_geometry(py::module_& m) {
         const int dim = int(a.shape(1));
         py::ssize_t n = -1;
         const auto rows = checked(points, "points", {dim}, n, "points");
-        EnclosingOptions o;
-        o.volume_gap = volume_gap;
-        o.max_enclosing_iterations = max_enclosing_iterations;
+        const EnclosingOptions o = enclosing_options(volume_gap, max_enclosing_iterations);
         return dim == 2 ? enclose<2>(rows_of<2>(rows), o) : enclose<3>(rows_of<3>(rows), o);
       },
       py::arg("points"), py::arg("volume_gap") = 1e-9, py::arg("max_enclosing_iterations") = 1'000'000,
@@ -65,7 +111,7 @@ void def_geometry(py::module_& m) {
                 "Enclosing: status ('optimal', 'rounding_limited': the body as stored cannot carry the requested "
                 "gap, volume_gap says how much; 'did_not_converge'), body (Ellipse or Ellipsoid), volume_gap (a "
                 "certified bound), iterations, passes, support (the indices of the points that carry the "
-                "certificate), weights (theirs).",
+                "certificate), support_points (those points, (k, N)), weights (theirs).",
                 "InputError: a point that is not finite (points[i]); fewer than N + 1 points, or points within 1e-9 "
                 "of their extent from a line or plane (points); an option out of range, named.\nValueError: "
                 "points of the wrong shape.\nTypeError: points that are not real numbers.")

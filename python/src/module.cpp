@@ -134,14 +134,6 @@ void def_half_space(py::module_& m, const char* name) {
   def_equality(c, [](const H& h) { return numbers_of(h.point(), h.normal()); });
 }
 
-// A mesh with the arrays it was built from (the library keeps the triangles, not the index
-// array), for the `vertices` and `triangles` properties and pickling.
-template <int N>
-struct Mesh : TriangleMesh<double, N> {
-  std::vector<double> vertices;
-  std::vector<std::int64_t> triangles;
-};
-
 // Values stored `columns` per row as an (n, columns) array (a copy).
 template <class T>
 py::array_t<T> mesh_array(const std::vector<T>& values, int columns) {
@@ -1091,6 +1083,8 @@ void def_scalar(py::module_& m) {
   def_two_d(m);
 }
 
+void def_fit(py::module_& m);  // fit.cpp
+
 }  // namespace ellipsect::python
 
 PYBIND11_MODULE(_ellipsect, m) {
@@ -1100,6 +1094,7 @@ PYBIND11_MODULE(_ellipsect, m) {
   ellipsect::python::def_batch(m);
   ellipsect::python::def_packing(m);
   ellipsect::python::def_geometry(m);
+  ellipsect::python::def_fit(m);
   m.def("simd_target", &ellipsect::simd_target,
         ellipsect::python::docs::doc("The instruction set the batch functions use (batch.hpp).", "(none)", "str.")
             .c_str());

@@ -72,3 +72,37 @@ def test_bad_input_is_named():
         ellipsect.enclosing_ellipsoid(np.eye(3), volume_gap=0)
     with pytest.raises(ellipsect.InputError, match="max_enclosing_iterations"):
         ellipsect.enclosing_ellipsoid(np.eye(3), max_enclosing_iterations=0)
+
+
+def test_shapes_bodies_boxes_capsules_mesh():
+    rng = np.random.default_rng(3)
+    centers = rng.uniform(-3, 3, size=(12, 3))
+    radii = rng.uniform(0.1, 1, size=(12, 3))
+    quaternions = rng.normal(size=(12, 4))
+    quaternions /= np.linalg.norm(quaternions, axis=1)[:, None]
+    bodies = ellipsect.Ellipsoids(centers=centers, radii=radii, quaternions=quaternions)
+    e = ellipsect.enclosing_ellipsoid(bodies)
+    assert e.status == "optimal" and e.volume_gap <= 1e-9
+    # Every body inside, by the library's exact classification; the support points inside the bodies they name.
+    for i in range(12):
+        assert ellipsect.classify(e.body, bodies[i], ellipsect.Options(tolerance=0)) in (
+            ellipsect.Relation.a_contains_b, ellipsect.Relation.equal)
+    assert e.support_points.shape == (len(e.support), 3)
+    for j, p in zip(e.support, e.support_points):
+        assert form(bodies[int(j)], p) <= 1
+    # The same set as a list of bodies answers the same, bit for bit.
+    again = ellipsect.enclosing_ellipsoid([bodies[i] for i in range(12)])
+    assert np.array_equal(np.asarray(again.body.radii), np.asarray(e.body.radii))
+    box = ellipsect.Box3([0, 0, 0], [1, 2, 0.5])
+    b = ellipsect.enclosing_ellipsoid([box])
+    assert np.sort(np.asarray(b.body.radii)) == pytest.approx(np.sqrt(3) * np.array([0.5, 1, 2]), rel=1e-9)
+    c = ellipsect.enclosing_ellipsoid([ellipsect.Capsule2([0, 0], [0, 0], 2.0)])
+    assert np.asarray(c.body.radii) == pytest.approx([2, 2], rel=1e-9)
+    vertices = np.array([[sx, sy, sz] for sx in (-1.0, 1) for sy in (-1.0, 1) for sz in (-1.0, 1)])
+    mesh = ellipsect.TriangleMesh3(vertices, np.array([[0, 1, 3], [4, 5, 7]]))
+    m = ellipsect.enclosing_ellipsoid(mesh)
+    assert np.asarray(m.body.radii) == pytest.approx([np.sqrt(3)] * 3, rel=1e-9)
+    with pytest.raises(ellipsect.InputError, match="bodies"):
+        ellipsect.enclosing_ellipsoid(ellipsect.Ellipses(centers=np.zeros((0, 2)), radii=np.ones((0, 2)), angles=np.zeros(0)))
+    with pytest.raises(ellipsect.InputError, match="capsules"):
+        ellipsect.enclosing_ellipsoid([ellipsect.Capsule2([0, 0], [1e4, 0], 1e-9)])

@@ -1,6 +1,7 @@
 // The minimum-volume enclosing ellipsoid of points (geometry.hpp): the weights by a
 // coordinate ascent with away steps on a core set, the body from the weights, its
 // containment and its volume gap certified in rational arithmetic.
+#include <ellipsect/classify.hpp>
 #include <ellipsect/geometry.hpp>
 
 #include "detail/axes.hpp"
@@ -77,9 +78,9 @@ struct Working {
 };
 
 // Kumar and Yildirim's start: for N directions, each orthogonal to the differences chosen
-// before, the two extreme points along it. Throws InputError("points") for a flat cloud.
+// before, the two extreme points along it. Throws InputError(name) for a flat cloud.
 template <int N>
-std::vector<std::size_t> extreme_points(const std::vector<V<N>>& y) {
+std::vector<std::size_t> extreme_points(const std::vector<V<N>>& y, const char* name) {
   std::vector<std::size_t> chosen;
   std::vector<V<N>> basis;  // orthonormal, spanning the chosen differences
   for (int j = 0; j < N; ++j) {
@@ -98,7 +99,7 @@ std::vector<std::size_t> extreme_points(const std::vector<V<N>>& y) {
     // The cloud fits in a box of size in [1, 2): a width below 1e-9 leaves an ellipsoid
     // beyond Ellipsoid::max_aspect_ratio.
     if (!(d.dot(y[hi] - y[lo]) > 1e-9))
-      throw InputError("points", "lie within 1e-9 of their extent from a " + std::string(j == 0 ? "point" : j == 1 ? "line" : "plane") +
+      throw InputError(name, "lie within 1e-9 of their extent from a " + std::string(j == 0 ? "point" : j == 1 ? "line" : "plane") +
                                      ": no ellipsoid of positive volume and aspect ratio below 1e8 encloses them");
     chosen.push_back(hi);
     chosen.push_back(lo);
@@ -141,43 +142,76 @@ struct Lifted {
   }
 };
 
-// Newton's step for ln det M on the face of the simplex of the weighted points: gradient
-// omega, Hessian -(q_i^T M^-1 q_j)^2, the step tangent to sum u = 1 (a ridge of 1e-12 for the
-// directions that leave M unchanged), cut where a weight reaches 0 (that weight leaves the
-// support) and halved until ln det M grows. False where it does not grow.
+// Newton's step for ln det M: its quadratic model (gradient omega, Hessian
+// -(q_i^T M^-1 q_j)^2, a ridge of 1e-12 for the directions that leave M unchanged) maximized
+// over the simplex u >= 0, sum u = 1 by a primal active-set method (Nocedal and Wright, 16.3:
+// weights enter and leave the support within the one step, so that a point the model wants in
+// does not zigzag against one it wants out), then halved until ln det M grows. False where it
+// does not grow.
 template <int N>
 bool newton_step(std::vector<double>& u, const std::vector<V<N>>& z, const Lifted<N>& at) {
   using Lift = Lifted<N>;
-  std::vector<std::size_t> s;
-  for (std::size_t i = 0; i < u.size(); ++i)
-    if (u[i] > 0) s.push_back(i);
-  const Eigen::Index k = Eigen::Index(s.size());
+  const Eigen::Index k = Eigen::Index(u.size());
   Eigen::Matrix<L, Lift::n, Eigen::Dynamic> q(Lift::n, k);
-  for (Eigen::Index i = 0; i < k; ++i) q.col(i) = Lift::lift(z[s[std::size_t(i)]]);
+  for (Eigen::Index i = 0; i < k; ++i) q.col(i) = Lift::lift(z[std::size_t(i)]);
   const LMatrix g = q.transpose() * at.ldlt.solve(q);
   LMatrix h = g.cwiseProduct(g);
   h.diagonal().array() += L(1e-12) * h.diagonal().maxCoeff();
-  const Eigen::LDLT<LMatrix> hl(h);
-  const LVector a = hl.solve(LVector(g.diagonal())), b = hl.solve(LVector::Ones(k));
-  const L lambda = a.sum() / b.sum();
-  const LVector du = a - lambda * b;  // sum du = 0
-  L t = 1;
-  std::size_t blocking = s.size();
-  for (Eigen::Index i = 0; i < k; ++i)
-    if (du[i] < 0 && -L(u[s[std::size_t(i)]]) / du[i] < t) {
-      t = -L(u[s[std::size_t(i)]]) / du[i];
-      blocking = std::size_t(i);
+  LVector x(k);
+  for (Eigen::Index i = 0; i < k; ++i) x[i] = u[std::size_t(i)];
+  // The model, omega^T (x - u) - (x - u)^T H (x - u) / 2, is -(x^T H x / 2 - c^T x) + const.
+  const LVector omega = g.diagonal(), c = omega + h * x;
+  std::vector<char> bound(static_cast<std::size_t>(k));
+  for (Eigen::Index i = 0; i < k; ++i) bound[std::size_t(i)] = x[i] <= 0;
+  for (int round = 0; round < 4 * int(k) + 20; ++round) {
+    std::vector<Eigen::Index> free;
+    for (Eigen::Index i = 0; i < k; ++i)
+      if (!bound[std::size_t(i)]) free.push_back(i);
+    const Eigen::Index f = Eigen::Index(free.size());
+    LMatrix hf(f, f);
+    LVector cf(f);
+    for (Eigen::Index a = 0; a < f; ++a) {
+      cf[a] = c[free[std::size_t(a)]];
+      for (Eigen::Index b = 0; b < f; ++b) hf(a, b) = h(free[std::size_t(a)], free[std::size_t(b)]);
     }
-  // Within about 1e-9 of the face's optimum (Newton's decrement) the full step is taken:
-  // there ln det M grows by less than its rounding.
-  const bool close = LVector(g.diagonal()).dot(du) < L(1e-9);
-  for (int halving = 0; halving < 30; ++halving, t /= 2, blocking = s.size()) {
+    // The face's optimum: H_FF x_F = c_F - nu 1, sum x_F = 1.
+    const Eigen::LDLT<LMatrix> hl(hf);
+    const LVector a = hl.solve(cf), b = hl.solve(LVector::Ones(f));
+    const L nu = (a.sum() - 1) / b.sum();
+    LVector step(f);
+    for (Eigen::Index i = 0; i < f; ++i) step[i] = a[i] - nu * b[i] - x[free[std::size_t(i)]];
+    if (step.cwiseAbs().maxCoeff() <= L(1e-15)) {
+      // At the face's optimum: release the bound weight of the most negative multiplier
+      // (H x - c)_i + nu, or stop where none is.
+      const LVector grad = h * x - c;
+      Eigen::Index release = -1;
+      L most = L(-1e-12);
+      for (Eigen::Index i = 0; i < k; ++i)
+        if (bound[std::size_t(i)] && grad[i] + nu < most) most = grad[i] + nu, release = i;
+      if (release < 0) break;
+      bound[std::size_t(release)] = 0;
+      continue;
+    }
+    L t = 1;
+    Eigen::Index blocking = -1;
+    for (Eigen::Index i = 0; i < f; ++i)
+      if (step[i] < 0 && -x[free[std::size_t(i)]] / step[i] < t) t = -x[free[std::size_t(i)]] / step[i], blocking = free[std::size_t(i)];
+    for (Eigen::Index i = 0; i < f; ++i) x[free[std::size_t(i)]] += t * step[i];
+    if (blocking >= 0) x[blocking] = 0, bound[std::size_t(blocking)] = 1;
+  }
+  LVector du(k);
+  for (Eigen::Index i = 0; i < k; ++i) du[i] = x[i] - L(u[std::size_t(i)]);
+  // Within about 1e-9 of the model's optimum the full step is taken: there ln det M grows by
+  // less than its rounding.
+  const bool close = omega.dot(du) < L(1e-9);
+  L t = 1;
+  for (int halving = 0; halving < 30; ++halving, t /= 2) {
     std::vector<double> next = u;
-    for (Eigen::Index i = 0; i < k; ++i) next[s[std::size_t(i)]] = double(std::max(L(0), L(u[s[std::size_t(i)]]) + t * du[i]));
-    if (blocking < s.size()) next[s[blocking]] = 0;
+    for (Eigen::Index i = 0; i < k; ++i) next[std::size_t(i)] = double(std::max(L(0), L(u[std::size_t(i)]) + t * du[i]));
     const double total = std::accumulate(next.begin(), next.end(), 0.0);
     for (double& v : next) v /= total;
     if (close || Lifted<N>(z, next).log_det > at.log_det) {
+      if (next == u) return false;
       u = std::move(next);
       return true;
     }
@@ -186,10 +220,10 @@ bool newton_step(std::vector<double>& u, const std::vector<V<N>>& z, const Lifte
 }
 
 // The weights of the working set until max omega <= (1 + eps) n (n = N + 1), the budget is
-// spent, or the excess stalls: Newton's step on the support where the point of largest omega is in it,
-// else Todd and Yildirim's step towards that point (the exact line search of ln det M),
-// which brings it in; their away step from the weighted point of least omega where Newton's
-// does not help (Ahipasaoglu, Sun and Todd).
+// spent, or the excess stalls: Newton's step over the working set, else Todd and Yildirim's
+// step towards the point of largest omega (the exact line search of ln det M), which brings
+// it in, or their away step from the weighted point of least omega (Ahipasaoglu, Sun and
+// Todd).
 enum class Ascent { reached, stalled, capped };
 
 template <int N>
@@ -214,7 +248,7 @@ Ascent ascend(Working<N>& w, double eps, std::int64_t& budget, std::int64_t& ite
     if (since > 100) return Ascent::stalled;
     --budget;
     ++iterations;
-    if (w.u[up] > 0 && newton_step<N>(w.u, w.z, at)) continue;
+    if (newton_step<N>(w.u, w.z, at)) continue;
     if (plus >= minus || w.u[down] >= 1) {
       const double beta = double((omega[up] - n) / (n * (omega[up] - 1)));
       for (double& u : w.u) u *= 1 - beta;
@@ -243,15 +277,15 @@ Frame<N> frame_of(const Working<N>& w, const Frame<N>& frame) {
   return out;
 }
 
-InputError unrepresentable() {
-  return InputError("points", "no ellipsoid stored in the type holds them: its aspect ratio would exceed 1e8 (points close to "
+InputError unrepresentable(const char* name) {
+  return InputError(name, "no ellipsoid stored in the type holds them: its aspect ratio would exceed 1e8 (points close to "
                               "a line or plane) or its radii the type's range");
 }
 
 // The body of the weights' ellipsoid grown to hold every point (rho, geometry.hpp), in T:
 // its axes the eigenvectors of S_u, its radii sqrt(N rho lambda) 2^k, about the center.
 template <class T, int N>
-Ellipsoid<T, N> body_of(const Cloud<T, N>& cloud, const Frame<N>& frame) {
+Ellipsoid<T, N> body_of(const Cloud<T, N>& cloud, const Frame<N>& frame, const char* name) {
   double rho = 0;
   for (const auto& y : cloud.y) rho = std::max(rho, (frame.omega(y) - 1) / N);
   using LM = Eigen::Matrix<long double, N, N>;
@@ -264,7 +298,7 @@ Ellipsoid<T, N> body_of(const Cloud<T, N>& cloud, const Frame<N>& frame) {
   try {
     return Ellipsoid<T, N>::from_axes(center.template cast<T>(), eig.eigenvectors().template cast<T>(), radii);
   } catch (const InputError&) {
-    throw unrepresentable();
+    throw unrepresentable(name);
   }
 }
 
@@ -303,7 +337,7 @@ double excess_form(const detail::rational::Body<N>& b, const Vec<double, N>& p) 
 // round grows it by the largest excess and a margin of ulps that doubles, so that a few
 // rounds suffice (the margin passes any rounding within 60).
 template <class T, int N>
-Ellipsoid<T, N> grown_to_hold(Ellipsoid<T, N> body, std::span<const Vec<T, N>> points) {
+Ellipsoid<T, N> grown_to_hold(Ellipsoid<T, N> body, std::span<const Vec<T, N>> points, const char* name) {
   for (int round = 0; round < 60; ++round) {
     const Form<T, N> form(body);
     double worst = 0;
@@ -324,10 +358,10 @@ Ellipsoid<T, N> grown_to_hold(Ellipsoid<T, N> body, std::span<const Vec<T, N>> p
     try {
       body = Ellipsoid<T, N>::from_axes(body.center(), body.axes(), Vec<T, N>(body.radii() * factor));
     } catch (const InputError&) {
-      throw unrepresentable();
+      throw unrepresentable(name);
     }
   }
-  throw unrepresentable();
+  throw unrepresentable(name);
 }
 
 // vol(body) / (the weights' lower bound) - 1, in rationals, rounded up (geometry.hpp):
@@ -359,13 +393,12 @@ double certified_gap(const Ellipsoid<T, N>& body, std::span<const Vec<T, N>> poi
   return std::nextafter(r - 1 + 3 * std::numeric_limits<double>::epsilon() * r, std::numeric_limits<double>::infinity());
 }
 
-}  // namespace
-
+// The enclosing ellipsoid of points, its errors naming `name` (the caller's argument).
 template <class T, int N>
-EnclosingEllipsoid<T, N> enclosing_ellipsoid(std::span<const Vec<T, N>> points, const EnclosingOptions& options) {
+EnclosingEllipsoid<T, N> enclose_points(std::span<const Vec<T, N>> points, const EnclosingOptions& options, const char* name) {
   constexpr int n = N + 1;
   if (points.size() < std::size_t(n))
-    throw InputError("points", "must hold at least " + std::to_string(n) + " points (got " + std::to_string(points.size()) + ")");
+    throw InputError(name, "must hold at least " + std::to_string(n) + " points (got " + std::to_string(points.size()) + ")");
   const Cloud<T, N> cloud(points);
   EnclosingEllipsoid<T, N> out;
   std::int64_t budget = options.max_enclosing_iterations;
@@ -374,7 +407,7 @@ EnclosingEllipsoid<T, N> enclosing_ellipsoid(std::span<const Vec<T, N>> points, 
   // rest of the gap is left to the body's rounding and growth.
   const double tight = std::expm1(std::log1p(options.volume_gap / 8) * 2 / N) * N / n;
   Working<N> w;
-  w.index = extreme_points<N>(cloud.y);
+  w.index = extreme_points<N>(cloud.y, name);
   w.u.assign(w.index.size(), 1.0 / double(w.index.size()));
   std::vector<char> in_set(cloud.y.size(), 0);
   for (std::size_t i : w.index) in_set[i] = 1;
@@ -425,9 +458,10 @@ EnclosingEllipsoid<T, N> enclosing_ellipsoid(std::span<const Vec<T, N>> points, 
   for (std::size_t k = 0; k < w.index.size(); ++k)
     if (w.u[k] > 0) {
       out.support.push_back(w.index[k]);
+      out.support_points.push_back(points[w.index[k]]);
       out.weights.push_back(w.u[k]);
     }
-  out.body = grown_to_hold<T, N>(body_of<T, N>(cloud, frame), points);
+  out.body = grown_to_hold<T, N>(body_of<T, N>(cloud, frame, name), points, name);
   out.volume_gap = certified_gap<T, N>(out.body, points, out.support, out.weights);
   out.status = out.volume_gap <= options.volume_gap ? EnclosingStatus::optimal
                : capped || stalled                 ? EnclosingStatus::did_not_converge
@@ -435,8 +469,223 @@ EnclosingEllipsoid<T, N> enclosing_ellipsoid(std::span<const Vec<T, N>> points, 
   return out;
 }
 
-#define ELLIPSECT_INSTANTIATE(T, N) \
-  template EnclosingEllipsoid<T, N> enclosing_ellipsoid<T, N>(std::span<const Vec<T, N>>, const EnclosingOptions&);
+// ---- Bodies: the enclosing ellipsoid of their union, from points on their boundaries ----
+
+// The point of body b farthest outside e in e's form: max over x in b of (x - c)^T M (x - c).
+// In e's unit-ball coordinates b is { m + A v : |v| <= 1 }, and the maximum of |m + A v|^2
+// lies where v = (lambda - A^T A)^-1 A^T m, |v| = 1, lambda at least the largest eigenvalue
+// `top` of A^T A (a convex quadratic maximized on a ball: the trust-region conditions of
+// Moré and Sorensen). lambda by bisection on (top, top + |A^T m|], where |v(lambda)| falls
+// through 1; where it stays below 1 (A^T m orthogonal to the top eigenvector, the hard
+// case), lambda = top and v is completed along that eigenvector. Returns v in b's unit
+// coordinates and the form there.
+template <class T, int N>
+std::pair<V<N>, double> farthest(const Ellipsoid<T, N>& e, const Ellipsoid<T, N>& b) {
+  const M<N> re = detail::work_axes<double>(e), rb = detail::work_axes<double>(b);
+  const V<N> inverse = e.radii().template cast<double>().cwiseInverse();
+  const M<N> a = inverse.asDiagonal() * re.transpose() * rb * b.radii().template cast<double>().asDiagonal();
+  const V<N> m = inverse.asDiagonal() * (re.transpose() * (b.center().template cast<double>() - e.center().template cast<double>()));
+  const Eigen::SelfAdjointEigenSolver<M<N>> eig(a.transpose() * a);
+  const V<N> s = eig.eigenvalues(), g = eig.eigenvectors().transpose() * (a.transpose() * m);
+  const auto y_at = [&](double lambda) {
+    V<N> y;
+    for (int k = 0; k < N; ++k) y[k] = g[k] == 0 ? 0 : g[k] / (lambda - s[k]);
+    return y;
+  };
+  double lo = s[N - 1], hi = s[N - 1] + g.norm();  // |y(hi)| <= 1
+  for (int k = 0; k < 200; ++k) {
+    const double mid = lo + (hi - lo) / 2;
+    if (mid <= lo || mid >= hi) break;
+    (y_at(mid).squaredNorm() > 1 ? lo : hi) = mid;
+  }
+  V<N> y = y_at(hi);
+  const double rest = y.squaredNorm() - y[N - 1] * y[N - 1];
+  y[N - 1] = std::copysign(std::sqrt(std::max(0.0, 1 - rest)), g[N - 1]);
+  V<N> v = eig.eigenvectors() * y;
+  v /= v.norm();
+  return {v, (m + a * v).squaredNorm()};
+}
+
+// b's boundary point center + axes diag(radii) v (|v| = 1) in T, drawn towards the center by
+// the least factor 1 - 2^-k (k from min(T's digits, 43) down by 4: 2^-43 leaves double's
+// rounding bound room to decide, and costs the lower bound 1e-13) that puts it inside b as
+// stored (decided in rationals where the rounding bound cannot), else b's center: the
+// weights' bound holds for points inside the bodies.
+template <class T, int N>
+Vec<T, N> inside_point(const Ellipsoid<T, N>& b, const V<N>& v) {
+  using LV = Eigen::Matrix<long double, N, 1>;
+  const Form<T, N> form(b);
+  const LV c = b.center().template cast<long double>();
+  const LV arm = detail::work_axes<double>(b).template cast<long double>() *
+                 (b.radii().template cast<long double>().cwiseProduct(v.template cast<long double>()));
+  for (int k = std::min(std::numeric_limits<T>::digits, 43); k >= 1; k -= 4) {
+    const Vec<T, N> x = (c + arm * (1 - std::ldexp(1.0L, -k))).template cast<T>();
+    const auto [q, err] = form(x);
+    if (q + err <= 1 || (q - err <= 1 && excess_form<N>(detail::rational::exact_body(b), x.template cast<double>()) == 0))
+      return x;
+  }
+  return b.center();
+}
+
+// The enclosing ellipsoid of the union of bodies (geometry.hpp): a cutting-plane loop on
+// points of their boundaries, each round adding, for every body that the current ellipsoid
+// leaves out by more than the target, its farthest point; then the last ellipsoid grown until
+// the exact classification finds every body inside, and its gap certified by the weights of
+// the points (which lie in the bodies: a bound for the union too). Support: the bodies that
+// carry the certificate.
+constexpr int max_body_rounds = 100;
+
+template <class T, int N>
+EnclosingEllipsoid<T, N> enclose_bodies(std::span<const Ellipsoid<T, N>> bodies, const EnclosingOptions& options,
+                                        const char* name) {
+  if (bodies.empty()) throw InputError(name, "must hold at least one body");
+  // The points of the round (e is theirs) and the body each lies in.
+  std::vector<Vec<T, N>> points, next;
+  std::vector<std::size_t> owner, next_owner;
+  const auto add = [&](std::size_t j, const V<N>& v) {
+    next.push_back(inside_point<T, N>(bodies[j], v));
+    next_owner.push_back(j);
+  };
+  for (std::size_t j = 0; j < bodies.size(); ++j)
+    for (int k = 0; k < N; ++k) {
+      add(j, V<N>::Unit(k));
+      add(j, -V<N>::Unit(k));
+    }
+  // The points' gap takes half the requested one, the bodies' excess (rho^(N/2) <= 1 + gap/4)
+  // a quarter, the growth and rounding the rest.
+  EnclosingOptions inner = options;
+  inner.volume_gap = std::max(options.volume_gap / 2, detail::volume_gap_range.low);
+  const double target = std::expm1(std::log1p(options.volume_gap / 4) * 2 / N);
+  EnclosingEllipsoid<T, N> e, out;
+  std::int64_t left = options.max_enclosing_iterations;
+  bool capped = false, stalled = false;
+  double rho = 1, best = std::numeric_limits<double>::infinity();
+  int since = 0;
+  for (int round = 0;; ++round) {
+    points.swap(next);
+    owner.swap(next_owner);
+    inner.max_enclosing_iterations = left;
+    e = enclose_points<T, N>(points, inner, name);
+    out.iterations += e.iterations;
+    out.passes += e.passes;
+    left -= e.iterations;
+    // The next round's points: each body's farthest and the weighted ones (the others would
+    // crowd the face of the optimum). Where the weights stalled, a weighted point within 1e-3
+    // (in the unit ball of e) of a newer one of its body leaves: the same contact, located
+    // better (near twins are what stalls the weights).
+    stalled = e.status == EnclosingStatus::did_not_converge;
+    const Mat<double, N> axes = detail::work_axes<double>(e.body);
+    const V<N> inverse = e.body.radii().template cast<double>().cwiseInverse();
+    const auto unit = [&](const Vec<T, N>& x) -> V<N> {
+      return inverse.asDiagonal() * (axes.transpose() * (x.template cast<double>() - e.body.center().template cast<double>()));
+    };
+    next.clear();
+    next_owner.clear();
+    rho = 1;
+    for (std::size_t j = 0; j < bodies.size(); ++j) {
+      const auto [v, form] = farthest<T, N>(e.body, bodies[j]);
+      rho = std::max(rho, form);
+      if (form > 1 + target) add(j, v);
+    }
+    const std::size_t added = next.size();
+    std::vector<std::size_t> support = e.support;
+    std::sort(support.begin(), support.end());  // the newer first
+    bool dropped = false;
+    for (std::size_t k : support) {
+      bool twin = false;
+      for (std::size_t i = 0; i < next.size() && stalled && !twin; ++i)
+        twin = next_owner[i] == owner[k] && (unit(next[i]) - unit(points[k])).norm() < 1e-3;
+      dropped = dropped || twin;
+      if (twin) continue;
+      next.push_back(points[k]);
+      next_owner.push_back(owner[k]);
+    }
+    // Five rounds that do not halve the excess: its rounding's floor.
+    if (rho - 1 < best / 2) best = rho - 1, since = 0;
+    const bool more = added > 0 || dropped;
+    capped = left < 1 || (more && round + 1 == max_body_rounds);
+    if (!more || capped || ++since > 5) break;
+  }
+  // Grown by sqrt(rho) and a margin of ulps that doubles, until every body is inside (exact
+  // classification, internal tangency included).
+  Options exact;
+  exact.tolerance = Tolerance::exact;
+  double factor = std::sqrt(rho);
+  for (int round = 0;; ++round) {
+    if (round == 60) throw unrepresentable(name);
+    const T grow = T(factor * (1 + std::ldexp(double(std::numeric_limits<T>::epsilon()), round + 2)));
+    try {
+      out.body = Ellipsoid<T, N>::from_axes(e.body.center(), e.body.axes(), Vec<T, N>(e.body.radii() * grow));
+    } catch (const InputError&) {
+      throw unrepresentable(name);
+    }
+    double worst = 0;
+    for (const auto& b : bodies) {
+      const Relation r = classify(out.body, b, exact);
+      if (r != Relation::a_contains_b && r != Relation::equal) worst = std::max(worst, farthest<T, N>(out.body, b).second);
+    }
+    if (worst == 0) break;
+    factor *= std::sqrt(std::max(worst, 1.0));
+  }
+  for (std::size_t k = 0; k < e.support.size(); ++k) {
+    out.support.push_back(owner[e.support[k]]);
+    out.support_points.push_back(points[e.support[k]]);
+  }
+  out.weights = e.weights;
+  out.volume_gap = certified_gap<T, N>(out.body, points, e.support, e.weights);
+  out.status = out.volume_gap <= options.volume_gap ? EnclosingStatus::optimal
+               : capped || stalled                 ? EnclosingStatus::did_not_converge
+                                                   : EnclosingStatus::rounding_limited;
+  return out;
+}
+
+}  // namespace
+
+template <class T, int N>
+EnclosingEllipsoid<T, N> enclosing_ellipsoid(std::span<const Vec<T, N>> points, const EnclosingOptions& options) {
+  return enclose_points<T, N>(points, options, "points");
+}
+
+template <class T, int N>
+EnclosingEllipsoid<T, N> enclosing_ellipsoid(std::span<const Ellipsoid<T, N>> bodies, const EnclosingOptions& options) {
+  return enclose_bodies<T, N>(bodies, options, "bodies");
+}
+
+template <class T, int N>
+EnclosingEllipsoid<T, N> enclosing_ellipsoid(std::span<const Capsule<T, N>> capsules, const EnclosingOptions& options) {
+  std::vector<Ellipsoid<T, N>> balls;
+  for (const auto& c : capsules)
+    for (int k = 0; k < 2; ++k) balls.push_back(make_ball<T, N>(c.point(k), c.radius()));
+  EnclosingEllipsoid<T, N> out = enclose_bodies<T, N>(balls, options, "capsules");
+  for (std::size_t& j : out.support) j /= 2;
+  return out;
+}
+
+template <class T, int N>
+EnclosingEllipsoid<T, N> enclosing_ellipsoid(std::span<const Box<T, N>> boxes, const EnclosingOptions& options) {
+  if (boxes.empty()) throw InputError("boxes", "must hold at least one box");
+  std::vector<Vec<T, N>> corners;
+  for (const auto& b : boxes)
+    for (int k = 0; k < 1 << N; ++k) corners.push_back(b.corner(k));
+  EnclosingEllipsoid<T, N> out = enclose_points<T, N>(corners, options, "boxes");
+  for (std::size_t& j : out.support) j >>= N;
+  return out;
+}
+
+template <class T, int N>
+EnclosingEllipsoid<T, N> enclosing_ellipsoid(const TriangleMesh<T, N>& mesh, const EnclosingOptions& options) {
+  const std::span<const T> v = mesh.vertices();
+  std::vector<Vec<T, N>> points(v.size() / N);
+  for (std::size_t i = 0; i < points.size(); ++i) points[i] = Eigen::Map<const Vec<T, N>>(v.data() + i * N);
+  return enclose_points<T, N>(points, options, "mesh");
+}
+
+#define ELLIPSECT_INSTANTIATE(T, N)                                                                                          \
+  template EnclosingEllipsoid<T, N> enclosing_ellipsoid<T, N>(std::span<const Vec<T, N>>, const EnclosingOptions&);          \
+  template EnclosingEllipsoid<T, N> enclosing_ellipsoid<T, N>(std::span<const Ellipsoid<T, N>>, const EnclosingOptions&);    \
+  template EnclosingEllipsoid<T, N> enclosing_ellipsoid<T, N>(std::span<const Capsule<T, N>>, const EnclosingOptions&);      \
+  template EnclosingEllipsoid<T, N> enclosing_ellipsoid<T, N>(std::span<const Box<T, N>>, const EnclosingOptions&);          \
+  template EnclosingEllipsoid<T, N> enclosing_ellipsoid<T, N>(const TriangleMesh<T, N>&, const EnclosingOptions&);
 ELLIPSECT_FOR_EACH_TYPE_AND_DIM(ELLIPSECT_INSTANTIATE)
 #undef ELLIPSECT_INSTANTIATE
 
