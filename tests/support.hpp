@@ -47,6 +47,17 @@ void expect_field(F&& f, const std::string& field) {
   }
 }
 
+// Runs f: the message of the InputError it throws, or "no error".
+template <class F>
+std::string error_message(F&& f) {
+  try {
+    f();
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
 // The exact mode's options (classify.hpp).
 inline constexpr Options exact_options{.tolerance = Tolerance::exact};
 

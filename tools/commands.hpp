@@ -97,7 +97,20 @@ struct BenchOptions {
   std::string output;
 };
 
+// enclose and fit: points (CSV with columns x, y [, z]) or a mesh file's vertices (.obj, .stl)
+// in, a one-body JSON scene out.
+struct GeometryOptions {
+  std::string input;
+  std::string output;                  // "" or "-": stdout
+  std::string id;                      // the body's id in the scene
+  double volume_gap = 1e-9;            // enclose
+  double fit_tolerance = 1e-8;         // fit
+  std::int64_t max_iterations = 0;     // the command's cap (EnclosingOptions, FitOptions)
+};
+
 int run_check(const CheckOptions& options);
+int run_enclose(const GeometryOptions& options);
+int run_fit(const GeometryOptions& options);
 int run_render(const RenderOptions& options);
 int run_bench(const BenchOptions& options);
 

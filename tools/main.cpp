@@ -2,10 +2,13 @@
 //   ellipsect check SCENE    relation, first contact and distance of every pair (JSON or CSV)
 //   ellipsect render SCENE   an SVG or PNG picture of the scene at one time
 //   ellipsect bench SCENE    queries per second on the scene's pairs
+//   ellipsect enclose FILE   the minimum-volume ellipse or ellipsoid of points or a mesh, as a scene
+//   ellipsect fit FILE       their least-squares ellipse or ellipsoid, as a scene
 // docs/cli.md documents the commands, docs/scene-format.md the scene files.
 #include "commands.hpp"
 #include "common.hpp"
 
+#include <ellipsect/geometry.hpp>
 #include <ellipsect/version.hpp>
 
 #include <CLI/CLI.hpp>
@@ -197,6 +200,46 @@ int main(int argc, char** argv) {
       "  ellipsect bench examples/scenes/swept_3d.json\n"
       "  ellipsect bench examples/scenes/bodies_10k.csv --query overlap -j 1 --min-time 2");
 
+  // enclose and fit: points or a mesh in, a one-body scene out.
+  GeometryOptions enclose, fit;
+  enclose.id = "enclosing";
+  enclose.max_iterations = ellipsect::EnclosingOptions{}.max_enclosing_iterations;
+  fit.id = "fit";
+  fit.max_iterations = ellipsect::FitOptions{}.max_fit_iterations;
+  const auto add_geometry = [](CLI::App& cmd, GeometryOptions& g) {
+    cmd.add_option("FILE", g.input, "Points: a CSV with a header naming columns x, y (and z); or a mesh: .obj, .stl")
+        ->required()
+        ->type_name("FILE");
+    cmd.add_option("-o,--output", g.output, "Output scene (JSON; default: stdout); written whole or not at all")
+        ->type_name("FILE");
+    cmd.add_option("--id", g.id, "The body's id in the scene")->default_str(g.id);
+  };
+  CLI::App* en = app.add_subcommand(
+      "enclose", "The minimum-volume ellipse or ellipsoid holding every point (certified), as a one-body scene");
+  add_geometry(*en, enclose);
+  en->add_option("--volume-gap", enclose.volume_gap,
+                 "The volume gap to reach, vol <= (1 + gap) min, in [1e-12, 1] (default 1e-9)")
+      ->type_name("X");
+  en->add_option("--max-enclosing-iterations", enclose.max_iterations,
+                 "Cap on the weight updates, in [1, 10000000] (default 1000000); reaching it is did_not_converge")
+      ->type_name("N");
+  en->footer(
+      "Examples:\n"
+      "  ellipsect enclose examples/scenes/edge_points.csv -o hull.json\n"
+      "  ellipsect enclose examples/scenes/meshes/hill.obj --volume-gap 1e-6 -o hill_hull.json\n"
+      "  ellipsect check hull.json");
+  CLI::App* fi = app.add_subcommand("fit", "The least-squares ellipse or ellipsoid of the points (orthogonal distances), as a one-body scene");
+  add_geometry(*fi, fit);
+  fi->add_option("--fit-tolerance", fit.fit_tolerance, "The stationarity to reach, in [1e-15, 1e-3] (default 1e-8)")
+      ->type_name("X");
+  fi->add_option("--max-fit-iterations", fit.max_iterations,
+                 "Cap on the Levenberg-Marquardt steps, in [1, 100000] (default 200); reaching it is did_not_converge")
+      ->type_name("N");
+  fi->footer(
+      "Examples:\n"
+      "  ellipsect fit examples/scenes/edge_points.csv -o ellipse.json\n"
+      "  ellipsect fit scan.csv --fit-tolerance 1e-10");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -214,6 +257,8 @@ int main(int argc, char** argv) {
       finish_common(render.common, render_window, render_progress);
       return run_render(render);
     }
+    if (en->parsed()) return run_enclose(enclose);
+    if (fi->parsed()) return run_fit(fit);
     finish_common(bench.common, bench_window, bench_progress);
     return run_bench(bench);
   } catch (const UsageError& e) {

@@ -10,6 +10,7 @@
 #include <cstring>
 #include <fstream>
 #include <functional>
+#include <limits>
 #include <set>
 
 namespace ellipsect::cli {
@@ -119,7 +120,10 @@ Mat<double, N> checked_rotation(const Orientation& o) {
     fail(o.where(), "not a rotation matrix: max |R^T R - I| = " + number_string(dev) + " exceeds " +
                       number_string(orientation_tolerance));
   if (R.determinant() < 0) fail(o.where(), "is a reflection (determinant -1), not a rotation");
-  // Made exact by the library's normalization (shapes.hpp: the polar factor), as Python's.
+  // Orthonormal to rounding (as the program's enclose and fit write them): taken as given, bit
+  // for bit. Farther: made exact by the library's normalization (shapes.hpp: the polar
+  // factor), as Python's.
+  if (dev <= 8 * N * std::numeric_limits<double>::epsilon()) return R;
   return normalized_rotation<double, N>(R);
 }
 

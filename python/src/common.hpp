@@ -263,6 +263,17 @@ inline py::array_t<std::int64_t> integers(py::handle obj, const std::string& nam
 }
 
 // The rows of a C-contiguous (n, N) float64 array (checked()) as points.
+// `points` as (n, 2) or (n, 3) rows of doubles; dim set to their columns.
+inline py::array_t<double> point_rows(py::handle points, int& dim) {
+  const py::array a = numbers(points, "points");
+  if (a.ndim() != 2 || (a.shape(1) != 2 && a.shape(1) != 3))
+    throw py::value_error("points: expected shape (n, 2) or (n, 3), got " +
+                          shape_text(std::vector<py::ssize_t>(a.shape(), a.shape() + a.ndim())));
+  dim = int(a.shape(1));
+  py::ssize_t n = -1;
+  return checked(points, "points", {dim}, n, "points");
+}
+
 template <int N>
 std::vector<Vec<double, N>> rows_of(const py::array_t<double>& rows) {
   const double* p = rows.data();

@@ -43,13 +43,8 @@ void def_fit(py::module_& m) {
   m.def(
       "fit_ellipsoid",
       [](const ArrayLike& points, double fit_tolerance, int max_fit_iterations) {
-        const py::array a = numbers(points, "points");
-        if (a.ndim() != 2 || (a.shape(1) != 2 && a.shape(1) != 3))
-          throw py::value_error("points: expected shape (n, 2) or (n, 3), got " +
-                                shape_text(std::vector<py::ssize_t>(a.shape(), a.shape() + a.ndim())));
-        const int dim = int(a.shape(1));
-        py::ssize_t n = -1;
-        const auto rows = checked(points, "points", {dim}, n, "points");
+        int dim = 0;
+        const auto rows = point_rows(points, dim);
         FitOptions o;
         o.fit_tolerance = fit_tolerance;
         o.max_fit_iterations = max_fit_iterations;

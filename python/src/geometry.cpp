@@ -92,13 +92,8 @@ void def_geometry(py::module_& m) {
   m.def(
       "enclosing_ellipsoid",
       [](const ArrayLike& points, double volume_gap, std::int64_t max_enclosing_iterations) {
-        const py::array a = numbers(points, "points");
-        if (a.ndim() != 2 || (a.shape(1) != 2 && a.shape(1) != 3))
-          throw py::value_error("points: expected shape (n, 2) or (n, 3), got " +
-                                shape_text(std::vector<py::ssize_t>(a.shape(), a.shape() + a.ndim())));
-        const int dim = int(a.shape(1));
-        py::ssize_t n = -1;
-        const auto rows = checked(points, "points", {dim}, n, "points");
+        int dim = 0;
+        const auto rows = point_rows(points, dim);
         const EnclosingOptions o = enclosing_options(volume_gap, max_enclosing_iterations);
         return dim == 2 ? enclose<2>(rows_of<2>(rows), o) : enclose<3>(rows_of<3>(rows), o);
       },

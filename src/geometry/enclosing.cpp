@@ -5,6 +5,7 @@
 #include <ellipsect/geometry.hpp>
 
 #include "detail/axes.hpp"
+#include "detail/enum_names.hpp"
 #include "detail/instantiate.hpp"
 #include "detail/rational.hpp"
 
@@ -22,8 +23,7 @@ namespace ellipsect {
 
 std::string_view to_string(EnclosingStatus s) noexcept {
   static constexpr std::string_view names[] = {"optimal", "rounding_limited", "did_not_converge"};  // in the enum's order
-  const auto k = static_cast<std::size_t>(s);
-  return k < std::size(names) ? names[k] : "?";
+  return detail::name_of(s, names);
 }
 
 namespace {

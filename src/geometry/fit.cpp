@@ -5,6 +5,7 @@
 #include <ellipsect/geometry.hpp>
 #include <ellipsect/point.hpp>
 
+#include "detail/enum_names.hpp"
 #include "detail/instantiate.hpp"
 
 #include <Eigen/Cholesky>
@@ -25,8 +26,7 @@ namespace ellipsect {
 
 std::string_view to_string(FitStatus s) noexcept {
   static constexpr std::string_view names[] = {"converged", "did_not_converge", "not_an_ellipse"};  // in the enum's order
-  const auto k = static_cast<std::size_t>(s);
-  return k < std::size(names) ? names[k] : "?";
+  return detail::name_of(s, names);
 }
 
 namespace {

@@ -11,6 +11,7 @@
 // sanitizer pass uses 0.05).
 #include "tests/reference/reference.hpp"
 
+#include <ellipsect/geometry.hpp>
 #include <ellipsect/version.hpp>
 
 #include <Eigen/Geometry>
@@ -272,7 +273,7 @@ TEST(Cli, VersionPrintsTheLibraryVersion) {
 
 TEST(Cli, EveryCommandHasHelpWithAnExample) {
   const auto dir = work_dir();
-  for (const std::string cmd : {"check", "render", "bench"}) {
+  for (const std::string cmd : {"check", "render", "bench", "enclose", "fit"}) {
     const Outcome r = run_cli({cmd, "--help"}, dir);
     EXPECT_EQ(r.code, 0) << describe(r);
     EXPECT_NE(r.out.find("Examples:"), std::string::npos) << cmd;
@@ -2527,6 +2528,95 @@ TEST(CliLarge, MillionPairsStreamInBoundedMemory) {
   }
   fs::remove(in);
   fs::remove(out);
+}
+
+// ------------------------------------------------------------------------------------------
+// enclose and fit
+// ------------------------------------------------------------------------------------------
+
+// The bundled edge points: enclose writes the library's body bit for bit, every point inside it
+// as read back from the scene (its form in 50 digits), and check reads the scene; fit's
+// ellipse is the library's too, near the generating one; a mesh gives a 3D body.
+TEST(CliGeometry, EncloseAndFitWriteTheLibrarysBodyAsAScene) {
+  const auto dir = work_dir();
+  const fs::path points_file = scenes / "edge_points.csv";
+  std::vector<ellipsect::Vec<double, 2>> points;
+  {
+    std::ifstream f(points_file);
+    std::string line;
+    while (std::getline(f, line))
+      if (!line.empty() && line[0] != '#' && line[0] != 'x')
+        points.push_back({std::stod(line.substr(0, line.find(','))), std::stod(line.substr(line.find(',') + 1))});
+  }
+  ASSERT_EQ(points.size(), 240u);
+  const auto read_body = [](const std::string& text) {
+    const auto j = nlohmann::json::parse(text);
+    const auto& b = j.at("bodies").at(0);
+    ellipsect::Mat<double, 2> r;
+    for (int i = 0; i < 2; ++i)
+      for (int k = 0; k < 2; ++k) r(i, k) = b.at("rotation").at(i).at(k).get<double>();
+    return ellipsect::Ellipsoid<double, 2>::from_axes({b.at("center")[0].get<double>(), b.at("center")[1].get<double>()}, r,
+                                                      {b.at("radii")[0].get<double>(), b.at("radii")[1].get<double>()});
+  };
+  const Outcome e = run_cli({"enclose", points_file.string(), "-o", (dir / "hull.json").string()}, dir);
+  ASSERT_EQ(e.code, 0) << describe(e);
+  EXPECT_NE(e.err.find("enclose: optimal"), std::string::npos) << e.err;
+  const auto hull = read_body(slurp(dir / "hull.json"));
+  const auto expected = ellipsect::enclosing_ellipsoid<double, 2>(points).body;
+  EXPECT_EQ(hull.center(), expected.center());
+  EXPECT_EQ(hull.radii(), expected.radii());
+  EXPECT_EQ(hull.axes().cwiseAbs(), expected.axes().cwiseAbs());
+  using R = ellipsect::reference::Real;
+  for (const auto& p : points) {
+    R q = 0;
+    for (int k = 0; k < 2; ++k) {
+      R y = 0;
+      for (int i = 0; i < 2; ++i) y += R(hull.axes()(i, k)) * (R(p[i]) - R(hull.center()[i]));
+      q += y * y / (R(hull.radii()[k]) * R(hull.radii()[k]));
+    }
+    EXPECT_LE(q, 1);
+  }
+  const Outcome c = run_cli({"check", (dir / "hull.json").string()}, dir);
+  EXPECT_EQ(c.code, 0) << describe(c);
+
+  const Outcome f = run_cli({"fit", points_file.string()}, dir);
+  ASSERT_EQ(f.code, 0) << describe(f);
+  const auto fit = read_body(f.out);
+  EXPECT_EQ(fit.center(), (ellipsect::fit_ellipsoid<double, 2>(points).body.center()));
+  EXPECT_LT((fit.center() - ellipsect::Vec<double, 2>(3, 1)).norm(), 0.02);
+  EXPECT_NEAR(fit.radii().maxCoeff(), 2, 0.02);
+  EXPECT_NEAR(fit.radii().minCoeff(), 0.5, 0.02);
+
+  const Outcome m = run_cli({"enclose", (scenes / "meshes" / "tetrahedron.stl").string()}, dir);
+  ASSERT_EQ(m.code, 0) << describe(m);
+  EXPECT_EQ(nlohmann::json::parse(m.out).at("bodies").at(0).at("radii").size(), 3u);
+}
+
+// Bad points files exit with 2 and name the file, the line and the column; bad options with 1.
+TEST(CliGeometry, BadPointsAreNamed) {
+  const auto dir = work_dir();
+  write_file(dir / "no_header.csv", "1,2\n3,4\n");
+  write_file(dir / "bad_number.csv", "x,y\n0,0\n1,oops\n");
+  write_file(dir / "few.csv", "x,y,z\n0,0,0\n1,0,0\n");
+  write_file(dir / "line.csv", "x,y\n0,0\n1,1\n2,2\n3,3\n4,4\n5,5\n");
+  const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
+      {{"enclose", (dir / "no_header.csv").string()}, "no_header.csv:1: header"},
+      {{"enclose", (dir / "bad_number.csv").string()}, "bad_number.csv:3: y: expected a finite number"},
+      {{"fit", (dir / "bad_number.csv").string()}, "bad_number.csv:3: y"},
+      {{"enclose", (dir / "few.csv").string()}, "few.csv: points: must hold at least 4"},
+      {{"enclose", (dir / "line.csv").string()}, "line"},
+      {{"fit", (dir / "line.csv").string()}, "points"},
+  };
+  for (const auto& [args, message] : cases) {
+    const Outcome r = run_cli(args, dir);
+    EXPECT_EQ(r.code, 2) << describe(r);
+    EXPECT_NE(r.err.find(message), std::string::npos) << r.err;
+  }
+  const Outcome gap = run_cli({"enclose", (scenes / "edge_points.csv").string(), "--volume-gap", "0"}, dir);
+  EXPECT_EQ(gap.code, 1) << describe(gap);
+  EXPECT_NE(gap.err.find("volume_gap"), std::string::npos) << gap.err;
+  const Outcome missing = run_cli({"fit", (dir / "absent.csv").string()}, dir);
+  EXPECT_EQ(missing.code, 3) << describe(missing);
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 
 
 #include "scenarios/scenarios.hpp"
+#include "tests/support.hpp"
 #include "tests/reference/reference.hpp"
 
 #include <boost/multiprecision/cpp_bin_float.hpp>
@@ -467,14 +468,7 @@ TEST(EnclosingEllipsoid, EmptyShapesAreNamed) {
 }
 
 TEST(EnclosingEllipsoid, BadInputNamesThePoints) {
-  const auto message = [](auto&& f) {
-    try {
-      f();
-    } catch (const InputError& e) {
-      return std::string(e.what());
-    }
-    return std::string("no error");
-  };
+  const auto message = [](auto&& f) { return ellipsect::testing::error_message(f); };
   EXPECT_NE(message([] { enclosing_ellipsoid<double, 3>(Points<double, 3>{}); }).find("points"), std::string::npos);
   EXPECT_NE(message([] { enclosing_ellipsoid<double, 3>(Points<double, 3>{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}); })
                 .find("at least 4"),

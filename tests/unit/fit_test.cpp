@@ -9,6 +9,7 @@
 #include <ellipsect/point.hpp>
 
 #include "scenarios/scenarios.hpp"
+#include "tests/support.hpp"
 
 #include <boost/multiprecision/cpp_bin_float.hpp>
 #include <boost/multiprecision/eigen.hpp>
@@ -538,14 +539,7 @@ TEST(FitEllipsoid, FloatPoints) {
 }
 
 TEST(FitEllipsoid, BadInputNamesThePoints) {
-  const auto message = [](auto&& f) {
-    try {
-      f();
-    } catch (const InputError& e) {
-      return std::string(e.what());
-    }
-    return std::string("no error");
-  };
+  const auto message = [](auto&& f) { return ellipsect::testing::error_message(f); };
   EXPECT_NE(message([] { fit_ellipsoid<double, 2>(Points<double, 2>{}); }).find("at least 5"), std::string::npos);
   EXPECT_NE(message([] { fit_ellipsoid<double, 3>(Points<double, 3>(8, Vec<double, 3>(1, 2, 3))); }).find("at least 9"),
             std::string::npos);

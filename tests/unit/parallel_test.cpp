@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <chrono>
 #include <cstddef>
 #include <stdexcept>
 #include <thread>
@@ -33,11 +34,21 @@ TEST(Parallel, EveryIndexOnceOnAnyThreadCount) {
 
 TEST(Parallel, FirstExceptionReachesTheCallerAndStopsTheRest) {
   std::atomic<std::size_t> ran{0};
+  std::atomic<bool> thrown{false};
   const std::size_t count = 100000;
   EXPECT_THROW(parallel_for(count, 0,
                             [&](std::size_t k) {
                               ran.fetch_add(1);
-                              if (k == 10) throw std::runtime_error("body 10");
+                              if (k == 10) {
+                                thrown = true;
+                                throw std::runtime_error("body 10");
+                              }
+                              // Beyond the first chunks, wait for the throw (at most 10 s): a
+                              // loaded machine may not run index 10's worker before the others
+                              // would have taken every index.
+                              const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+                              while (k > 1000 && !thrown && std::chrono::steady_clock::now() < until)
+                                std::this_thread::yield();
                             }),
                std::runtime_error);
   EXPECT_LT(ran.load(), count);  // the handing out stopped
