@@ -7,7 +7,8 @@ file(GLOB_RECURSE ellipsect_sources CONFIGURE_DEPENDS ${ellipsect_source_root}/*
 # error-free products of detail/compensated.hpp stay error-free: no fused multiply-adds.
 # (A unity build compiles files with options of their own alone.)
 set_source_files_properties(${ellipsect_source_root}/many/batch_kernels.cpp ${ellipsect_source_root}/obstacles/half_space.cpp
-                            ${ellipsect_source_root}/obstacles/triangle.cpp PROPERTIES COMPILE_OPTIONS -ffp-contract=off)
+                            ${ellipsect_source_root}/obstacles/triangle.cpp ${ellipsect_source_root}/geometry/inscribed.cpp
+                            PROPERTIES COMPILE_OPTIONS -ffp-contract=off)
 # The files that compute in rationals (detail/rational.hpp): GMP's where the build has it
 # (the library), Boost's own otherwise (the page). Each is compiled alone, so that every
 # file sees one rational type.

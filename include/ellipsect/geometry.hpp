@@ -1,5 +1,6 @@
-// Ellipsoids from the user's geometry: the minimum-volume enclosing ellipse or ellipsoid of
-// a set of points, certified.
+// Ellipsoids from the user's geometry, certified: the minimum-volume enclosing ellipse or
+// ellipsoid of points, meshes, boxes, capsules and bodies; the least-squares fit of points
+// (Fits, below); the maximum-volume inscribed one of a polytope (Inscribed, below).
 //
 // Math. The minimum-volume ellipsoid containing points p_1..p_m of R^N (Loewner-John) is
 // { x : (x - c)^T (N S_u)^-1 (x - c) <= 1 } for the optimal weights u of the dual problem
@@ -52,6 +53,7 @@
 
 #include <ellipsect/box.hpp>
 #include <ellipsect/capsule.hpp>
+#include <ellipsect/half_space.hpp>
 #include <ellipsect/mesh.hpp>
 #include <ellipsect/options.hpp>
 #include <ellipsect/shapes.hpp>
@@ -227,5 +229,121 @@ struct EllipsoidFit {
 
 template <class T, int N>
 EllipsoidFit<T, N> fit_ellipsoid(std::span<const Vec<T, N>> points, const FitOptions& options = {});
+
+// ---------------------------------------------------------------------------------------------
+// Inscribed: the maximum-volume ellipse or ellipsoid inside a bounded convex polytope given by
+// half-spaces (the inner step of a free-space decomposition), certified.
+//
+// Math. Each half-space H_i = { x : n_i . (x - p_i) <= 0 } (half_space.hpp) is a_i^T x <= b_i
+// with a_i = n_i as stored and b_i = n_i . p_i. The ellipsoid { B u + d : |u| <= 1 } (B
+// symmetric positive definite) lies in H_i exactly when |B a_i| + a_i^T d <= b_i, so the
+// maximum-volume inscribed ellipsoid solves
+//     maximize ln det B  subject to  |B a_i| <= b_i - a_i^T d  (second-order cones).
+// Its dual: over mu_i >= |z_i| (z_i in R^N) with sum_i mu_i a_i = 0 and G = sym(sum_i a_i z_i^T)
+// negative definite,
+//     minimize D(mu, z) = sum_i mu_i b_i - ln det(-G) - N,
+// and every such point bounds the optimum: ln det B <= D for every inscribed (B, d) (the
+// Lagrangian ln det B + sum_i (mu_i (b_i - a_i^T d) + z_i^T B a_i) >= ln det B, at most D). A
+// dual-feasible point also proves the polytope bounded (a direction v with a_i^T v <= 0 for
+// every i would give v^T G v = 0). The solve: a barrier method on the N(N+1)/2 + N numbers
+// of (B, d), minimizing -t ln det B - sum_i ln((b_i - a_i^T d)^2 - |B a_i|^2) (self-concordant)
+// by Newton's method with backtracking, t growing eightfold, in long double, on the problem
+// moved to the polytope's Chebyshev center and scaled by a power of two near its inradius;
+// the start is that center's ball (phase I: a barrier method on the Chebyshev-ball linear
+// program maximize r subject to a_i^T x + r <= b_i, within a box 1e12 times the planes'
+// points' extent). From each central point (s_i = b_i - a_i^T d, w_i = B a_i,
+// g_i = s_i^2 - |w_i|^2) the dual point mu_i = 2 s_i / (t g_i), z_i = -2 w_i / (t g_i)
+// (|z_i| < mu_i), made to satisfy sum_i mu_i a_i = 0 by the least-squares correction
+// mu_i (1 - a_i^T lambda), z_i (1 - a_i^T lambda) (lambda from the weighted normal equations;
+// the cones kept), bounds the gap; at the center it is 2m / t (m half-spaces).
+//
+// Guarantees, of the body as stored (center, axes, radii in T; float axes as every query takes
+// them, detail/axes.hpp):
+//   containment  the body lies in every half-space by the exact classification
+//                (classify(body, half_space, Options{.tolerance = Tolerance::exact}) ==
+//                b_contains_a, internal tangency included): the barrier's body shrunk by
+//                ulps (a margin that doubles, at most 60 rounds) until it does;
+//   volume       the maximum volume is at most (1 + volume_gap) vol(body), with
+//                volume_gap = exp(D - ln det B) - 1 for
+//                the dual point above and the body as stored (its radii, and the determinant
+//                of its axes), rounded up. D and ln det B are evaluated in long double on
+//                offsets n_i . (p_i - o) formed in compensated arithmetic (o the Chebyshev
+//                center in double); the evaluation's rounding, estimated at 64 (m + N) ulps of
+//                long double (5.4e-20) of the terms' magnitudes and the correction's residual
+//                |sum_i mu_i a_i| times the polytope's extent (at most N times the body's
+//                largest radius), about 1e-17 of the gap, is added: a bound up to that
+//                estimate, not an estimate of the gap. The barrier takes an eighth of the
+//                requested gap, the body's rounding to T and its shrinking the rest; where
+//                they need more (float bodies, about 1e-6; a body whose center's ulp is
+//                above 1e-10 of its radii) the status says so (rounding_limited) and
+//                volume_gap says by how much.
+//   weights      the dual point's mu_i (b_i - a_i^T d) / N at the barrier's last center:
+//                dimensionless, unchanged by moving or scaling the polytope, summing to 1 up
+//                to the gap and the center's rounding (within 1e-5; the dual bound is second
+//                order in it); active names the half-spaces whose weight exceeds
+//                sqrt(2 / (t N)) (the geometric mean of an inactive half-space's weight,
+//                2 / (t N (1 - |w_i|^2 / s_i^2)), and 1): the faces the optimum touches. In
+//                world units the multiplier is mu_i = N weight_i / (n_i . (p_i - c)), c the
+//                body's center, and z_i = -mu_i B n_i / |B n_i|.
+// Statuses: empty where no point has an inscribed ball of radius above 1e-12 of the extent of
+// the half-spaces' points (an empty polytope, or one of empty interior: a segment, a plane);
+// unbounded where phase I's ball exceeds 1e10 of that extent, or the barrier's largest radius
+// exceeds 1e12 times the larger of that extent and the inradius with no dual-feasible point
+// found (a wedge, a slab, a box missing a face). Both: body the default (the unit ball at the
+// origin, no certificate), volume_gap infinite, active and weights empty.
+// Accuracy (tests/unit/inscribed_test.cpp): boxes give their axis-aligned ellipsoid of radii
+// the half-extents, regular simplices their inscribed balls, triangles their Steiner inellipses
+// (area pi / (3 sqrt 3) of the triangle's, center the centroid), turned, 1e6 sizes from the
+// origin, at scales 1e-6 and 1e6, with far redundant half-spaces, aspect ratios to 1e4; the
+// dual bound recomputed in 50 digits from active and weights, and every support
+// |B n_i| + n_i . (c - p_i) <= 0 from the stored numbers in 50 digits.
+// Cost: O(m N^4) per Newton step, a few hundred steps.
+//
+// Input: at least N + 1 half-spaces; fewer (none included) throw InputError("half_spaces").
+// A polytope whose inscribed ellipsoid has an aspect ratio above 1e8 (Ellipsoid::
+// max_aspect_ratio) or radii beyond the range of T, or whose interior lies within the
+// rounding of its position, throws InputError("half_spaces") saying so.
+namespace detail {
+inline constexpr char max_inscribed_iterations_field[] = "max_inscribed_iterations";
+}  // namespace detail
+
+struct InscribedOptions {
+  // The volume gap to reach: max volume <= (1 + volume_gap) vol(body), in [1e-12, 1].
+  RealOption<detail::volume_gap_range> volume_gap = 1e-9;
+  // The Newton steps of the barrier method after phase I (whose own steps, at most 3000, count
+  // in InscribedEllipsoid::iterations too), in [1, 1000000]. Reached:
+  // InscribedStatus::did_not_converge, the body still inside every half-space and its gap
+  // still a bound (infinite where no dual point was formed yet).
+  IterationCap<detail::max_inscribed_iterations_field, 1000000> max_inscribed_iterations = 10000;
+};
+
+enum class InscribedStatus {
+  optimal,           // volume_gap <= the requested gap
+  rounding_limited,  // the barrier met the requested gap, the body as stored in T does not
+                     // (volume_gap says by how much)
+  did_not_converge,  // max_inscribed_iterations reached, or the certificate stalled short of
+                     // the gap: the body inside every half-space, volume_gap a bound (or
+                     // phase I found no interior point within its steps: the default body,
+                     // volume_gap infinite)
+  unbounded,         // the half-spaces leave a direction free: no maximum (above)
+  empty,             // no interior point (above)
+};
+std::string_view to_string(InscribedStatus s) noexcept;
+
+template <class T, int N>
+struct InscribedEllipsoid {
+  InscribedStatus status = InscribedStatus::optimal;
+  Ellipsoid<T, N> body;    // inside every half-space, as stored
+  double volume_gap = 0;   // certified: max volume <= (1 + volume_gap) vol(body)
+  int iterations = 0;      // Newton steps, phase I's included
+  // The half-spaces the body touches (dual weight above the threshold above; indices into
+  // the input, increasing) and their weights (summing to 1 within 1e-5).
+  std::vector<std::size_t> active;
+  std::vector<double> weights;
+};
+
+template <class T, int N>
+InscribedEllipsoid<T, N> inscribed_ellipsoid(std::span<const HalfSpace<T, N>> half_spaces,
+                                             const InscribedOptions& options = {});
 
 }  // namespace ellipsect

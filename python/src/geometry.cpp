@@ -70,6 +70,8 @@ void def_shape_overloads(py::module_& m, const std::string& doc) {
 
 }  // namespace
 
+void def_inscribed(py::module_& m);  // below
+
 void def_geometry(py::module_& m) {
   enclosing_tuple = py::module_::import("collections")
                         .attr("namedtuple")("Enclosing",
@@ -110,6 +112,104 @@ void def_geometry(py::module_& m) {
                 "InputError: a point that is not finite (points[i]); fewer than N + 1 points, or points within 1e-9 "
                 "of their extent from a line or plane (points); an option out of range, named.\nValueError: "
                 "points of the wrong shape.\nTypeError: points that are not real numbers.")
+          .c_str());
+  def_inscribed(m);
+}
+
+// ---- inscribed_ellipsoid (geometry.hpp): a list of HalfPlane / HalfSpace, or normals and offsets
+// (n . x <= b), in; an Inscribed namedtuple out; the solve runs with the GIL released.
+
+namespace {
+
+py::object inscribed_tuple;
+
+template <int N>
+py::object inscribe(const std::vector<HalfSpace<double, N>>& half_spaces, double volume_gap,
+                    std::int64_t max_inscribed_iterations) {
+  InscribedOptions o;
+  o.volume_gap = volume_gap;
+  o.max_inscribed_iterations = max_inscribed_iterations;
+  InscribedEllipsoid<double, N> e;
+  {
+    py::gil_scoped_release release;
+    e = inscribed_ellipsoid<double, N>(std::span<const HalfSpace<double, N>>(half_spaces), o);
+  }
+  py::array_t<std::int64_t> active(static_cast<py::ssize_t>(e.active.size()));
+  py::array_t<double> weights(static_cast<py::ssize_t>(e.weights.size()));
+  for (std::size_t k = 0; k < e.active.size(); ++k) {
+    active.mutable_at(py::ssize_t(k)) = std::int64_t(e.active[k]);
+    weights.mutable_at(py::ssize_t(k)) = e.weights[k];
+  }
+  return inscribed_tuple(std::string(to_string(e.status)), py::cast(e.body), e.volume_gap, e.iterations, active, weights);
+}
+
+// The half-spaces n . x <= b of rows of normals and offsets: through the point b n / |n|^2.
+template <int N>
+std::vector<HalfSpace<double, N>> from_rows(const py::array_t<double>& normals, const py::array_t<double>& offsets) {
+  std::vector<HalfSpace<double, N>> out;
+  for (py::ssize_t i = 0; i < normals.shape(0); ++i) {
+    const Vec<double, N> n = Eigen::Map<const Vec<double, N>>(normals.data() + i * N);
+    const double b = offsets.data()[i];
+    if (!std::isfinite(b)) throw InputError("offsets[" + std::to_string(i) + "]", "must be finite");
+    const double n2 = n.squaredNorm();
+    if (!(n2 > 0) || !std::isfinite(n2))
+      throw InputError("normals[" + std::to_string(i) + "]", "must be finite and not zero (its square norm in range)");
+    out.push_back(make_half_space<double, N>(Vec<double, N>(n * (b / n2)), n));
+  }
+  return out;
+}
+
+}  // namespace
+
+void def_inscribed(py::module_& m) {
+  inscribed_tuple = py::module_::import("collections")
+                        .attr("namedtuple")("Inscribed",
+                                            py::make_tuple("status", "body", "volume_gap", "iterations", "active",
+                                                           "weights"),
+                                            py::arg("module") = "ellipsect");
+  m.attr("Inscribed") = inscribed_tuple;
+  const std::string returns =
+      "Inscribed: status ('optimal'; 'rounding_limited': the body as stored cannot carry the requested gap, "
+      "volume_gap says how much; 'did_not_converge'; 'unbounded'; 'empty': then body is the default unit ball and "
+      "volume_gap infinite), body (Ellipse or Ellipsoid, inside every half-space by the exact classification), "
+      "volume_gap (certified: max volume <= (1 + volume_gap) volume of body), iterations (Newton steps), active "
+      "(the indices of the half-spaces the body touches), weights (their dual weights, summing to 1).";
+  const std::string options_doc =
+      "volume_gap: the gap to reach, in [1e-12, 1].\nmax_inscribed_iterations: the barrier's Newton steps, in [1, "
+      "1000000].";
+  const auto def_list = [&](auto call) {
+    m.def("inscribed_ellipsoid", call, py::arg("half_spaces"), py::arg("volume_gap") = 1e-9,
+          py::arg("max_inscribed_iterations") = 10000,
+          docs::doc("The maximum-volume ellipse or ellipsoid inside a bounded polytope (geometry.hpp): inside every "
+                    "half-space as stored, certified; its volume within a certified volume_gap of the maximum.",
+                    "half_spaces: a list of HalfPlane or HalfSpace, at least N + 1.\n" + options_doc, returns,
+                    "InputError: fewer than N + 1 half-spaces (half_spaces); a polytope too thin for an ellipsoid of "
+                    "aspect ratio 1e8 (half_spaces); an option out of range, named.")
+              .c_str());
+  };
+  def_list([](const std::vector<HalfSpace<double, 2>>& h, double gap, std::int64_t cap) { return inscribe<2>(h, gap, cap); });
+  def_list([](const std::vector<HalfSpace<double, 3>>& h, double gap, std::int64_t cap) { return inscribe<3>(h, gap, cap); });
+  m.def(
+      "inscribed_ellipsoid",
+      [](const ArrayLike& normals, const ArrayLike& offsets, double volume_gap, std::int64_t max_inscribed_iterations) {
+        const py::array a = numbers(normals, "normals");
+        if (a.ndim() != 2 || (a.shape(1) != 2 && a.shape(1) != 3))
+          throw py::value_error("normals: expected shape (n, 2) or (n, 3), got " +
+                                shape_text(std::vector<py::ssize_t>(a.shape(), a.shape() + a.ndim())));
+        const int dim = int(a.shape(1));
+        py::ssize_t n = -1;
+        const auto rows = checked(normals, "normals", {dim}, n, "normals");
+        const auto b = checked(offsets, "offsets", {}, n, "normals");
+        return dim == 2 ? inscribe<2>(from_rows<2>(rows, b), volume_gap, max_inscribed_iterations)
+                        : inscribe<3>(from_rows<3>(rows, b), volume_gap, max_inscribed_iterations);
+      },
+      py::arg("normals"), py::arg("offsets"), py::arg("volume_gap") = 1e-9, py::arg("max_inscribed_iterations") = 10000,
+      docs::doc("The maximum-volume ellipse or ellipsoid inside the polytope {x : normals[i] . x <= offsets[i]} "
+                "(geometry.hpp), as for half-spaces (each the HalfPlane / HalfSpace through offsets[i] normals[i] / "
+                "|normals[i]|^2).",
+                "normals: (n, 2) or (n, 3), n >= N + 1, any length, not zero.\noffsets: (n,).\n" + options_doc, returns,
+                "InputError: a zero or non-finite normal (normals[i]) or offset (offsets[i]); as for half-spaces."
+                "\nValueError: arrays of the wrong shapes.\nTypeError: arrays that are not real numbers.")
           .c_str());
 }
 
