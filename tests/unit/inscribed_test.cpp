@@ -274,7 +274,13 @@ TEST(InscribedEllipsoid, TriangleGivesTheSteinerInellipse) {
     const auto planes = triangle(p);
     const auto e = inscribed_ellipsoid<double, 2>(planes);
     SCOPED_TRACE(trial);
-    EXPECT_EQ(e.status, InscribedStatus::optimal) << to_string(e.status) << " " << e.volume_gap;
+    // 1e6 sizes from the origin the center's ulp is about 4e-10 of the radii: above 1e-10, the
+    // body as stored may not carry 1e-9 (rounding_limited, geometry.hpp), by compiler.
+    if (offset != 0 && e.status == InscribedStatus::rounding_limited) {
+      EXPECT_LE(e.volume_gap, 1e-8);
+    } else {
+      EXPECT_EQ(e.status, InscribedStatus::optimal) << to_string(e.status) << " " << e.volume_gap;
+    }
     // Area pi r0 r1 = pi / (3 sqrt 3) area, in 50 digits from the points as given.
     const FV<2> a = vec50<double, 2>(p[0]), b = vec50<double, 2>(p[1]), c = vec50<double, 2>(p[2]);
     const F tri_area = abs((b - a).x() * (c - a).y() - (b - a).y() * (c - a).x()) / 2;
