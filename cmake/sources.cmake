@@ -15,4 +15,4 @@ set_source_files_properties(${ellipsect_source_root}/many/batch_kernels.cpp ${el
 set(ellipsect_exact_sources ${ellipsect_source_root}/pair/exact_relation.cpp ${ellipsect_source_root}/geometry/enclosing.cpp)
 # GCC 12 reads Eigen's long double packets in enclosing.cpp's Newton step as maybe
 # uninitialized where only double is instantiated (ELLIPSECT_DOUBLE_ONLY): a false positive.
-set_source_files_properties(${ellipsect_source_root}/geometry/enclosing.cpp PROPERTIES COMPILE_OPTIONS -Wno-maybe-uninitialized)
+set_source_files_properties(${ellipsect_source_root}/geometry/enclosing.cpp PROPERTIES COMPILE_OPTIONS $<$<CXX_COMPILER_ID:GNU>:-Wno-maybe-uninitialized>)
