@@ -12,7 +12,8 @@ set_source_files_properties(${ellipsect_source_root}/many/batch_kernels.cpp ${el
 # The files that compute in rationals (detail/rational.hpp): GMP's where the build has it
 # (the library), Boost's own otherwise (the page). Each is compiled alone, so that every
 # file sees one rational type.
-set(ellipsect_exact_sources ${ellipsect_source_root}/pair/exact_relation.cpp ${ellipsect_source_root}/geometry/enclosing.cpp)
+set(ellipsect_exact_sources ${ellipsect_source_root}/pair/exact_relation.cpp ${ellipsect_source_root}/geometry/enclosing.cpp
+                           ${ellipsect_source_root}/geometry/hull.cpp)
 # GCC 12 reads Eigen's long double packets in enclosing.cpp's Newton step as maybe
 # uninitialized where only double is instantiated (ELLIPSECT_DOUBLE_ONLY): a false positive.
 set_source_files_properties(${ellipsect_source_root}/geometry/enclosing.cpp PROPERTIES COMPILE_OPTIONS $<$<CXX_COMPILER_ID:GNU>:-Wno-maybe-uninitialized>)

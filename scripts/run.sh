@@ -33,7 +33,7 @@ command -v npm >/dev/null || packages+=(npm)
 # The Python package (python/, python_test below): built by setuptools through CMake.
 packages+=(python3-dev python3-venv python3-pip python3-setuptools python3-wheel python3-pybind11 python3-numpy
            python3-pytest python3-hypothesis python3-mpmath python3-matplotlib python3-dask python3-distributed
-           python3-pandas python3-shapely python3-torch mypy)
+           python3-pandas python3-shapely python3-skimage python3-torch mypy)
 
 install_missing() {  # install_missing [PACKAGE...] (default: every package above)
   local missing=() p
@@ -130,7 +130,7 @@ fuzz_mutate() {
 # Executions per target for the CI mutation run, the corpus's included: 15 to 30 s each on
 # one core.
 declare -A fuzz_runs=([factories]=250000 [queries]=3000 [intersect2]=150000 [niemitalo]=90000 [scene]=30000
-                       [rigid]=8000 [broad_phase]=6000 [enclosing]=2000)
+                       [rigid]=8000 [broad_phase]=6000 [enclosing]=2000 [inscribed]=1500 [fit]=4000)
 
 # Every target's check and mutation run, as many at once as there are cores; each target's
 # output is printed when it ends, and the step fails if any target did (all of them run).

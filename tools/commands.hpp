@@ -103,13 +103,14 @@ struct GeometryOptions {
   std::string input;
   std::string output;                  // "" or "-": stdout
   std::string id;                      // the body's id in the scene
-  double volume_gap = 1e-9;            // enclose
+  double volume_gap = 1e-9;            // enclose, inscribe
   double fit_tolerance = 1e-8;         // fit
-  std::int64_t max_iterations = 0;     // the command's cap (EnclosingOptions, FitOptions)
+  std::int64_t max_iterations = 0;     // the command's cap (Enclosing-, Inscribed-, FitOptions)
 };
 
 int run_check(const CheckOptions& options);
 int run_enclose(const GeometryOptions& options);
+int run_inscribe(const GeometryOptions& options);
 int run_fit(const GeometryOptions& options);
 int run_render(const RenderOptions& options);
 int run_bench(const BenchOptions& options);

@@ -1,4 +1,4 @@
-// `ellipsect enclose` and `ellipsect fit`: an ellipse or ellipsoid from points (a CSV of x, y
+// `ellipsect enclose`, `inscribe` and `fit`: an ellipse or ellipsoid from points (a CSV of x, y
 // or x, y, z columns) or a mesh file's vertices (OBJ, STL), written as a one-body JSON scene
 // that the other commands read (docs/cli.md).
 #include "commands.hpp"
@@ -12,7 +12,9 @@
 #include <algorithm>
 #include <cctype>
 #include <cstdio>
+#include <span>
 #include <string>
+#include <utility>
 #include <variant>
 #include <vector>
 
@@ -132,52 +134,74 @@ auto on_points(const std::string& path, F f) {
   }
 }
 
-}  // namespace
-
-int run_enclose(const GeometryOptions& o) {
-  EnclosingOptions options;
+// The options set (a bad value: UsageError), the points read, answered (answer(points,
+// options): the body and the summary) and written as a scene titled `title` of the input.
+template <class Options, class Set, class Answer>
+int answer_points(const GeometryOptions& o, Set set, const std::string& title, Answer answer) {
+  Options options;
   try {
-    options.volume_gap = o.volume_gap;
-    options.max_enclosing_iterations = o.max_iterations;
+    set(options);
   } catch (const InputError& e) {
     throw UsageError(std::string(e.what()).substr(std::string("ellipsect: ").size()));
   }
   std::visit(
       [&](const auto& points) {
-        constexpr int N = std::decay_t<decltype(points[0])>::RowsAtCompileTime;
-        const auto e = on_points(o.input, [&] { return enclosing_ellipsoid<double, N>(points, options); });
-        const std::string summary = "enclose: " + std::string(to_string(e.status)) + ", volume within " +
-                                    number_string(e.volume_gap) + " of the minimum (certified); every one of the " +
-                                    std::to_string(points.size()) + " points inside; " + std::to_string(e.iterations) +
-                                    " iterations";
-        write_scene<N>(o.output, o.id, "Enclosing ellipsoid of " + o.input, e.body, summary);
+        const auto [body, summary] = on_points(o.input, [&] { return answer(points, options); });
+        write_scene(o.output, o.id, title + o.input, body, summary);
         std::fprintf(stderr, "%s\n", summary.c_str());
       },
       read_points(o.input));
   return exit_ok;
 }
 
+template <int N>
+std::string points_count(const std::vector<Vec<double, N>>& points) {
+  return std::to_string(points.size()) + " points";
+}
+
+}  // namespace
+
+int run_enclose(const GeometryOptions& o) {
+  const auto set = [&](EnclosingOptions& options) {
+    options.volume_gap = o.volume_gap;
+    options.max_enclosing_iterations = o.max_iterations;
+  };
+  return answer_points<EnclosingOptions>(o, set, "Enclosing ellipsoid of ", [](const auto& points, const auto& options) {
+    const auto e = enclosing_ellipsoid(std::span(points), options);
+    return std::pair(e.body, "enclose: " + std::string(to_string(e.status)) + ", volume within " +
+                                 number_string(e.volume_gap) + " of the minimum (certified); every one of the " +
+                                 points_count(points) + " inside; " + std::to_string(e.iterations) + " iterations");
+  });
+}
+
+int run_inscribe(const GeometryOptions& o) {
+  const auto set = [&](InscribedOptions& options) {
+    options.volume_gap = o.volume_gap;
+    options.max_inscribed_iterations = o.max_iterations;
+  };
+  return answer_points<InscribedOptions>(o, set, "Inscribed ellipsoid of the hull of ", [](const auto& points, const auto& options) {
+    const auto faces = hull_half_spaces(std::span(points));
+    const auto e = inscribed_ellipsoid(std::span(faces), options);
+    if (e.status == InscribedStatus::unbounded || e.status == InscribedStatus::empty)
+      throw InputError("points", "their hull " + std::string(e.status == InscribedStatus::empty ? "has no interior" : "is unbounded"));
+    return std::pair(e.body, "inscribe: " + std::string(to_string(e.status)) + ", volume within " +
+                                 number_string(e.volume_gap) + " of the maximum (certified); inside every one of the " +
+                                 std::to_string(faces.size()) + " faces of the hull of the " + points_count(points) +
+                                 "; " + std::to_string(e.iterations) + " iterations");
+  });
+}
+
 int run_fit(const GeometryOptions& o) {
-  FitOptions options;
-  try {
+  const auto set = [&](FitOptions& options) {
     options.fit_tolerance = o.fit_tolerance;
     options.max_fit_iterations = o.max_iterations;
-  } catch (const InputError& e) {
-    throw UsageError(std::string(e.what()).substr(std::string("ellipsect: ").size()));
-  }
-  std::visit(
-      [&](const auto& points) {
-        constexpr int N = std::decay_t<decltype(points[0])>::RowsAtCompileTime;
-        const auto f = on_points(o.input, [&] { return fit_ellipsoid<double, N>(points, options); });
-        const std::string summary = "fit: " + std::string(to_string(f.status)) + ", rms orthogonal residual " +
-                                    number_string(f.rms_residual) + ", largest " + number_string(f.max_residual) +
-                                    " over " + std::to_string(points.size()) + " points; " +
-                                    std::to_string(f.iterations) + " iterations";
-        write_scene<N>(o.output, o.id, "Least-squares ellipsoid of " + o.input, f.body, summary);
-        std::fprintf(stderr, "%s\n", summary.c_str());
-      },
-      read_points(o.input));
-  return exit_ok;
+  };
+  return answer_points<FitOptions>(o, set, "Least-squares ellipsoid of ", [](const auto& points, const auto& options) {
+    const auto f = fit_ellipsoid(std::span(points), options);
+    return std::pair(f.body, "fit: " + std::string(to_string(f.status)) + ", rms orthogonal residual " +
+                                 number_string(f.rms_residual) + ", largest " + number_string(f.max_residual) +
+                                 " over " + points_count(points) + "; " + std::to_string(f.iterations) + " iterations");
+  });
 }
 
 }  // namespace ellipsect::cli

@@ -3,6 +3,7 @@
 //   ellipsect render SCENE   an SVG or PNG picture of the scene at one time
 //   ellipsect bench SCENE    queries per second on the scene's pairs
 //   ellipsect enclose FILE   the minimum-volume ellipse or ellipsoid of points or a mesh, as a scene
+//   ellipsect inscribe FILE  the maximum-volume ellipse or ellipsoid in their convex hull, as a scene
 //   ellipsect fit FILE       their least-squares ellipse or ellipsoid, as a scene
 // docs/cli.md documents the commands, docs/scene-format.md the scene files.
 #include "commands.hpp"
@@ -200,10 +201,12 @@ int main(int argc, char** argv) {
       "  ellipsect bench examples/scenes/swept_3d.json\n"
       "  ellipsect bench examples/scenes/bodies_10k.csv --query overlap -j 1 --min-time 2");
 
-  // enclose and fit: points or a mesh in, a one-body scene out.
-  GeometryOptions enclose, fit;
+  // enclose, inscribe and fit: points or a mesh in, a one-body scene out.
+  GeometryOptions enclose, inscribe, fit;
   enclose.id = "enclosing";
   enclose.max_iterations = ellipsect::EnclosingOptions{}.max_enclosing_iterations;
+  inscribe.id = "inscribed";
+  inscribe.max_iterations = ellipsect::InscribedOptions{}.max_inscribed_iterations;
   fit.id = "fit";
   fit.max_iterations = ellipsect::FitOptions{}.max_fit_iterations;
   const auto add_geometry = [](CLI::App& cmd, GeometryOptions& g) {
@@ -228,6 +231,19 @@ int main(int argc, char** argv) {
       "  ellipsect enclose examples/scenes/edge_points.csv -o hull.json\n"
       "  ellipsect enclose examples/scenes/meshes/hill.obj --volume-gap 1e-6 -o hill_hull.json\n"
       "  ellipsect check hull.json");
+  CLI::App* in = app.add_subcommand(
+      "inscribe", "The maximum-volume ellipse or ellipsoid inside the points' convex hull (certified), as a one-body scene");
+  add_geometry(*in, inscribe);
+  in->add_option("--volume-gap", inscribe.volume_gap,
+                 "The volume gap to reach, max <= (1 + gap) vol, in [1e-12, 1] (default 1e-9)")
+      ->type_name("X");
+  in->add_option("--max-inscribed-iterations", inscribe.max_iterations,
+                 "Cap on the Newton steps, in [1, 1000000] (default 10000); reaching it is did_not_converge")
+      ->type_name("N");
+  in->footer(
+      "Examples:\n"
+      "  ellipsect inscribe examples/scenes/edge_points.csv -o inside.json\n"
+      "  ellipsect inscribe examples/scenes/meshes/hill.obj -o hill_inside.json");
   CLI::App* fi = app.add_subcommand("fit", "The least-squares ellipse or ellipsoid of the points (orthogonal distances), as a one-body scene");
   add_geometry(*fi, fit);
   fi->add_option("--fit-tolerance", fit.fit_tolerance, "The stationarity to reach, in [1e-15, 1e-3] (default 1e-8)")
@@ -258,6 +274,7 @@ int main(int argc, char** argv) {
       return run_render(render);
     }
     if (en->parsed()) return run_enclose(enclose);
+    if (in->parsed()) return run_inscribe(inscribe);
     if (fi->parsed()) return run_fit(fit);
     finish_common(bench.common, bench_window, bench_progress);
     return run_bench(bench);

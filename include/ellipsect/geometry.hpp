@@ -346,4 +346,21 @@ template <class T, int N>
 InscribedEllipsoid<T, N> inscribed_ellipsoid(std::span<const HalfSpace<T, N>> half_spaces,
                                              const InscribedOptions& options = {});
 
+// The faces of the convex hull of points as half-spaces, outward (N = 2: its edges,
+// counterclockwise; N = 3: its facets, coplanar triangles merged), for inscribed_ellipsoid:
+// inscribed_ellipsoid(hull_half_spaces(points)) is the largest ellipsoid in their hull.
+// Which points are vertices and which faces there are is exact (the signs of orientation
+// determinants, a double evaluation where its error bound decides, rationals otherwise;
+// collinear and coplanar points on the boundary are no vertices). Each normal is the face's
+// in long double rounded to T (the factory's unit normal), each plane put through the face's
+// vertex deepest along the normal as stored, so every vertex of the face lies on or outside
+// its plane as stored, exactly: the half-spaces differ from the hull's faces by the rounding
+// of their normals alone (about the unit roundoff of T times the hull's extent).
+// Input: at least N + 1 finite points (RowInputError "points" for the first non-finite;
+// InputError "points" for fewer), not all on a line (N = 2) or a plane (N = 3): InputError
+// "points" saying so. Cost: O(n log n) in 2D; 3D Quickhull, O(n h) at worst (h the
+// vertices).
+template <class T, int N>
+std::vector<HalfSpace<T, N>> hull_half_spaces(std::span<const Vec<T, N>> points);
+
 }  // namespace ellipsect

@@ -9,6 +9,13 @@ The answers drawn come from the queries (points, normals); only the drawing is d
     ep.contact(ax, ellipsect.first_contact(a, va, b, vb, 10.0))
     ep.witnesses(ax, ellipsect.signed_distance(a, b))
     ax.figure.savefig("scene.png")
+
+and of bodies made from points::
+
+    e = ellipsect.enclosing_ellipsoid(cloud)
+    ax = ep.points(None, cloud, support=e.support_points)
+    ep.hull(ax, ellipsect.hull_half_spaces(cloud))
+    ep.bodies(ax, [e.body, ellipsect.fit_ellipsoid(cloud).body])
 """
 
 from __future__ import annotations
@@ -111,4 +118,33 @@ def pairs(ax: Optional[Axes], bodies: Bodies, index_pairs: npt.ArrayLike, *, pla
     centers = _points([center for center, _, _ in _rows(bodies)], plane)
     for i, j in np.asarray(index_pairs):
         ax.plot(centers[[i, j], 0], centers[[i, j], 1], "-", color=color, linewidth=0.8)
+    return ax
+
+
+def points(ax: Optional[Axes], points: npt.ArrayLike, *, plane: str = "xy", support: Optional[npt.ArrayLike] = None,
+           color: str = "black", **style: Any) -> Axes:
+    """The points ((n, 2) or (n, 3), on `plane`) as dots; `support`: points to ring, such as an
+    enclosing_ellipsoid answer's support_points (those that carry its certificate)."""
+    ax = _axes(ax)
+    p = _points(points, plane)
+    ax.plot(p[:, 0], p[:, 1], ".", color=color, **{"markersize": 4, **style})
+    if support is not None and np.size(support):
+        s = _points(support, plane)
+        ax.plot(s[:, 0], s[:, 1], "o", markerfacecolor="none", markeredgecolor="royalblue", markersize=9)
+    ax.autoscale_view()
+    return ax
+
+
+def hull(ax: Optional[Axes], half_planes: Sequence[ellipsect.HalfPlane], *, color: str = "grey", **style: Any) -> Axes:
+    """The convex polygon of 2D half-planes in order around it, such as hull_half_spaces'
+    answer: each corner where consecutive edges' lines meet. `style`: patch options."""
+    ax = _axes(ax)
+    if not half_planes or not all(isinstance(h, ellipsect.HalfPlane) for h in half_planes):
+        raise ValueError("half_planes: expected a non-empty list of HalfPlane in order (hull_half_spaces of 2D points)")
+    n = np.array([np.asarray(h.normal) for h in half_planes])
+    b = np.array([float(np.dot(h.normal, h.point)) for h in half_planes])
+    nxt = np.roll(np.arange(len(n)), -1)
+    corners = np.array([np.linalg.solve(np.array([n[k], n[j]]), [b[k], b[j]]) for k, j in enumerate(nxt)])
+    ax.add_patch(patches.Polygon(corners, closed=True, **{"fill": False, "edgecolor": color, "linewidth": 1, **style}))
+    ax.autoscale_view()
     return ax

@@ -117,7 +117,8 @@ void def_geometry(py::module_& m) {
 }
 
 // ---- inscribed_ellipsoid (geometry.hpp): a list of HalfPlane / HalfSpace, or normals and offsets
-// (n . x <= b), in; an Inscribed namedtuple out; the solve runs with the GIL released.
+// (n . x <= b), in; an Inscribed namedtuple out; the solve runs with the GIL released. And
+// hull_half_spaces: points in, the hull's faces out.
 
 namespace {
 
@@ -156,6 +157,22 @@ std::vector<HalfSpace<double, N>> from_rows(const py::array_t<double>& normals, 
       throw InputError("normals[" + std::to_string(i) + "]", "must be finite and not zero (its square norm in range)");
     out.push_back(make_half_space<double, N>(Vec<double, N>(n * (b / n2)), n));
   }
+  return out;
+}
+
+// The hull's faces without the GIL, a point's row error named as the argument's.
+template <int N>
+py::list hull_of(const py::array_t<double>& rows) {
+  const std::vector<Vec<double, N>> points = rows_of<N>(rows);
+  std::vector<HalfSpace<double, N>> faces;
+  try {
+    py::gil_scoped_release release;
+    faces = hull_half_spaces<double, N>(points);
+  } catch (const RowInputError& error) {
+    throw InputError("points[" + std::to_string(error.row()) + "]", error.detail());
+  }
+  py::list out;
+  for (const auto& f : faces) out.append(py::cast(f));
   return out;
 }
 
@@ -210,6 +227,24 @@ void def_inscribed(py::module_& m) {
                 "normals: (n, 2) or (n, 3), n >= N + 1, any length, not zero.\noffsets: (n,).\n" + options_doc, returns,
                 "InputError: a zero or non-finite normal (normals[i]) or offset (offsets[i]); as for half-spaces."
                 "\nValueError: arrays of the wrong shapes.\nTypeError: arrays that are not real numbers.")
+          .c_str());
+  m.def(
+      "hull_half_spaces",
+      [](const ArrayLike& points) {
+        int dim = 0;
+        const auto rows = point_rows(points, dim);
+        return dim == 2 ? hull_of<2>(rows) : hull_of<3>(rows);
+      },
+      py::arg("points"),
+      docs::doc("The faces of the points' convex hull as outward half-spaces (geometry.hpp): which points are "
+                "vertices is exact; each normal rounded to double, its plane through the face's deepest vertex. "
+                "Given to inscribed_ellipsoid, they give the largest ellipse or ellipsoid in the hull.",
+                "points: (n, 2) or (n, 3), at least N + 1, not all on a line (2D) or plane (3D).",
+                "list of HalfPlane (2D: the edges, counterclockwise) or HalfSpace (3D: the facets, coplanar "
+                "triangles merged).",
+                "InputError: a point that is not finite (points[i]); fewer than N + 1 points, or all on a line or "
+                "plane (points).\nValueError: points of the wrong shape.\nTypeError: points that are not real "
+                "numbers.")
           .c_str());
 }
 

@@ -111,3 +111,32 @@ def test_bad_input_is_named():
         ellipsect.inscribed_ellipsoid(planes, volume_gap=0)
     with pytest.raises(ellipsect.InputError, match="max_inscribed_iterations"):
         ellipsect.inscribed_ellipsoid(planes, max_inscribed_iterations=0)
+
+
+def test_hull_half_spaces_of_a_cube_and_its_inscribed_ball():
+    rng = np.random.default_rng(5)
+    corners = np.array([[x, y, z] for x in (0.0, 2.0) for y in (0.0, 2.0) for z in (0.0, 2.0)]) + [1e6, 0, -3]
+    points = np.vstack([corners, corners.min(axis=0) + 2 * rng.random((50, 3))])
+    faces = ellipsect.hull_half_spaces(points)
+    assert len(faces) == 6 and all(isinstance(f, ellipsect.HalfSpace) for f in faces)
+    for f in faces:
+        n = [mpmath.mpf(float(x)) for x in np.asarray(f.normal)]
+        p = [mpmath.mpf(float(x)) for x in np.asarray(f.point)]
+        assert max(sum(n[j] * (mpmath.mpf(float(q[j])) - p[j]) for j in range(3)) for q in points) == 0
+    e = ellipsect.inscribed_ellipsoid(faces)
+    assert e.status == "optimal"
+    assert np.asarray(e.body.radii) == pytest.approx([1.0, 1.0, 1.0], rel=1e-8)
+    assert all(support_excess(e.body, f) <= 0 for f in faces)
+    square = ellipsect.hull_half_spaces([[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0], [0.5, 0.5], [0.5, 0.0]])
+    assert len(square) == 4 and all(isinstance(f, ellipsect.HalfPlane) for f in square)
+
+
+def test_hull_half_spaces_names_bad_points():
+    with pytest.raises(ellipsect.InputError, match=r"points: are collinear"):
+        ellipsect.hull_half_spaces([[0.0, 0.0], [1.0, 1.0], [2.0, 2.0]])
+    with pytest.raises(ellipsect.InputError, match=r"points: are coplanar"):
+        ellipsect.hull_half_spaces([[0.0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 1, 0]])
+    with pytest.raises(ellipsect.InputError, match=r"points\[2\]: must be finite"):
+        ellipsect.hull_half_spaces([[0.0, 0.0], [1.0, 0.0], [np.nan, 1.0]])
+    with pytest.raises(ValueError, match="points: expected shape"):
+        ellipsect.hull_half_spaces(np.zeros((5, 4)))

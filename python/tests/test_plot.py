@@ -1,6 +1,7 @@
 """ellipsect.plot draws bodies, contacts, normals and witness points (Agg backend)."""
 
 import numpy as np
+import pytest
 from conftest import random_ellipses, random_ellipsoids
 from matplotlib import pyplot as plt
 
@@ -52,3 +53,18 @@ def test_pairs_of_a_list_of_bodies():
         assert np.array_equal(u.get_xydata(), v.get_xydata())
     plt.close(from_list.figure)
     plt.close(from_batch.figure)
+
+
+def test_points_hull_and_their_ellipses(tmp_path):
+    square = np.array([[0.0, 0.0], [4.0, 0.0], [4.0, 2.0], [0.0, 2.0], [1.0, 1.0], [3.0, 0.5]])
+    e = ellipsect.enclosing_ellipsoid(square)
+    ax = ep.points(None, square, support=e.support_points)
+    ep.hull(ax, ellipsect.hull_half_spaces(square))
+    ep.bodies(ax, [e.body, ellipsect.inscribed_ellipsoid(ellipsect.hull_half_spaces(square)).body])
+    polygon = ax.patches[0].get_xy()[:-1]  # closed: the first corner again at the end
+    assert sorted(map(tuple, np.round(polygon, 12))) == [(0, 0), (0, 2), (4, 0), (4, 2)]
+    assert len(ax.lines) == 2 and len(ax.lines[0].get_xdata()) == 6 and len(ax.lines[1].get_xdata()) == 4
+    ax.figure.savefig(tmp_path / "points.png")
+    plt.close(ax.figure)
+    with pytest.raises(ValueError, match="half_planes"):
+        ep.hull(None, ellipsect.hull_half_spaces(np.eye(4, 3)))

@@ -2590,6 +2590,28 @@ TEST(CliGeometry, EncloseAndFitWriteTheLibrarysBodyAsAScene) {
   const Outcome m = run_cli({"enclose", (scenes / "meshes" / "tetrahedron.stl").string()}, dir);
   ASSERT_EQ(m.code, 0) << describe(m);
   EXPECT_EQ(nlohmann::json::parse(m.out).at("bodies").at(0).at("radii").size(), 3u);
+
+  // inscribe: the library's largest ellipse in the points' hull, inside every face of it.
+  const Outcome in = run_cli({"inscribe", points_file.string()}, dir);
+  ASSERT_EQ(in.code, 0) << describe(in);
+  EXPECT_NE(in.err.find("inscribe: optimal"), std::string::npos) << in.err;
+  const auto inside = read_body(in.out);
+  const auto faces = ellipsect::hull_half_spaces<double, 2>(points);
+  EXPECT_EQ(inside.center(), (ellipsect::inscribed_ellipsoid<double, 2>(faces).body.center()));
+  for (const auto& h : faces) {
+    // The body's support along the face's normal, from the stored numbers: |B n| + n.(c - p).
+    R s = 0, support = 0;
+    for (int k = 0; k < 2; ++k) {
+      R y = 0;
+      for (int i = 0; i < 2; ++i) y += R(inside.axes()(i, k)) * R(h.normal()[i]);
+      support += y * y * R(inside.radii()[k]) * R(inside.radii()[k]);
+      s += R(h.normal()[k]) * (R(inside.center()[k]) - R(h.point()[k]));
+    }
+    EXPECT_LE(sqrt(support) + s, 0);
+  }
+  const Outcome tet = run_cli({"inscribe", (scenes / "meshes" / "tetrahedron.stl").string()}, dir);
+  ASSERT_EQ(tet.code, 0) << describe(tet);
+  EXPECT_NE(tet.err.find("inside every one of the 4 faces"), std::string::npos) << tet.err;
 }
 
 // Bad points files exit with 2 and name the file, the line and the column; bad options with 1.
@@ -2606,6 +2628,8 @@ TEST(CliGeometry, BadPointsAreNamed) {
       {{"enclose", (dir / "few.csv").string()}, "few.csv: points: must hold at least 4"},
       {{"enclose", (dir / "line.csv").string()}, "line"},
       {{"fit", (dir / "line.csv").string()}, "points"},
+      {{"inscribe", (dir / "line.csv").string()}, "line.csv: points: are collinear"},
+      {{"inscribe", (dir / "few.csv").string()}, "few.csv: points: must hold at least 4"},
   };
   for (const auto& [args, message] : cases) {
     const Outcome r = run_cli(args, dir);
@@ -2615,6 +2639,16 @@ TEST(CliGeometry, BadPointsAreNamed) {
   const Outcome gap = run_cli({"enclose", (scenes / "edge_points.csv").string(), "--volume-gap", "0"}, dir);
   EXPECT_EQ(gap.code, 1) << describe(gap);
   EXPECT_NE(gap.err.find("volume_gap"), std::string::npos) << gap.err;
+  for (const auto& [args, field] : std::vector<std::pair<std::vector<std::string>, std::string>>{
+           {{"inscribe", "--max-inscribed-iterations", "0"}, "max_inscribed_iterations"},
+           {{"fit", "--fit-tolerance", "1"}, "fit_tolerance"},
+           {{"enclose", "--max-enclosing-iterations", "-1"}, "max_enclosing_iterations"}}) {
+    std::vector<std::string> full = args;
+    full.push_back((scenes / "edge_points.csv").string());
+    const Outcome r = run_cli(full, dir);
+    EXPECT_EQ(r.code, 1) << describe(r);
+    EXPECT_NE(r.err.find(field), std::string::npos) << r.err;
+  }
   const Outcome missing = run_cli({"fit", (dir / "absent.csv").string()}, dir);
   EXPECT_EQ(missing.code, 3) << describe(missing);
 }
