@@ -130,7 +130,7 @@ fuzz_mutate() {
 # Executions per target for the CI mutation run, the corpus's included: 15 to 30 s each on
 # one core.
 declare -A fuzz_runs=([factories]=250000 [queries]=3000 [intersect2]=150000 [niemitalo]=90000 [scene]=30000
-                       [rigid]=8000 [broad_phase]=6000 [enclosing]=2000 [inscribed]=1500 [fit]=4000)
+                       [rigid]=8000 [broad_phase]=6000 [enclosing]=2000 [inscribed]=3000 [fit]=10000)
 
 # Every target's check and mutation run, as many at once as there are cores; each target's
 # output is printed when it ends, and the step fails if any target did (all of them run).

@@ -148,8 +148,10 @@ EnclosingEllipsoid<T, N> enclosing_ellipsoid(std::span<const Ellipsoid<T, N>> bo
 // Guarantees:
 //   residuals     rms_residual = sqrt(S / n) and max_residual = max |d_i| are those of the body
 //                 as stored, recomputed by closest_point on it (in T), not estimates;
-//   descent       rms_residual <= algebraic_rms_residual (up to rounding, 1e-14 of the points'
-//                 coordinates) whatever the status;
+//   descent       rms_residual <= algebraic_rms_residual whatever the status, up to the
+//                 rounding of closest_point in T: 1e-14 (float: 1e-6) of the largest of the
+//                 points' coordinates and the two bodies' radii (a body run off towards a
+//                 parabola has radii up to 1e4 times the cloud's);
 //   converged     a stationary point of S: the Gauss-Newton step fell below fit_tolerance
 //                 (center in units of the cloud's RMS radius, radii relative, orientation in
 //                 radians; that step then taken), or the residuals are orthogonal to every
@@ -289,8 +291,12 @@ EllipsoidFit<T, N> fit_ellipsoid(std::span<const Vec<T, N>> points, const FitOpt
 // the half-spaces' points (an empty polytope, or one of empty interior: a segment, a plane);
 // unbounded where phase I's ball exceeds 1e10 of that extent, or the barrier's largest radius
 // exceeds 1e12 times the larger of that extent and the inradius with no dual-feasible point
-// found (a wedge, a slab, a box missing a face). Both: body the default (the unit ball at the
-// origin, no certificate), volume_gap infinite, active and weights empty.
+// found, and the normals do not surround the origin (it is not strictly inside their convex
+// hull, decided exactly as hull_half_spaces below decides: some direction v has n_i . v <= 0
+// for every i; a wedge, a slab, a box missing a face). Both: body the default (the unit ball at the
+// origin, no certificate), volume_gap infinite, active and weights empty. Where the normals
+// do surround the origin the polytope is bounded but reaches beyond that range of its planes'
+// points (a needle whose far vertex is no plane's point): InputError("half_spaces") says so.
 // Accuracy (tests/unit/inscribed_test.cpp): boxes give their axis-aligned ellipsoid of radii
 // the half-extents, regular simplices their inscribed balls, triangles their Steiner inellipses
 // (area pi / (3 sqrt 3) of the triangle's, center the centroid), turned, 1e6 sizes from the

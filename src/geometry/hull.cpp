@@ -6,6 +6,7 @@
 #include <ellipsect/geometry.hpp>
 #include <ellipsect/half_space.hpp>
 
+#include "detail/hull.hpp"
 #include "detail/instantiate.hpp"
 #include "detail/rational.hpp"
 
@@ -63,7 +64,10 @@ int orient3(const P3& a, const P3& b, const P3& c, const P3& d) {
 // every vertex of the face lies on or outside its plane as stored.
 template <class T, int N>
 HalfSpace<T, N> face_half_space(const Eigen::Matrix<long double, N, 1>& n, std::span<const Vec<T, N>> vertices) {
-  const Vec<T, N> normal = HalfSpace<T, N>::from_point_normal(vertices[0], n.template cast<T>()).normal();
+  // n scaled to a largest coordinate of 1 first: a face of huge or tiny points has a normal
+  // beyond T's range.
+  const Vec<T, N> unit = (n / n.cwiseAbs().maxCoeff()).template cast<T>();
+  const Vec<T, N> normal = HalfSpace<T, N>::from_point_normal(vertices[0], unit).normal();
   const auto exact = [&](std::size_t i) {
     Q s = 0;
     for (int k = 0; k < N; ++k) s += Q(double(normal[k])) * Q(double(vertices[i][k]));
@@ -87,18 +91,23 @@ HalfSpace<T, N> face_half_space(const Eigen::Matrix<long double, N, 1>& n, std::
   return HalfSpace<T, N>::from_point_normal(vertices[deepest], normal);
 }
 
-template <class T>
-std::vector<HalfSpace<T, 2>> hull_2d(std::span<const Vec<T, 2>> points) {
-  std::vector<P2> p;
+template <class T, int N>
+std::vector<Eigen::Matrix<double, N, 1>> in_double(std::span<const Vec<T, N>> points) {
+  std::vector<Eigen::Matrix<double, N, 1>> p;
   p.reserve(points.size());
   for (const auto& q : points) p.push_back(q.template cast<double>());
+  return p;
+}
+
+// The hull's vertices counterclockwise (Andrew's monotone chain: the lower chain left to
+// right, then the upper right to left), no collinear vertex kept; fewer than 3 for
+// collinear points.
+std::vector<std::size_t> chain(const std::vector<P2>& p) {
   std::vector<std::size_t> order(p.size());
   std::iota(order.begin(), order.end(), std::size_t(0));
   std::sort(order.begin(), order.end(), [&](std::size_t i, std::size_t j) {
     return p[i].x() < p[j].x() || (p[i].x() == p[j].x() && (p[i].y() < p[j].y() || (p[i].y() == p[j].y() && i < j)));
   });
-  // The lower chain left to right, then the upper right to left: counterclockwise, no
-  // collinear vertices kept.
   std::vector<std::size_t> hull;
   for (int pass = 0; pass < 2; ++pass) {
     const std::size_t floor = hull.size();
@@ -109,6 +118,12 @@ std::vector<HalfSpace<T, 2>> hull_2d(std::span<const Vec<T, 2>> points) {
     }
     hull.pop_back();  // the chain's last point starts the other
   }
+  return hull;
+}
+
+template <class T>
+std::vector<HalfSpace<T, 2>> hull_2d(std::span<const Vec<T, 2>> points) {
+  const std::vector<std::size_t> hull = chain(in_double<T, 2>(points));
   if (hull.size() < 3) throw InputError("points", "are collinear (or fewer than 3 distinct): their hull has no interior");
   std::vector<HalfSpace<T, 2>> out;
   for (std::size_t k = 0; k < hull.size(); ++k) {
@@ -284,11 +299,19 @@ private:
   int round_ = 0;
 };
 
+// (b - a) x (c - a) of a face's vertices, exact, rounded to long double.
+Eigen::Matrix<long double, 3, 1> exact_normal(const std::vector<P3>& p, const std::array<int, 3>& v) {
+  std::array<Q, 3> e1, e2;
+  for (int k = 0; k < 3; ++k) e1[k] = Q(p[v[1]][k]) - Q(p[v[0]][k]), e2[k] = Q(p[v[2]][k]) - Q(p[v[0]][k]);
+  Eigen::Matrix<long double, 3, 1> n;
+  for (int k = 0; k < 3; ++k)
+    n[k] = (e1[(k + 1) % 3] * e2[(k + 2) % 3] - e1[(k + 2) % 3] * e2[(k + 1) % 3]).convert_to<long double>();
+  return n;
+}
+
 template <class T>
 std::vector<HalfSpace<T, 3>> hull_3d(std::span<const Vec<T, 3>> points) {
-  std::vector<P3> p;
-  p.reserve(points.size());
-  for (const auto& q : points) p.push_back(q.template cast<double>());
+  const std::vector<P3> p = in_double<T, 3>(points);
   Hull3 hull(p);
   if (!hull.build()) throw InputError("points", "are coplanar (or collinear, or equal): their hull has no interior");
   std::vector<Face> faces;
@@ -318,15 +341,18 @@ std::vector<HalfSpace<T, 3>> hull_3d(std::span<const Vec<T, 3>> points) {
   using L3 = Eigen::Matrix<long double, 3, 1>;
   for (const auto& group : groups) {
     if (group.empty()) continue;
-    // The normal of the group's largest face; its vertices, each once.
-    L3 n = L3::Zero();
+    // The normal of the group's largest face (by a double estimate), exact in rationals then
+    // rounded to long double (differences of far-apart coordinates lose their small parts in
+    // double); its vertices, each once.
+    int largest = group[0];
+    double area = -1;
     std::vector<int> ids;
     for (int a : group) {
       const auto& v = faces[std::size_t(a)].v;
-      const L3 m = (p[v[1]] - p[v[0]]).cast<long double>().cross((p[v[2]] - p[v[0]]).cast<long double>());
-      if (m.squaredNorm() > n.squaredNorm()) n = m;
+      if (const double m = (p[v[1]] - p[v[0]]).cross(p[v[2]] - p[v[0]]).squaredNorm(); m > area) area = m, largest = a;
       ids.insert(ids.end(), v.begin(), v.end());
     }
+    const L3 n = exact_normal(p, faces[std::size_t(largest)].v);
     std::sort(ids.begin(), ids.end());
     ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
     std::vector<Vec<T, 3>> vertices;
@@ -352,8 +378,34 @@ std::vector<HalfSpace<T, N>> hull_half_spaces(std::span<const Vec<T, N>> points)
   }
 }
 
+namespace detail {
+
+template <class T, int N>
+bool surrounds_origin(std::span<const Vec<T, N>> points) {
+  if constexpr (N == 2) {
+    const std::vector<P2> p = in_double<T, 2>(points);
+    const std::vector<std::size_t> hull = chain(p);
+    if (hull.size() < 3) return false;
+    for (std::size_t k = 0; k < hull.size(); ++k)
+      if (orient2(p[hull[k]], p[hull[(k + 1) % hull.size()]], P2::Zero()) <= 0) return false;
+    return true;
+  } else {
+    std::vector<P3> p = in_double<T, 3>(points);
+    p.push_back(P3::Zero());
+    const int origin = int(p.size()) - 1;
+    Hull3 hull(p);
+    if (!hull.build()) return false;
+    for (const Face& f : hull.faces())
+      if (f.alive && (hull.orient(f, origin) >= 0 || std::find(f.v.begin(), f.v.end(), origin) != f.v.end())) return false;
+    return true;
+  }
+}
+
+}  // namespace detail
+
 #define ELLIPSECT_INSTANTIATE(T, N) \
-  template std::vector<HalfSpace<T, N>> hull_half_spaces<T, N>(std::span<const Vec<T, N>>);
+  template std::vector<HalfSpace<T, N>> hull_half_spaces<T, N>(std::span<const Vec<T, N>>); \
+  template bool detail::surrounds_origin<T, N>(std::span<const Vec<T, N>>);
 ELLIPSECT_FOR_EACH_TYPE_AND_DIM(ELLIPSECT_INSTANTIATE)
 #undef ELLIPSECT_INSTANTIATE
 

@@ -8,6 +8,7 @@
 
 #include "detail/axes.hpp"
 #include "detail/compensated.hpp"
+#include "detail/hull.hpp"
 #include "detail/instantiate.hpp"
 
 #include <Eigen/Cholesky>
@@ -369,6 +370,12 @@ InscribedEllipsoid<T, N> inscribed_ellipsoid(std::span<const HalfSpace<T, N>> ha
                                         std::to_string(m) + "): fewer bound no polytope");
   InscribedEllipsoid<T, N> out;
   const auto give_up = [&](InscribedStatus status) {
+    // Bounded exactly where the normals surround the origin (no v with n_i . v <= 0 for all i).
+    std::vector<Vec<T, N>> normals;
+    for (const auto& h : half_spaces) normals.push_back(h.normal());
+    if (status == InscribedStatus::unbounded && detail::surrounds_origin<T, N>(normals))
+      throw InputError("half_spaces", "bound a polytope that reaches beyond 1e10 times the extent of their points "
+                                      "from them: out of the solver's range");
     out.status = status;
     out.body = Ellipsoid<T, N>();
     out.volume_gap = std::numeric_limits<double>::infinity();

@@ -202,6 +202,21 @@ TEST(HullHalfSpaces, NearlyFlatDecidedExactly) {
   EXPECT_EQ((hull_half_spaces<double, 2>(line).size()), 3u);
 }
 
+// Coordinates near 1e246 (face normals' cross products near 1e492, beyond double) and near
+// 1e-200 (products below double's normal range): the same faces as at unit scale.
+TEST(HullHalfSpaces, HugeAndTinyCoordinates) {
+  std::mt19937_64 rng(17);
+  const auto unit = random_cloud<3>(rng, 14, 1.0, V3::Zero());
+  const std::size_t faces = hull_half_spaces<double, 3>(unit).size();
+  for (const double scale : {0x1p+818, 0x1p-660}) {
+    std::vector<V3> p;
+    for (const auto& q : unit) p.push_back(q * scale);
+    const auto planes = hull_half_spaces<double, 3>(p);
+    EXPECT_EQ(planes.size(), faces) << scale;
+    expect_hull<double, 3>(p, planes, 1e-14, false);
+  }
+}
+
 TEST(HullHalfSpaces, FloatPoints) {
   std::mt19937_64 rng(11);
   std::vector<Vec<float, 3>> points;

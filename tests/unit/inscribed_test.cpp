@@ -8,6 +8,7 @@
 #include "detail/axes.hpp"
 #include "scenarios/scenarios.hpp"
 #include "tests/reference/reference.hpp"
+#include "tests/support.hpp"
 
 #include <boost/multiprecision/cpp_bin_float.hpp>
 #include <gtest/gtest.h>
@@ -390,6 +391,12 @@ TEST(InscribedEllipsoid, UnboundedPolytopes) {
   slab3.push_back(slab3[0]);
   slab3.push_back(slab3[1]);
   EXPECT_EQ((inscribed_ellipsoid<double, 3>(slab3).status), InscribedStatus::unbounded);
+  // Bounded, but a needle whose far vertex (1e174 away) is no plane's point: beyond the
+  // solver's range, said (its normals surround the origin), not called unbounded.
+  const std::vector<Vec3<double>> needle{{-2, -1, -3}, {-8, 0x1.80024p-2, 1}, {0x1.00600050006p+577, 0, -8}, {-8, -8, -8}};
+  EXPECT_NE(ellipsect::testing::error_message([&] { (void)inscribed_ellipsoid<double, 3>(hull_half_spaces<double, 3>(needle)); })
+                .find("half_spaces: bound a polytope that reaches beyond 1e10 times"),
+            std::string::npos);
 }
 
 TEST(InscribedEllipsoid, EmptyPolytopes) {

@@ -154,6 +154,8 @@ function exact(v) { return JSON.stringify(typeof v === 'object' ? Array.from(v) 
 
 // A demo: its state, params() for the library, handles(), draw(view, answer) and
 // headline(answer) -> [text, class]. Keys listed in `hidden` are drawn, not tabulated.
+// Optional: click(point) for a press away from every handle, remove(handle) for a
+// shift-press on one.
 class Demo {
   constructor(id, spec) {
     Object.assign(this, spec);
@@ -171,7 +173,9 @@ class Demo {
         const d = Math.hypot(x - mx, y - my);
         if (d <= bestD) { best = h; bestD = d; }
       }
-      if (best) { this.drag = best; canvas.setPointerCapture(ev.pointerId); }
+      if (best && ev.shiftKey && this.remove) { this.remove(best); this.update(); return; }
+      if (best) { this.drag = best; canvas.setPointerCapture(ev.pointerId); return; }
+      if (this.click) { this.click(this.view.world(mx, my)); this.update(); }
     });
     canvas.addEventListener('pointermove', (ev) => {
       if (!this.drag) return;
@@ -548,6 +552,59 @@ function meshSlideDemo() {
   });
 }
 
+// Points to ellipses (geometry.hpp): click to add a point, drag one to move it, shift-click
+// one to remove it. Blue: the minimum-area enclosing ellipse (its support points ringed);
+// green: the largest ellipse inside the points' hull (grey); orange: the least-squares one.
+function geometryDemo() {
+  const start = [[-4, 1], [-3, 2.5], [-1, 3.25], [1.5, 3], [3.5, 1.5], [4, -0.5], [2.5, -2.25], [0, -2.75],
+                 [-2.5, -2], [-3.75, -0.75]];
+  let points = start.map((q) => [...q]);
+  const shape = (a, name) => ({cx: a[name + '.center'][0], cy: a[name + '.center'][1], angle: a[name + '.angle'],
+                               r0: a[name + '.radii'][0], r1: a[name + '.radii'][1]});
+  const section = document.getElementById('geometry');
+  section.querySelector('[data-testid=geometry-clear]').addEventListener('click', () => { points = []; demos.geometry.update(); });
+  section.querySelector('[data-testid=geometry-reset]').addEventListener('click', () => {
+    points = start.map((q) => [...q]);
+    demos.geometry.update();
+  });
+  return new Demo('geometry', {
+    hidden: ['hull.', 'enclose.support'],
+    params: () => {
+      const out = {n: points.length};
+      points.forEach(([x, y], k) => { out[`p${k}.x`] = x; out[`p${k}.y`] = y; });
+      return out;
+    },
+    handles: () => points.map((q, k) => handle('p' + k, () => q, ([x, y]) => { q[0] = x; q[1] = y; })),
+    click(p) { points.push(p); },
+    remove(h) { points.splice(Number(h.name.slice(1)), 1); },
+    draw(v, a) {
+      if (a['hull.faces'] > 0) {  // the hull: each edge's line cut by its neighbours'
+        const at = a['hull.points'], n = a['hull.normals'], m = a['hull.faces'], corners = [];
+        for (let k = 0; k < m; k++) {
+          const j = (k + 1) % m;  // corner of lines k and j: n . x = n . p for both
+          const bk = n[2 * k] * at[2 * k] + n[2 * k + 1] * at[2 * k + 1], bj = n[2 * j] * at[2 * j] + n[2 * j + 1] * at[2 * j + 1];
+          const det = n[2 * k] * n[2 * j + 1] - n[2 * k + 1] * n[2 * j];
+          corners.push((bk * n[2 * j + 1] - bj * n[2 * k + 1]) / det, (n[2 * k] * bj - n[2 * j] * bk) / det);
+        }
+        v.polygon(corners, GREY, 1, 'rgba(0,0,0,0.04)');
+      }
+      if (a['enclose.status'] !== undefined) v.ellipse(shape(a, 'enclose'), BLUE);
+      if (a['inscribe.status'] !== undefined) v.ellipse(shape(a, 'inscribe'), GREEN);
+      if (a['fit.status'] !== undefined) v.ellipse(shape(a, 'fit'), ORANGE, {dash: [6, 4]});
+      const support = a['enclose.support'] || [];
+      for (let i = 0; i < support.length; i += 2) v.dot(pt(support, i), BLUE, {radius: 9, ring: true});
+      for (const q of points) v.dot(q, '#222', {radius: 4});
+    },
+    headline(a) {
+      const said = (name, what) => (a[name + '.status'] !== undefined ? `${what} ${a[name + '.status'].replaceAll('_', ' ')}`
+                                                                       : `no ${what} (${a[name + '.error'].replace(/^ellipsect: /, '')})`);
+      const text = [said('enclose', 'enclosing'), said('inscribe', 'inscribed'), said('fit', 'fit')].join('; ') + '.';
+      const all = ['enclose', 'inscribe', 'fit'].every((k) => a[k + '.status'] !== undefined);
+      return [text, all ? 'no_collision' : 'undecided'];
+    },
+  });
+}
+
 // ---- start --------------------------------------------------------------------------
 
 const demos = {};
@@ -571,7 +628,7 @@ window.ellipsectDemo = {
 createEllipsect().then((m) => {
   Module = m;
   for (const make of [ellipseCircleDemo, segmentCircleDemo, polygonalDemo, sweptDemo, relationDemo, slideDemo,
-                      meshSlideDemo]) {
+                      meshSlideDemo, geometryDemo]) {
     const d = make();
     demos[d.id] = d;
     d.update();

@@ -275,6 +275,59 @@ Answer mesh_slide(const Params& p) {
           {"touched.points", touched_points}};
 }
 
+// Points to bodies (geometry.hpp): the points p0 .. p(n-1) (pk.x, pk.y); the enclosing
+// ellipse, the hull's faces (points and outward normals) with the largest ellipse inside
+// them, and the least-squares ellipse. Each part answers or says why not (its .error).
+void add_ellipse(Answer& out, const std::string& name, const Ellipse2<double>& e) {
+  out.insert(out.end(), {{name + ".center", list(e.center())},
+                         {name + ".angle", std::atan2(e.axes()(1, 0), e.axes()(0, 0))},
+                         {name + ".radii", list(e.radii())}});
+}
+
+template <class F>
+void part(Answer& out, const std::string& name, F f) {
+  try {
+    f();
+  } catch (const InputError& e) {
+    out.emplace_back(name + ".error", std::string(e.what()));
+  }
+}
+
+Answer geometry(const Params& p) {
+  std::vector<Vec2<double>> points;
+  const int n = static_cast<int>(get(p, "n"));
+  for (int k = 0; k < n; ++k) points.push_back(point(p, indexed("p", k) + ".x", indexed("p", k) + ".y"));
+  Answer out;
+  part(out, "enclose", [&] {
+    const auto e = enclosing_ellipsoid<double, 2>(points);
+    out.insert(out.end(), {{"enclose.status", label(to_string(e.status))},
+                           {"enclose.volume_gap", e.volume_gap},
+                           {"enclose.iterations", double(e.iterations)},
+                           {"enclose.support", list(e.support_points)}});
+    add_ellipse(out, "enclose", e.body);
+  });
+  part(out, "inscribe", [&] {
+    const std::vector<HalfSpace<double, 2>> faces = hull_half_spaces<double, 2>(points);
+    std::vector<double> at, normals;
+    for (const auto& f : faces) at.insert(at.end(), {f.point().x(), f.point().y()}), normals.insert(normals.end(), {f.normal().x(), f.normal().y()});
+    out.insert(out.end(), {{"hull.faces", double(faces.size())}, {"hull.points", at}, {"hull.normals", normals}});
+    const auto e = inscribed_ellipsoid<double, 2>(faces);
+    out.insert(out.end(), {{"inscribe.status", label(to_string(e.status))},
+                           {"inscribe.volume_gap", e.volume_gap},
+                           {"inscribe.iterations", double(e.iterations)}});
+    add_ellipse(out, "inscribe", e.body);
+  });
+  part(out, "fit", [&] {
+    const auto f = fit_ellipsoid<double, 2>(points);
+    out.insert(out.end(), {{"fit.status", label(to_string(f.status))},
+                           {"fit.rms_residual", f.rms_residual},
+                           {"fit.max_residual", f.max_residual},
+                           {"fit.iterations", double(f.iterations)}});
+    add_ellipse(out, "fit", f.body);
+  });
+  return out;
+}
+
 }  // namespace
 
 Answer answer(std::string_view demo, const Params& params) {
@@ -286,6 +339,7 @@ Answer answer(std::string_view demo, const Params& params) {
     if (demo == "relation") return relation(params);
     if (demo == "slide") return slide(params);
     if (demo == "mesh_slide") return mesh_slide(params);
+    if (demo == "geometry") return geometry(params);
   } catch (const InputError& e) {
     return {{"error", e.field()}, {"message", std::string(e.what())}};
   }

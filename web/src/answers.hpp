@@ -24,7 +24,7 @@ using Value = std::variant<double, std::string, std::vector<double>>;
 using Answer = std::vector<std::pair<std::string, Value>>;
 
 // Names of the demos: "ellipse_circle", "segment_circle", "polygonal", "swept",
-// "relation", "slide", "mesh_slide". Throws std::invalid_argument for another name.
+// "relation", "slide", "mesh_slide", "geometry". Throws std::invalid_argument for another name.
 Answer answer(std::string_view demo, const Params& params);
 
 }  // namespace ellipsect::web
