@@ -51,17 +51,9 @@ from fractions import Fraction
 import numpy as np
 
 import ellipsect
+from bench_python import best_of  # beside this file: the same timing
 
 SCALE = np.array([1.0, 2.0, 0.5])
-
-
-def best_of(k, f):
-    best = float("inf")
-    for _ in range(k):
-        t = time.perf_counter()
-        f()
-        best = min(best, time.perf_counter() - t)
-    return best
 
 
 def rotation(dim, rng):

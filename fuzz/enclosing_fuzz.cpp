@@ -42,15 +42,8 @@ void run(Bytes& in) {
   const std::size_t count = in.byte() % 41;
   const double gap = in.flag() ? 1e-9 : 1e-3;
   const int cap = 1 + in.byte() % 200;
-  std::vector<Vec<T, N>> points;
-  bool finite = true;
-  for (std::size_t i = 0; i < count; ++i) {
-    Vec<T, N> p;
-    for (int k = 0; k < N; ++k) p[k] = static_cast<T>(in.number());
-    finite = finite && p.allFinite();
-    points.push_back(p);
-    trace() += hex(p) + " ";
-  }
+  const std::vector<Vec<T, N>> points = read_points<T, N>(in, count);
+  const bool finite = all_finite<T, N>(points);
   EnclosingEllipsoid<T, N> e;
   try {
     e = enclosing_ellipsoid<T, N>(points, {.volume_gap = gap, .max_enclosing_iterations = cap});
@@ -74,12 +67,6 @@ void run(Bytes& in) {
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   Bytes in(data, size);
-  const std::uint8_t kind = in.byte();
-  trace() = std::string(kind & 1 ? "float " : "double ") + (kind & 2 ? "3D: " : "2D: ");
-  if (kind & 1) {
-    if (kind & 2) run<float, 3>(in); else run<float, 2>(in);
-  } else {
-    if (kind & 2) run<double, 3>(in); else run<double, 2>(in);
-  }
+  by_type_and_dimension(in, [&]<class T, int N>() { run<T, N>(in); });
   return 0;
 }

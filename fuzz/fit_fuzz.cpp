@@ -24,17 +24,11 @@ void run(Bytes& in) {
   const std::size_t count = in.byte() % 41;
   const double tolerance = in.flag() ? 1e-12 : 1e-8;
   const int cap = 1 + in.byte() % 60;
-  std::vector<Vec<T, N>> points;
-  bool finite = true;
+  const std::vector<Vec<T, N>> points = read_points<T, N>(in, count);
+  const bool finite = all_finite<T, N>(points);
   double largest = 0;
-  for (std::size_t i = 0; i < count; ++i) {
-    Vec<T, N> p;
-    for (int k = 0; k < N; ++k) p[k] = static_cast<T>(in.number());
-    finite = finite && p.allFinite();
+  for (const auto& p : points)
     if (p.allFinite()) largest = std::max(largest, double(p.cwiseAbs().maxCoeff()));
-    points.push_back(p);
-    trace() += hex(p) + " ";
-  }
   constexpr int P = EllipsoidFit<T, N>::parameters;
   EllipsoidFit<T, N> f;
   try {
@@ -62,12 +56,6 @@ void run(Bytes& in) {
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   Bytes in(data, size);
-  const std::uint8_t kind = in.byte();
-  trace() = std::string(kind & 1 ? "float " : "double ") + (kind & 2 ? "3D: " : "2D: ");
-  if (kind & 1) {
-    if (kind & 2) run<float, 3>(in); else run<float, 2>(in);
-  } else {
-    if (kind & 2) run<double, 3>(in); else run<double, 2>(in);
-  }
+  by_type_and_dimension(in, [&]<class T, int N>() { run<T, N>(in); });
   return 0;
 }

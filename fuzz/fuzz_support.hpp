@@ -16,6 +16,7 @@
 #include <sstream>
 #include <string>
 #include <type_traits>
+#include <vector>
 
 namespace ellipsect::fuzz {
 
@@ -225,6 +226,39 @@ void for_type_and_dim(Bytes& in, Run&& run) {
     case 1: run.template operator()<float, 2>(); break;
     case 2: run.template operator()<double, 3>(); break;
     default: run.template operator()<float, 3>(); break;
+  }
+}
+
+// `count` points of number()s, each added to trace().
+template <class T, int N>
+std::vector<Vec<T, N>> read_points(Bytes& in, std::size_t count) {
+  std::vector<Vec<T, N>> points;
+  for (std::size_t i = 0; i < count; ++i) {
+    Vec<T, N> p;
+    for (int k = 0; k < N; ++k) p[k] = static_cast<T>(in.number());
+    points.push_back(p);
+    trace() += hex(p) + " ";
+  }
+  return points;
+}
+
+template <class T, int N>
+bool all_finite(const std::vector<Vec<T, N>>& points) {
+  for (const auto& p : points)
+    if (!p.allFinite()) return false;
+  return true;
+}
+
+// The input's first byte picks the scalar type (bit 0: float, else double) and the dimension
+// (bit 1: 3D, else 2D), named in trace(); then run.template operator()<T, N>().
+template <class Run>
+void by_type_and_dimension(Bytes& in, Run&& run) {
+  const std::uint8_t kind = in.byte();
+  trace() = std::string(kind & 1 ? "float " : "double ") + (kind & 2 ? "3D: " : "2D: ");
+  if (kind & 1) {
+    if (kind & 2) run.template operator()<float, 3>(); else run.template operator()<float, 2>();
+  } else {
+    if (kind & 2) run.template operator()<double, 3>(); else run.template operator()<double, 2>();
   }
 }
 
