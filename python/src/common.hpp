@@ -264,14 +264,14 @@ inline py::array_t<std::int64_t> integers(py::handle obj, const std::string& nam
 
 // The rows of a C-contiguous (n, N) float64 array (checked()) as points.
 // `points` as (n, 2) or (n, 3) rows of doubles; dim set to their columns.
-inline py::array_t<double> point_rows(py::handle points, int& dim) {
-  const py::array a = numbers(points, "points");
+inline py::array_t<double> point_rows(py::handle points, int& dim, const std::string& name = "points") {
+  const py::array a = numbers(points, name);
   if (a.ndim() != 2 || (a.shape(1) != 2 && a.shape(1) != 3))
-    throw py::value_error("points: expected shape (n, 2) or (n, 3), got " +
+    throw py::value_error(name + ": expected shape (n, 2) or (n, 3), got " +
                           shape_text(std::vector<py::ssize_t>(a.shape(), a.shape() + a.ndim())));
   dim = int(a.shape(1));
   py::ssize_t n = -1;
-  return checked(points, "points", {dim}, n, "points");
+  return checked(points, name, {dim}, n, name);
 }
 
 template <int N>
@@ -279,6 +279,49 @@ std::vector<Vec<double, N>> rows_of(const py::array_t<double>& rows) {
   const double* p = rows.data();
   std::vector<Vec<double, N>> out(static_cast<std::size_t>(rows.shape(0)));
   for (std::size_t i = 0; i < out.size(); ++i) out[i] = Eigen::Map<const Vec<double, N>>(p + i * N);
+  return out;
+}
+
+// A list of point clouds ((n_i, N) arrays of one N): the rows of each, its N in dim; errors
+// name "clouds[k]".
+inline std::vector<py::array_t<double>> cloud_rows(const std::vector<py::object>& clouds, int& dim) {
+  std::vector<py::array_t<double>> out;
+  dim = 0;
+  for (std::size_t k = 0; k < clouds.size(); ++k) {
+    int d = 0;
+    const std::string name = "clouds[" + std::to_string(k) + "]";
+    out.push_back(point_rows(clouds[k], d, name));
+    if (dim != 0 && d != dim)
+      throw py::value_error(name + ": " + std::to_string(d) + " columns, the clouds before it " + std::to_string(dim));
+    dim = d;
+  }
+  return out;
+}
+
+// solve(points) for every cloud on the library's worker pool (`threads`: parallel.hpp's),
+// without the GIL; results in the clouds' order. Where clouds fail, the first of them (by
+// index) rethrows its InputError naming "clouds[k]" (its row: "clouds[k][i]").
+template <int N, class Result, class Solve>
+std::vector<Result> for_each_cloud(const std::vector<py::array_t<double>>& rows, int threads, Solve solve) {
+  std::vector<std::vector<Vec<double, N>>> clouds;
+  for (const auto& r : rows) clouds.push_back(rows_of<N>(r));
+  std::vector<Result> out(clouds.size());
+  std::vector<std::string> field(clouds.size()), detail(clouds.size());
+  {
+    py::gil_scoped_release release;
+    parallel_for(clouds.size(), threads, [&](std::size_t k) {
+      const std::string name = "clouds[" + std::to_string(k) + "]";
+      try {
+        out[k] = solve(clouds[k]);
+      } catch (const RowInputError& e) {
+        field[k] = name + "[" + std::to_string(e.row()) + "]", detail[k] = e.detail();
+      } catch (const InputError& e) {
+        field[k] = name, detail[k] = std::string(e.what()).substr(std::string("ellipsect: " + e.field() + ": ").size());
+      }
+    });
+  }
+  for (std::size_t k = 0; k < clouds.size(); ++k)
+    if (!field[k].empty()) throw InputError(field[k], detail[k]);
   return out;
 }
 

@@ -113,6 +113,30 @@ void def_geometry(py::module_& m) {
                 "of their extent from a line or plane (points); an option out of range, named.\nValueError: "
                 "points of the wrong shape.\nTypeError: points that are not real numbers.")
           .c_str());
+  m.def(
+      "enclosing_ellipsoids",
+      [](const std::vector<py::object>& clouds, double volume_gap, std::int64_t max_enclosing_iterations, int threads) {
+        int dim = 0;
+        const auto rows = cloud_rows(clouds, dim);
+        const EnclosingOptions o = enclosing_options(volume_gap, max_enclosing_iterations);
+        py::list out;
+        const auto each = [&]<int N>() {
+          const auto solve = [&](const std::vector<Vec<double, N>>& p) { return enclosing_ellipsoid<double, N>(p, o); };
+          for (const auto& e : for_each_cloud<N, EnclosingEllipsoid<double, N>>(rows, threads, solve))
+            out.append(enclosing_of<N>(e));
+        };
+        if (dim == 3) each.template operator()<3>(); else each.template operator()<2>();
+        return out;
+      },
+      py::arg("clouds"), py::arg("volume_gap") = 1e-9, py::arg("max_enclosing_iterations") = 1'000'000,
+      py::arg("threads") = 0,
+      docs::doc("enclosing_ellipsoid of each cloud, the clouds shared out over the library's worker pool.",
+                "clouds: a list of (n_i, 2) or (n_i, 3) arrays, all of one N.\nvolume_gap, "
+                "max_enclosing_iterations: as for one cloud.\nthreads: 0 every hardware thread, 1 the caller alone.",
+                "list of Enclosing, in the clouds' order (the same answers as one by one).",
+                "InputError: as for one cloud, the first failing cloud named (clouds[k], clouds[k][i]).\nValueError: "
+                "a cloud of the wrong shape, or of another N than those before it (clouds[k]).")
+          .c_str());
   def_inscribed(m);
 }
 

@@ -114,3 +114,40 @@ def test_bad_input_is_named():
         ellipsect.fit_ellipsoid(np.eye(5, 2), fit_tolerance=0)
     with pytest.raises(ellipsect.InputError, match="max_fit_iterations"):
         ellipsect.fit_ellipsoid(np.eye(5, 2), max_fit_iterations=0)
+
+
+def test_batches_of_clouds_answer_as_one_by_one():
+    rng = np.random.default_rng(21)
+    clouds = []
+    for k in range(7):
+        t = rng.uniform(0, 2 * np.pi, 60 + 10 * k)
+        xy = np.c_[3 * np.cos(t), (1 + 0.2 * k) * np.sin(t)] + rng.normal(scale=0.01, size=(t.size, 2)) + [k, -k]
+        clouds.append(xy)
+    for threads in (0, 1, 3):
+        fits = ellipsect.fit_ellipsoids(clouds, threads=threads)
+        hulls = ellipsect.enclosing_ellipsoids(clouds, volume_gap=1e-6, threads=threads)
+        assert len(fits) == len(hulls) == len(clouds)
+        for cloud, f, e in zip(clouds, fits, hulls):
+            one = ellipsect.fit_ellipsoid(cloud)
+            assert f.status == one.status and f.rms_residual == one.rms_residual
+            assert np.array_equal(np.asarray(f.body.center), np.asarray(one.body.center))
+            alone = ellipsect.enclosing_ellipsoid(cloud, volume_gap=1e-6)
+            assert e.status == alone.status == "optimal" and e.volume_gap == alone.volume_gap
+            assert np.array_equal(np.asarray(e.body.radii), np.asarray(alone.body.radii))
+    assert ellipsect.fit_ellipsoids([]) == []
+    assert isinstance(ellipsect.enclosing_ellipsoids([np.eye(4, 3) + 0.1 * np.ones((4, 3))])[0].body, ellipsect.Ellipsoid)
+
+
+def test_batches_of_clouds_name_the_bad_cloud():
+    good = np.random.default_rng(2).normal(size=(20, 2))
+    line = np.c_[np.arange(10.0), np.arange(10.0)]
+    with pytest.raises(ellipsect.InputError, match=r"clouds\[1\]: "):
+        ellipsect.fit_ellipsoids([good, line, line])
+    bad = good.copy()
+    bad[4, 1] = np.inf
+    with pytest.raises(ellipsect.InputError, match=r"clouds\[2\]\[4\]: must be finite"):
+        ellipsect.enclosing_ellipsoids([good, good, bad])
+    with pytest.raises(ValueError, match=r"clouds\[1\]: 3 columns"):
+        ellipsect.enclosing_ellipsoids([good, np.ones((5, 3))])
+    with pytest.raises(ValueError, match=r"clouds\[0\]: expected shape"):
+        ellipsect.fit_ellipsoids([np.ones(5)])
