@@ -148,6 +148,31 @@ void arrays() {
   check(out[0] && !out[1] && out[2], "overlap over arrays of Ellipse2<double>");
 }
 
+// The bodies from points (geometry.hpp): a square's corners' enclosing circle (radius sqrt 2),
+// the hull's four edges and the square's inscribed circle (radius 1), and the fit of points
+// on the unit circle (its covariance a fixed-size matrix inside the result).
+void geometry() {
+  const std::vector<Vec2<double>> square{{-1, -1}, {1, -1}, {1, 1}, {-1, 1}, {0.5, 0.25}};
+  const auto e = enclosing_ellipsoid<double, 2>(square);
+  check(e.status == EnclosingStatus::optimal && e.volume_gap <= 1e-9 && near(e.body.center(), Eigen::Vector2d(0, 0), 1e-9) &&
+            std::abs(e.body.radii()[0] - std::sqrt(2.0)) <= 1e-9 && e.support.size() == 4 && e.support_points.size() == 4,
+        "EnclosingEllipsoid<double, 2>");
+  const auto faces = hull_half_spaces<double, 2>(square);
+  const auto in = inscribed_ellipsoid<double, 2>(faces);
+  check(faces.size() == 4 && in.status == InscribedStatus::optimal && std::abs(in.body.radii()[1] - 1) <= 1e-8 &&
+            in.active.size() == 4 && in.weights.size() == 4,
+        "InscribedEllipsoid<double, 2>");
+  std::vector<Vec3<float>> sphere;
+  for (int i = 0; i < 40; ++i) {
+    const double z = -1 + (i + 0.5) / 20, r = std::sqrt(1 - z * z), t = 2.4 * i;
+    sphere.push_back(Vec3<float>(float(3 + r * std::cos(t)), float(r * std::sin(t)), float(z)));
+  }
+  const auto f = fit_ellipsoid<float, 3>(sphere);
+  check(f.status == FitStatus::converged && near(f.body.center(), Eigen::Vector3f(3, 0, 0), 1e-4) &&
+            f.rms_residual <= 1e-5 && f.covariance.allFinite() && f.covariance(0, 0) >= 0 && f.rank >= 6,
+        "EllipsoidFit<float, 3>");
+}
+
 }  // namespace
 
 int main() {
@@ -157,6 +182,7 @@ int main() {
   contact_functions();
   plane();
   arrays();
+  geometry();
   std::printf("abi %s: %s (sizeof Ellipse2<double> %zu, Contact<double, 3> %zu)\n", ABI_VARIANT,
               failures ? "FAILED" : "ok", sizeof(Ellipse2<double>), sizeof(Contact<double, 3>));
   return failures ? 1 : 0;
