@@ -24,6 +24,9 @@ cxx_packages=(g++ cmake ninja-build ccache pkg-config libeigen3-dev libhwy-dev l
               nlohmann-json3-dev librsvg2-bin)
 packages=("${cxx_packages[@]}" libgtest-dev libgmock-dev libbenchmark-dev libfcl-dev libccd-dev libcgal-dev libopencv-dev
           clang libclang-rt-14-dev)
+# The engines whose ellipsoid narrow phase ellipsect replaces (modules/mujoco, modules/bullet;
+# docs/engines.md): optional in the build, installed here so that their tests run.
+packages+=(libmujoco-dev libbullet-dev)
 # ---- web (the demo page, web/): Emscripten, Chromium for its browser test, Node and npm
 # for playwright-core. npm only where no npm is on the PATH (a Node from elsewhere bundles
 # its own, and Debian's npm would conflict with it).
