@@ -85,6 +85,7 @@ int run(Scene& s, double seconds, const std::string& frames, int every, double h
         Observe&& observe) {
   if (!frames.empty()) std::filesystem::create_directories(frames);
   const int steps = static_cast<int>(std::lround(seconds / s.m->opt.timestep));
+  mj_forward(s.m.get(), s.d.get());  // the poses of the first frame
   int written = 0;
   for (int i = 0; i <= steps; ++i) {
     if (!frames.empty() && i % every == 0) {

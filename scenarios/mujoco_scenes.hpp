@@ -63,7 +63,7 @@ inline std::string pile_mjcf(int side, int layers) {
 }
 
 // A prolate spheroid (radii a, a, c; geom and body "spheroid", mass 1) on a floor plane, its long
-// axis tilted by `tilt` radians about x from the vertical, its lowest point on the floor, at rest;
+// axis tilted by `tilt` radians about y from the vertical, its lowest point on the floor, at rest;
 // and a ball of radius a and mass 1 ("ball") resting on the floor far from it. Timestep 1 ms.
 inline std::string spheroid_mjcf(double a, double c, double tilt) {
   const double s = std::sin(tilt), co = std::cos(tilt);
@@ -71,7 +71,7 @@ inline std::string spheroid_mjcf(double a, double c, double tilt) {
   std::array<char, 1200> xml{};
   std::snprintf(xml.data(), xml.size(), R"(<mujoco><compiler angle="radian"/><option timestep="0.001"/><worldbody>
       <geom name="floor" type="plane" size="0 0 1"/>
-      <body name="spheroid" pos="0 0 %.17g" euler="%.17g 0 0"><freejoint/>
+      <body name="spheroid" pos="0 0 %.17g" euler="0 %.17g 0"><freejoint/>
         <geom name="spheroid" type="ellipsoid" size="%.17g %.17g %.17g" mass="1"/></body>
       <body name="ball" pos="5 0 %.17g"><freejoint/><geom name="ball" type="sphere" size="%.17g" mass="1"/></body>
       </worldbody></mujoco>)",

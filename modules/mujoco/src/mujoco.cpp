@@ -2,6 +2,7 @@
 #include <ellipsect/mujoco.hpp>
 
 #include <ellipsect/box.hpp>
+#include <ellipsect/classify.hpp>
 #include <ellipsect/capsule.hpp>
 #include <ellipsect/distance.hpp>
 #include <ellipsect/half_space.hpp>
@@ -11,6 +12,7 @@
 #include <atomic>
 #include <cstdio>
 #include <exception>
+#include <optional>
 #include <utility>
 
 namespace ellipsect::mujoco {
@@ -37,24 +39,36 @@ Vec3d position(const mjData* d, int g) { return Vec3d(d->geom_xpos[3 * g], d->ge
 Mat3d orientation(const mjData* d, int g) { return Eigen::Map<const Eigen::Matrix<mjtNum, 3, 3, Eigen::RowMajor>>(d->geom_xmat + 9 * g); }
 Vec3d size(const mjModel* m, int g) { return Vec3d(m->geom_size[3 * g], m->geom_size[3 * g + 1], m->geom_size[3 * g + 2]); }
 
-// The signed distance of the ellipsoid geom ge and geom go (of a partner type), the normal
-// from ge towards go.
-Distance<double, 3> signed_distance_of(const mjModel* m, const mjData* d, int ge, int go) {
+// The ellipsoid geom ge and geom go (of a partner type) as ellipsect's shapes, given to f.
+template <class F>
+auto with_shapes(const mjModel* m, const mjData* d, int ge, int go, F&& f) {
   const Body a = make_ellipsoid(position(d, ge), orientation(d, ge), size(m, ge));
   const Vec3d c = position(d, go);
   const Mat3d r = orientation(d, go);
   const Vec3d s = size(m, go);
   switch (m->geom_type[go]) {
-    case mjGEOM_ELLIPSOID: return signed_distance(a, make_ellipsoid(c, r, s));
-    case mjGEOM_SPHERE: return signed_distance(a, make_ball(c, s[0]));
+    case mjGEOM_ELLIPSOID: return f(a, make_ellipsoid(c, r, s));
+    case mjGEOM_SPHERE: return f(a, make_ball(c, s[0]));
     // A plane geom is the half-space below its local xy plane; its normal is the local z axis.
-    case mjGEOM_PLANE: return signed_distance(a, make_half_space<double, 3>(c, r.col(2)));
+    case mjGEOM_PLANE: return f(a, make_half_space<double, 3>(c, r.col(2)));
     // A capsule's segment runs along its local z axis, half-length size[1], radius size[0].
-    case mjGEOM_CAPSULE: return signed_distance(a, make_capsule<double, 3>(c - s[1] * r.col(2), c + s[1] * r.col(2), s[0]));
-    case mjGEOM_BOX: return signed_distance(a, make_box(c, r, s));
+    case mjGEOM_CAPSULE: return f(a, make_capsule<double, 3>(c - s[1] * r.col(2), c + s[1] * r.col(2), s[0]));
+    case mjGEOM_BOX: return f(a, make_box(c, r, s));
     default: break;
   }
   throw InputError("geom type", "not a type collide() answers");
+}
+
+// The signed distance of a and b, the normal from a towards b; nullopt where it is proved larger
+// than margin: a scaled about its centre by 1 + margin / (its smallest radius) holds a grown by
+// a ball of radius margin (its support grows by at least margin along every direction), so when
+// that body and b do not overlap (the overlap test, several times cheaper than the distance),
+// their distance exceeds margin.
+template <class B>
+std::optional<Distance<double, 3>> within_margin(const Body& a, const B& b, double margin) {
+  const Body grown = margin > 0 ? Body::from_axes(a.center(), a.axes(), a.radii() * (1 + margin / a.radii().minCoeff())) : a;
+  if (!overlap(grown, b)) return std::nullopt;
+  return signed_distance(a, b);
 }
 
 const char* geom_name(const mjModel* m, int g) {
@@ -69,9 +83,9 @@ int collide(const mjModel* m, const mjData* d, mjContact* con, int g1, int g2, m
   // The ellipsoid is a; the normal is turned to run from g1 to g2 when it is g2.
   const bool ellipsoid_first = m->geom_type[g1] == mjGEOM_ELLIPSOID;
   const int ge = ellipsoid_first ? g1 : g2, go = ellipsoid_first ? g2 : g1;
-  Distance<double, 3> r;
+  std::optional<Distance<double, 3>> found;
   try {
-    r = signed_distance_of(m, d, ge, go);
+    found = with_shapes(m, d, ge, go, [margin](const Body& a, const auto& b) { return within_margin(a, b, margin); });
   } catch (const std::exception& e) {
     // mju_error does not return unless the user's handler does (MuJoCo's Python bindings
     // throw from it): no contact then.
@@ -81,6 +95,8 @@ int collide(const mjModel* m, const mjData* d, mjContact* con, int g1, int g2, m
     mju_error(message.data());
     return 0;
   }
+  if (!found) return 0;
+  const Distance<double, 3>& r = *found;
   if (r.status == DistanceStatus::did_not_converge) not_converged.fetch_add(1, std::memory_order_relaxed);
   if (!(r.distance <= margin)) return 0;
   const double sign = ellipsoid_first ? 1.0 : -1.0;
