@@ -15,6 +15,7 @@
 #include <ellipsect/gpu.hpp>
 #include <ellipsect/gradient.hpp>
 #include <ellipsect/half_space.hpp>
+#include <ellipsect/margin.hpp>
 #include <ellipsect/slide.hpp>
 #include <ellipsect/intersect2.hpp>
 #include <ellipsect/mesh.hpp>

@@ -2,10 +2,10 @@
 #include <ellipsect/mujoco.hpp>
 
 #include <ellipsect/box.hpp>
-#include <ellipsect/classify.hpp>
 #include <ellipsect/capsule.hpp>
 #include <ellipsect/distance.hpp>
 #include <ellipsect/half_space.hpp>
+#include <ellipsect/margin.hpp>
 #include <ellipsect/shapes.hpp>
 
 #include <array>
@@ -59,18 +59,6 @@ auto with_shapes(const mjModel* m, const mjData* d, int ge, int go, F&& f) {
   throw InputError("geom type", "not a type collide() answers");
 }
 
-// The signed distance of a and b, the normal from a towards b; nullopt where it is proved larger
-// than margin: a scaled about its centre by 1 + margin / (its smallest radius) holds a grown by
-// a ball of radius margin (its support grows by at least margin along every direction), so when
-// that body and b do not overlap (the overlap test, several times cheaper than the distance),
-// their distance exceeds margin.
-template <class B>
-std::optional<Distance<double, 3>> within_margin(const Body& a, const B& b, double margin) {
-  const Body grown = margin > 0 ? Body::from_axes(a.center(), a.axes(), a.radii() * (1 + margin / a.radii().minCoeff())) : a;
-  if (!overlap(grown, b)) return std::nullopt;
-  return signed_distance(a, b);
-}
-
 const char* geom_name(const mjModel* m, int g) {
   const char* name = m->names + m->name_geomadr[g];
   return *name ? name : "(unnamed)";
@@ -85,7 +73,7 @@ int collide(const mjModel* m, const mjData* d, mjContact* con, int g1, int g2, m
   const int ge = ellipsoid_first ? g1 : g2, go = ellipsoid_first ? g2 : g1;
   std::optional<Distance<double, 3>> found;
   try {
-    found = with_shapes(m, d, ge, go, [margin](const Body& a, const auto& b) { return within_margin(a, b, margin); });
+    found = with_shapes(m, d, ge, go, [margin](const Body& a, const auto& b) { return signed_distance_within(a, b, margin); });
   } catch (const std::exception& e) {
     // mju_error does not return unless the user's handler does (MuJoCo's Python bindings
     // throw from it): no contact then.

@@ -1,6 +1,6 @@
 // ellipsect as MuJoCo's ellipsoid narrow phase (docs/engines.md).
 //
-// MuJoCo (2.2 and later) finds contacts through a public table of collision functions,
+// MuJoCo finds contacts through a public table of collision functions,
 // mjCOLLISIONFUNC[type1][type2] (mujoco.h), called by mj_collision for every geom pair that
 // passes its filters, with the geoms ordered by type (type1 <= type2). install() puts
 // collide() there for the ellipsoid against ellipsoid, sphere, plane, capsule and box, in both
@@ -11,7 +11,9 @@
 // mesh as the solid convex hull of its vertices, which ellipsect has no query for.
 //
 // The table is global: install() affects every model and thread of the process. Call it
-// before simulating, not while another thread is inside mj_collision.
+// before simulating, not while another thread is inside mj_collision. Built and tested with
+// MuJoCo 2.2.2 (Debian 12's libmujoco-dev); the module compiles against the headers it finds,
+// so a later MuJoCo needs a build against its own headers.
 #pragma once
 
 #include <mujoco/mujoco.h>

@@ -1,0 +1,182 @@
+// The Bullet integration (include/ellipsect/bullet.hpp) inside Bullet 3.24, against Bullet's own
+// algorithm for the same exact-support ellipsoid shape (btConvexConvexAlgorithm: GJK, and EPA
+// for penetration), on the same seeded pairs (scenarios/scenarios.hpp, moved so that the middle
+// of the centers is the origin):
+//
+//   pair/<category>/<algorithm>  one narrow-phase call as a world's step makes it: the pair's
+//                                algorithm (the dispatcher's findAlgorithm, kept across calls)
+//                                processCollision into its persistent manifold; ns per pair,
+//                                and median_ns (bench_support.hpp);
+//   pile/<algorithm>             one btDiscreteDynamicsWorld::stepSimulation (dt = 1/240) of 64
+//                                ellipsoids settled in a 2 x 2 box of static planes (after 2 s).
+//
+// algorithm 0: ellipsect's (register_algorithms), 1: Bullet's own. Counter contacts: the
+// manifold points per pair (pair/*) or in the world (pile/*) at the end.
+#include <ellipsect/bullet.hpp>
+
+#include "bench/bench_support.hpp"
+#include "scenarios/scenarios.hpp"
+
+#include <benchmark/benchmark.h>
+#include <btBulletDynamicsCommon.h>
+
+#include <cstdint>
+#include <memory>
+#include <random>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace {
+
+using namespace ellipsect;
+using V3 = Vec3<double>;
+constexpr int cases_per_category = 256;
+
+btVector3 bt(const V3& v) { return btVector3(btScalar(v[0]), btScalar(v[1]), btScalar(v[2])); }
+
+btTransform pose(const Mat3<double>& axes, const V3& center) {
+  btMatrix3x3 basis;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) basis[i][j] = btScalar(axes(i, j));
+  return btTransform(basis, bt(center));
+}
+
+// The collision machinery of one algorithm's pairs.
+struct Dispatch {
+  explicit Dispatch(bool ellipsect) {
+    if (ellipsect) bullet::register_algorithms(dispatcher);
+  }
+  btDefaultCollisionConfiguration config;
+  btCollisionDispatcher dispatcher{&config};
+  btDispatcherInfo info;
+};
+
+// One pair with its algorithm and manifold result, as a world's narrow phase holds them.
+class Pair {
+public:
+  Pair(Dispatch& d, const scenarios::Case<3>& c)
+      : dispatch_(d),
+        shape_a_(bt(c.a.radii())),
+        shape_b_(bt(c.b.radii())),
+        w0_(nullptr, &shape_a_, &a_, pose_a_, -1, -1),
+        w1_(nullptr, &shape_b_, &b_, pose_b_, -1, -1),
+        result_(&w0_, &w1_) {
+    pose_a_ = pose(c.a.axes(), c.a.center());
+    pose_b_ = pose(c.b.axes(), c.b.center());
+    a_.setCollisionShape(&shape_a_);
+    b_.setCollisionShape(&shape_b_);
+    a_.setWorldTransform(pose_a_);
+    b_.setWorldTransform(pose_b_);
+    algorithm_ = d.dispatcher.findAlgorithm(&w0_, &w1_, nullptr, BT_CONTACT_POINT_ALGORITHMS);
+  }
+  ~Pair() {
+    algorithm_->~btCollisionAlgorithm();
+    dispatch_.dispatcher.freeCollisionAlgorithm(algorithm_);
+  }
+  Pair(const Pair&) = delete;
+  Pair& operator=(const Pair&) = delete;
+
+  int process() {
+    algorithm_->processCollision(&w0_, &w1_, dispatch_.info, &result_);
+    return result_.getPersistentManifold()->getNumContacts();
+  }
+
+private:
+  Dispatch& dispatch_;
+  bullet::EllipsoidShape shape_a_, shape_b_;
+  btCollisionObject a_, b_;
+  btTransform pose_a_, pose_b_;
+  btCollisionObjectWrapper w0_, w1_;
+  btManifoldResult result_;
+  btCollisionAlgorithm* algorithm_ = nullptr;
+};
+
+void pair_benchmark(benchmark::State& state, scenarios::Category category, bool ellipsect) {
+  Dispatch dispatch(ellipsect);
+  std::vector<std::unique_ptr<Pair>> pairs;
+  for (int i = 0; i < cases_per_category; ++i) {
+    auto c = scenarios::make_case<3>(category, static_cast<std::uint64_t>(i));
+    const V3 mid = (c.a.center() + c.b.center()) / 2;
+    c.a = c.a.translated(-mid);
+    c.b = c.b.translated(-mid);
+    pairs.push_back(std::make_unique<Pair>(dispatch, c));
+  }
+  bench::time_cases(state, pairs, [](const std::unique_ptr<Pair>& p) { return p->process(); });
+  double contacts = 0;
+  for (const auto& p : pairs) contacts += p->process();
+  state.counters["contacts"] = contacts / double(pairs.size());
+}
+
+// 64 ellipsoids dropped into a 2 x 2 box and left to settle for 2 s.
+class Pile {
+public:
+  explicit Pile(bool ellipsect) : dispatch_(ellipsect) {
+    world_.setGravity(btVector3(0, 0, btScalar(-9.81)));
+    for (const auto& [n, k] : {std::pair{V3(0, 0, 1), 0.0},
+                               {V3(1, 0, 0), -1.0},
+                               {V3(-1, 0, 0), -1.0},
+                               {V3(0, 1, 0), -1.0},
+                               {V3(0, -1, 0), -1.0}})
+      add(std::make_unique<btStaticPlaneShape>(bt(n), btScalar(k)), btTransform::getIdentity(), 0);
+    std::mt19937_64 rng(9);
+    for (int i = 0; i < 64; ++i) {
+      const V3 radii(scenarios::detail::uniform(rng, 0.15, 0.3), scenarios::detail::uniform(rng, 0.12, 0.25),
+                     scenarios::detail::uniform(rng, 0.1, 0.2));
+      const V3 c(-0.6 + 0.6 * (i % 3), -0.6 + 0.6 * ((i / 3) % 3), 0.4 + 0.7 * (i / 9));
+      add(std::make_unique<bullet::EllipsoidShape>(bt(radii)), pose(scenarios::detail::rotation<3>(rng), c), 1);
+    }
+    for (int i = 0; i < 480; ++i) step();
+  }
+  ~Pile() {
+    for (auto& b : bodies_) world_.removeRigidBody(b.get());
+  }
+  void step() { world_.stepSimulation(btScalar(1.0 / 240), 0, btScalar(1.0 / 240)); }
+  int contacts() {
+    int n = 0;
+    for (int i = 0; i < dispatch_.dispatcher.getNumManifolds(); ++i)
+      n += dispatch_.dispatcher.getManifoldByIndexInternal(i)->getNumContacts();
+    return n;
+  }
+
+private:
+  void add(std::unique_ptr<btCollisionShape> shape, const btTransform& t, double mass) {
+    btVector3 inertia(0, 0, 0);
+    if (mass > 0) shape->calculateLocalInertia(btScalar(mass), inertia);
+    btRigidBody::btRigidBodyConstructionInfo info(btScalar(mass), nullptr, shape.get(), inertia);
+    info.m_startWorldTransform = t;
+    bodies_.push_back(std::make_unique<btRigidBody>(info));
+    world_.addRigidBody(bodies_.back().get());
+    shapes_.push_back(std::move(shape));
+  }
+  Dispatch dispatch_;
+  btDbvtBroadphase broadphase_;
+  btSequentialImpulseConstraintSolver solver_;
+  std::vector<std::unique_ptr<btCollisionShape>> shapes_;
+  std::vector<std::unique_ptr<btRigidBody>> bodies_;
+  btDiscreteDynamicsWorld world_{&dispatch_.dispatcher, &broadphase_, &solver_, &dispatch_.config};
+};
+
+void pile_benchmark(benchmark::State& state, bool ellipsect) {
+  Pile pile(ellipsect);
+  for (auto _ : state) pile.step();
+  state.counters["contacts"] = pile.contacts();
+}
+
+void register_all() {
+  for (const auto category :
+       {scenarios::Category::random, scenarios::Category::high_aspect, scenarios::Category::near_tangent,
+        scenarios::Category::containment, scenarios::Category::spheres})
+    for (const int algorithm : {0, 1})
+      benchmark::RegisterBenchmark(
+          ("pair/" + std::string(scenarios::name(category)) + "/" + std::to_string(algorithm)).c_str(),
+          [=](benchmark::State& s) { pair_benchmark(s, category, algorithm == 0); });
+  for (const int algorithm : {0, 1})
+    benchmark::RegisterBenchmark(("pile/" + std::to_string(algorithm)).c_str(), [=](benchmark::State& s) {
+      pile_benchmark(s, algorithm == 0);
+    })->Unit(benchmark::kMicrosecond);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) { return ellipsect::bench::run_main(argc, argv, register_all); }
