@@ -1,6 +1,6 @@
 # Installs the build LIBRARY_BINARY_DIR (the one under test) into a scratch prefix, then
 # configures, builds and runs a small consumer project against it with
-# find_package(ellipsect): `consumer`, and the layout checks abi_* built with other SIMD
+# find_package(ellipsect): `consumer`, `engines` (the engine modules the package has), and the layout checks abi_* built with other SIMD
 # flags and Eigen alignments (abi_avx512f runs only on a CPU with AVX-512; elsewhere it is
 # only built).
 set(prefix ${BINARY_DIR}/prefix)
@@ -19,6 +19,11 @@ if(NOT out MATCHES "hit 4")
   message(FATAL_ERROR "consumer printed an unexpected answer: ${out}")
 endif()
 message(STATUS "consumer output: ${out}")
+execute_process(COMMAND ${BINARY_DIR}/app/engines RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT rc EQUAL 0 OR out MATCHES "failed")
+  message(FATAL_ERROR "engines failed (${rc}):\n${out}\n${err}")
+endif()
+message(STATUS "engines output: ${out}")
 
 file(READ /proc/cpuinfo cpuinfo)
 file(GLOB abi_programs ${BINARY_DIR}/app/abi_*)
