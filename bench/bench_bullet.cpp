@@ -15,6 +15,7 @@
 #include <ellipsect/bullet.hpp>
 
 #include "bench/bench_support.hpp"
+#include "scenarios/bullet_scenes.hpp"
 #include "scenarios/scenarios.hpp"
 
 #include <benchmark/benchmark.h>
@@ -33,15 +34,6 @@ using namespace ellipsect;
 using V3 = Vec3<double>;
 constexpr int cases_per_category = 256;
 
-btVector3 bt(const V3& v) { return btVector3(btScalar(v[0]), btScalar(v[1]), btScalar(v[2])); }
-
-btTransform pose(const Mat3<double>& axes, const V3& center) {
-  btMatrix3x3 basis;
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) basis[i][j] = btScalar(axes(i, j));
-  return btTransform(basis, bt(center));
-}
-
 // The collision machinery of one algorithm's pairs.
 struct Dispatch {
   explicit Dispatch(bool ellipsect) {
@@ -57,13 +49,13 @@ class Pair {
 public:
   Pair(Dispatch& d, const scenarios::Case<3>& c)
       : dispatch_(d),
-        shape_a_(bt(c.a.radii())),
-        shape_b_(bt(c.b.radii())),
+        shape_a_(scenarios::to_bt(c.a.radii())),
+        shape_b_(scenarios::to_bt(c.b.radii())),
         w0_(nullptr, &shape_a_, &a_, pose_a_, -1, -1),
         w1_(nullptr, &shape_b_, &b_, pose_b_, -1, -1),
         result_(&w0_, &w1_) {
-    pose_a_ = pose(c.a.axes(), c.a.center());
-    pose_b_ = pose(c.b.axes(), c.b.center());
+    pose_a_ = scenarios::bullet_pose(c.a.axes(), c.a.center());
+    pose_b_ = scenarios::bullet_pose(c.b.axes(), c.b.center());
     a_.setCollisionShape(&shape_a_);
     b_.setCollisionShape(&shape_b_);
     a_.setWorldTransform(pose_a_);
@@ -108,59 +100,14 @@ void pair_benchmark(benchmark::State& state, scenarios::Category category, bool 
   state.counters["contacts"] = contacts / double(pairs.size());
 }
 
-// 64 ellipsoids dropped into a 2 x 2 box and left to settle for 2 s.
-class Pile {
-public:
-  explicit Pile(bool ellipsect) : dispatch_(ellipsect) {
-    world_.setGravity(btVector3(0, 0, btScalar(-9.81)));
-    for (const auto& [n, k] : {std::pair{V3(0, 0, 1), 0.0},
-                               {V3(1, 0, 0), -1.0},
-                               {V3(-1, 0, 0), -1.0},
-                               {V3(0, 1, 0), -1.0},
-                               {V3(0, -1, 0), -1.0}})
-      add(std::make_unique<btStaticPlaneShape>(bt(n), btScalar(k)), btTransform::getIdentity(), 0);
-    std::mt19937_64 rng(9);
-    for (int i = 0; i < 64; ++i) {
-      const V3 radii(scenarios::detail::uniform(rng, 0.15, 0.3), scenarios::detail::uniform(rng, 0.12, 0.25),
-                     scenarios::detail::uniform(rng, 0.1, 0.2));
-      const V3 c(-0.6 + 0.6 * (i % 3), -0.6 + 0.6 * ((i / 3) % 3), 0.4 + 0.7 * (i / 9));
-      add(std::make_unique<bullet::EllipsoidShape>(bt(radii)), pose(scenarios::detail::rotation<3>(rng), c), 1);
-    }
-    for (int i = 0; i < 480; ++i) step();
-  }
-  ~Pile() {
-    for (auto& b : bodies_) world_.removeRigidBody(b.get());
-  }
-  void step() { world_.stepSimulation(btScalar(1.0 / 240), 0, btScalar(1.0 / 240)); }
-  int contacts() {
-    int n = 0;
-    for (int i = 0; i < dispatch_.dispatcher.getNumManifolds(); ++i)
-      n += dispatch_.dispatcher.getManifoldByIndexInternal(i)->getNumContacts();
-    return n;
-  }
-
-private:
-  void add(std::unique_ptr<btCollisionShape> shape, const btTransform& t, double mass) {
-    btVector3 inertia(0, 0, 0);
-    if (mass > 0) shape->calculateLocalInertia(btScalar(mass), inertia);
-    btRigidBody::btRigidBodyConstructionInfo info(btScalar(mass), nullptr, shape.get(), inertia);
-    info.m_startWorldTransform = t;
-    bodies_.push_back(std::make_unique<btRigidBody>(info));
-    world_.addRigidBody(bodies_.back().get());
-    shapes_.push_back(std::move(shape));
-  }
-  Dispatch dispatch_;
-  btDbvtBroadphase broadphase_;
-  btSequentialImpulseConstraintSolver solver_;
-  std::vector<std::unique_ptr<btCollisionShape>> shapes_;
-  std::vector<std::unique_ptr<btRigidBody>> bodies_;
-  btDiscreteDynamicsWorld world_{&dispatch_.dispatcher, &broadphase_, &solver_, &dispatch_.config};
-};
-
+// 64 ellipsoids dropped into the pile's box (scenarios/bullet_scenes.hpp) and left to settle
+// for 2 s.
 void pile_benchmark(benchmark::State& state, bool ellipsect) {
-  Pile pile(ellipsect);
-  for (auto _ : state) pile.step();
-  state.counters["contacts"] = pile.contacts();
+  scenarios::BulletWorld world(ellipsect);
+  scenarios::add_pile(world, 64);
+  world.run(2.0, 1.0 / 240);
+  for (auto _ : state) world.run(1.0 / 240, 1.0 / 240);
+  state.counters["contacts"] = world.contacts();
 }
 
 void register_all() {

@@ -40,43 +40,18 @@ Ellipsoid3<double> body_of(const Scene& s, int g) {
   return make_ellipsoid(c, r, s.m->geom_type[g] == mjGEOM_SPHERE ? Vec3d::Constant(size[0]) : size);
 }
 
-// The side view (looking along +y: x to the right, z up) of the scene's ellipsoids and spheres,
-// its boxes as rectangles and the floor as a line, over x in [-half_width, half_width], z in
-// [0, height].
+// The scene's side view (picture.hpp): its ellipsoids and spheres, its boxes (the walls are
+// axis-aligned).
 void write_side_view(const std::string& path, const Scene& s, double half_width, double height) {
-  // (x, y, z) -> (x + half_width, z, -y): the view's xy plane is the world's xz plane.
-  Mat3d q;
-  q << 1, 0, 0, 0, 0, 1, 0, -1, 0;
-  std::vector<picture::Shadow> shadows;
-  std::string boxes;
+  std::vector<Ellipsoid3<double>> bodies;
+  std::vector<picture::Block> blocks;
   for (int g = 0; g < s.m->ngeom; ++g) {
     const int type = s.m->geom_type[g];
-    if (type == mjGEOM_ELLIPSOID || type == mjGEOM_SPHERE) {
-      const auto e = body_of(s, g);
-      shadows.push_back(picture::shadow(make_ellipsoid<double>(q * e.center() + Vec3d(half_width, 0, 0), q * e.axes(), e.radii())));
-    } else if (type == mjGEOM_BOX) {
-      const double* p = s.d->geom_xpos + 3 * g;
-      const double* h = s.m->geom_size + 3 * g;  // the walls are axis-aligned
-      boxes += "<rect x=\"" + std::to_string(p[0] - h[0] + half_width) + "\" y=\"" + std::to_string(p[2] - h[2]) +
-               "\" width=\"" + std::to_string(2 * h[0]) + "\" height=\"" + std::to_string(2 * h[2]) +
-               "\" fill=\"#ccc\" fill-opacity=\"0.5\"/>\n";
-    }
+    if (type == mjGEOM_ELLIPSOID || type == mjGEOM_SPHERE) bodies.push_back(body_of(s, g));
+    if (type == mjGEOM_BOX)
+      blocks.push_back({Eigen::Map<const Vec3d>(s.d->geom_xpos + 3 * g), Eigen::Map<const Vec3d>(s.m->geom_size + 3 * g)});
   }
-  // Far ones (large y: small depth, -y, after the turn) first.
-  std::sort(shadows.begin(), shadows.end(), [](const auto& a, const auto& b) { return a.depth < b.depth; });
-  const double w = 2 * half_width;
-  std::ofstream out(path);
-  out << "<svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"0 0 " << w << ' ' << height << "\" width=\"600\" height=\""
-      << 600.0 * height / w << "\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n<g transform=\"translate(0 "
-      << height << ") scale(1 -1)\" stroke=\"#222\" stroke-width=\"" << 0.002 * w << "\">\n"
-      << boxes << "<line x1=\"0\" y1=\"0\" x2=\"" << w << "\" y2=\"0\" stroke-width=\"" << 0.006 * w << "\"/>\n";
-  for (const auto& sh : shadows) {
-    const int shade = std::clamp(int(160 + 200 * sh.depth), 60, 230);
-    out << "<ellipse cx=\"" << sh.x << "\" cy=\"" << sh.y << "\" rx=\"" << sh.rx << "\" ry=\"" << sh.ry
-        << "\" transform=\"rotate(" << sh.degrees << ' ' << sh.x << ' ' << sh.y << ")\" fill=\"rgb(" << shade << ','
-        << shade << ",255)\"/>\n";
-  }
-  out << "</g>\n</svg>\n";
+  picture::write_side_view(path, bodies, blocks, half_width, height);
 }
 
 // Steps the scene for `seconds`, writing a frame every `every` steps; `observe` after each step.

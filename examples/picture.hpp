@@ -1,4 +1,4 @@
-// SVG pictures of bodies in a periodic box, for the examples.
+// SVG pictures for the examples: bodies in a periodic box, and side views of scenes.
 #pragma once
 
 #include <ellipsect/broad_phase.hpp>
@@ -57,6 +57,41 @@ void write_picture(const std::string& path, const std::vector<Ellipsoid<double, 
             << "\" transform=\"rotate(" << s.degrees << ' ' << x << ' ' << y << ")\" fill=\"rgb(" << shade << ','
             << shade << ",255)\"/>\n";
       }
+  }
+  out << "</g>\n</svg>\n";
+}
+
+// An axis-aligned box of a side view: center and half extents.
+struct Block {
+  Vec3<double> center, half;
+};
+
+// The side view (looking along +y: x to the right, z up) of ellipsoids and axis-aligned boxes
+// over x in [-half_width, half_width], z in [0, height], the floor z = 0 as a line: the boxes
+// grey behind, the ellipsoids' shadows on the xz plane, far ones (large y) first.
+inline void write_side_view(const std::string& path, const std::vector<Ellipsoid3<double>>& bodies,
+                            const std::vector<Block>& blocks, double half_width, double height) {
+  // (x, y, z) -> (x + half_width, z, -y): the view's xy plane is the world's xz plane.
+  Mat3<double> q;
+  q << 1, 0, 0, 0, 0, 1, 0, -1, 0;
+  std::vector<Shadow> shadows;
+  for (const auto& e : bodies)
+    shadows.push_back(shadow(make_ellipsoid<double>(q * e.center() + Vec3<double>(half_width, 0, 0), q * e.axes(), e.radii())));
+  std::sort(shadows.begin(), shadows.end(), [](const Shadow& a, const Shadow& b) { return a.depth < b.depth; });
+  const double w = 2 * half_width;
+  std::ofstream out(path);
+  out << "<svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"0 0 " << w << ' ' << height << "\" width=\"600\" height=\""
+      << 600.0 * height / w << "\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n<g transform=\"translate(0 "
+      << height << ") scale(1 -1)\" stroke=\"#222\" stroke-width=\"" << 0.002 * w << "\">\n";
+  for (const Block& b : blocks)
+    out << "<rect x=\"" << b.center.x() - b.half.x() + half_width << "\" y=\"" << b.center.z() - b.half.z() << "\" width=\""
+        << 2 * b.half.x() << "\" height=\"" << 2 * b.half.z() << "\" fill=\"#ccc\" fill-opacity=\"0.5\"/>\n";
+  out << "<line x1=\"0\" y1=\"0\" x2=\"" << w << "\" y2=\"0\" stroke-width=\"" << 0.006 * w << "\"/>\n";
+  for (const Shadow& s : shadows) {
+    const int shade = std::clamp(int(160 + 200 * s.depth), 60, 230);
+    out << "<ellipse cx=\"" << s.x << "\" cy=\"" << s.y << "\" rx=\"" << s.rx << "\" ry=\"" << s.ry
+        << "\" transform=\"rotate(" << s.degrees << ' ' << s.x << ' ' << s.y << ")\" fill=\"rgb(" << shade << ','
+        << shade << ",255)\"/>\n";
   }
   out << "</g>\n</svg>\n";
 }

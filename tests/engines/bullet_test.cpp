@@ -18,6 +18,7 @@
 #include <ellipsect/distance.hpp>
 #include <ellipsect/half_space.hpp>
 
+#include "scenarios/bullet_scenes.hpp"
 #include "scenarios/scenarios.hpp"
 #include "tests/reference/bridge.hpp"
 #include "tests/reference/distance_reference.hpp"
@@ -47,6 +48,7 @@ namespace ELLIPSECT_UNITY_ID {
 
 using namespace ellipsect;
 using ellipsect::bullet::EllipsoidShape;
+using ellipsect::scenarios::BulletWorld;
 using ellipsect::testing::expect_field;
 namespace ref = ellipsect::reference;
 using V3 = Vec3<double>;
@@ -55,16 +57,9 @@ using M3 = Mat3<double>;
 constexpr bool float_build = sizeof(btScalar) == sizeof(float);
 constexpr double rel_tol = float_build ? 2e-6 : 1e-10;
 
-btVector3 bt(const V3& v) { return btVector3(btScalar(v[0]), btScalar(v[1]), btScalar(v[2])); }
 V3 dv(const btVector3& v) { return V3(double(v.x()), double(v.y()), double(v.z())); }
 
-btTransform pose(const M3& axes, const V3& center) {
-  const btMatrix3x3 basis(btScalar(axes(0, 0)), btScalar(axes(0, 1)), btScalar(axes(0, 2)), btScalar(axes(1, 0)),
-                          btScalar(axes(1, 1)), btScalar(axes(1, 2)), btScalar(axes(2, 0)), btScalar(axes(2, 1)),
-                          btScalar(axes(2, 2)));
-  return btTransform(basis, bt(center));
-}
-btTransform pose_of(const Ellipsoid3<double>& e) { return pose(e.axes(), e.center()); }
+btTransform pose_of(const Ellipsoid3<double>& e) { return scenarios::bullet_pose(e.axes(), e.center()); }
 
 // Distance of p from the boundary of e (to first order: |q - 1| / |grad q|, q = |diag(r)^-1
 // A^T (p - c)|) and e's outward unit normal there, in double.
@@ -178,7 +173,7 @@ private:
 };
 
 std::unique_ptr<btCollisionShape> ellipsoid_shape(const Ellipsoid3<double>& e) {
-  return std::make_unique<EllipsoidShape>(bt(e.radii()));
+  return std::make_unique<EllipsoidShape>(scenarios::to_bt(e.radii()));
 }
 
 // The case moved so that the middle of its centers is the origin (the reference answers for
@@ -246,7 +241,7 @@ TEST(BulletShape, SupportAabbAndInertia) {
   std::normal_distribution<double> g;
   for (int i = 0; i < 200; ++i) {
     const V3 d(g(rng), g(rng), g(rng));
-    const V3 p = dv(shape.localGetSupportingVertexWithoutMargin(bt(d)));
+    const V3 p = dv(shape.localGetSupportingVertexWithoutMargin(scenarios::to_bt(d)));
     V3 n;
     EXPECT_LE(off_boundary(local, p, &n), 4 * rel_tol);
     EXPECT_LE((n - d.normalized()).norm(), 40 * rel_tol);
@@ -255,7 +250,7 @@ TEST(BulletShape, SupportAabbAndInertia) {
   const M3 R = scenarios::detail::rotation<3>(rng);
   const V3 c(1, -2, 3);
   btVector3 lo, hi;
-  shape.getAabb(pose(R, c), lo, hi);
+  shape.getAabb(scenarios::bullet_pose(R, c), lo, hi);
   V3 reach_lo = V3::Constant(1e9), reach_hi = V3::Constant(-1e9);
   for (int i = 0; i < 20000; ++i) {
     const V3 u = V3(g(rng), g(rng), g(rng)).normalized();
@@ -490,7 +485,7 @@ TEST(BulletShapes, SpheresMatchTheReference) {
     const double want = ref::to_double(ref::signed_distance<3>(ref::to_ref(c.a), ref::to_ref(ball)).distance);
     const double size = c.a.radii().maxCoeff() + radius + std::abs(want);
     check_both_orders(
-        c.a, [&] { return std::make_unique<btSphereShape>(btScalar(radius)); }, pose(M3::Identity(), c.b.center()),
+        c.a, [&] { return std::make_unique<btSphereShape>(btScalar(radius)); }, scenarios::bullet_pose(M3::Identity(), c.b.center()),
         want, size, "sphere " + std::to_string(i), compared);
   }
   EXPECT_GT(compared, 10);
@@ -510,7 +505,7 @@ TEST(BulletShapes, BoxesMatchTheReference) {
     const double want = ref::to_double(ref::max_support_gap<3>(ref::to_ref(c.a), corners).gap);
     const double size = c.a.radii().maxCoeff() + c.b.radii().norm() + std::abs(want);
     check_both_orders(
-        c.a, [&] { return std::make_unique<btBoxShape>(bt(c.b.radii())); }, pose_of(c.b), want, size,
+        c.a, [&] { return std::make_unique<btBoxShape>(scenarios::to_bt(c.b.radii())); }, pose_of(c.b), want, size,
         "box " + std::to_string(i), compared);
   }
   EXPECT_GT(compared, 6);
@@ -538,7 +533,7 @@ TEST(BulletShapes, CapsulesOfEachAxisMatchTheReference) {
       if (up == 1) return std::make_unique<btCapsuleShape>(btScalar(radius), btScalar(height));
       return std::make_unique<btCapsuleShapeZ>(btScalar(radius), btScalar(height));
     };
-    check_both_orders(c.a, make, pose(basis, c.b.center()), want, size, "capsule " + std::to_string(i), compared);
+    check_both_orders(c.a, make, scenarios::bullet_pose(basis, c.b.center()), want, size, "capsule " + std::to_string(i), compared);
   }
   EXPECT_GT(compared, 8);
 }
@@ -556,11 +551,11 @@ TEST(BulletShapes, StaticPlanesMatchTheReference) {
     const double rho = c.a.radii().cwiseProduct(c.a.axes().transpose() * m).norm();
     const double gap = rho * scenarios::detail::uniform(rng, -0.3, 0.03);
     const double k = m.dot(c.a.center() - o) - rho - gap;
-    const btTransform t = pose(R, o);
+    const btTransform t = scenarios::bullet_pose(R, o);
     const double want = ref::to_double(ref::half_space_gaps<3>(ref::to_ref(c.a), o + m * k, m).lower);
     const double size = c.a.radii().maxCoeff() + std::abs(want) + std::abs(k);
     check_both_orders(
-        c.a, [&] { return std::make_unique<btStaticPlaneShape>(bt(n), btScalar(k)); }, t, want, size,
+        c.a, [&] { return std::make_unique<btStaticPlaneShape>(scenarios::to_bt(n), btScalar(k)); }, t, want, size,
         "plane " + std::to_string(i), compared);
   }
   EXPECT_GT(compared, 8);
@@ -574,7 +569,7 @@ TEST(BulletShapes, TriangleMeshGivesOneContactPerTouchedFace) {
                                                     {V3(-2, 0, 0), V3(2, 2, 2), V3(-2, 2, 2)},
                                                     {V3(-2, 0, 0), V3(2, -2, 2), V3(2, 0, 0)},
                                                     {V3(-2, 0, 0), V3(-2, -2, 2), V3(2, -2, 2)}};
-  for (const auto& t : triangles) mesh.addTriangle(bt(t[0]), bt(t[1]), bt(t[2]));
+  for (const auto& t : triangles) mesh.addTriangle(scenarios::to_bt(t[0]), scenarios::to_bt(t[1]), scenarios::to_bt(t[2]));
   std::mt19937_64 rng(5);
   int compared = 0;
   for (int i = 0; i < 8; ++i) {
@@ -620,47 +615,7 @@ TEST(BulletShapes, TriangleMeshGivesOneContactPerTouchedFace) {
   EXPECT_GE(compared, 16);
 }
 
-// ---- Simulations ---------------------------------------------------------------------------
-
-// A dynamics world with the ellipsect algorithms registered.
-class Simulation {
-public:
-  explicit Simulation(bool ellipsect = true) {
-    if (ellipsect) bullet::register_algorithms(dispatcher_);
-    world_.setGravity(btVector3(0, 0, btScalar(-9.81)));
-  }
-  ~Simulation() {
-    for (auto& b : bodies_) world_.removeRigidBody(b.get());
-  }
-  btRigidBody* add(std::unique_ptr<btCollisionShape> shape, const btTransform& t, double mass) {
-    btVector3 inertia(0, 0, 0);
-    if (mass > 0) shape->calculateLocalInertia(btScalar(mass), inertia);
-    btRigidBody::btRigidBodyConstructionInfo info(btScalar(mass), nullptr, shape.get(), inertia);
-    info.m_startWorldTransform = t;
-    auto body = std::make_unique<btRigidBody>(info);
-    world_.addRigidBody(body.get());
-    shapes_.push_back(std::move(shape));
-    bodies_.push_back(std::move(body));
-    return bodies_.back().get();
-  }
-  btRigidBody* add_plane(const V3& normal, double constant) {
-    return add(std::make_unique<btStaticPlaneShape>(bt(normal), btScalar(constant)), btTransform::getIdentity(), 0);
-  }
-  void run(double seconds, double dt) {
-    const int steps = static_cast<int>(std::lround(seconds / dt));
-    for (int i = 0; i < steps; ++i) world_.stepSimulation(btScalar(dt), 0, btScalar(dt));
-  }
-  btDiscreteDynamicsWorld& world() { return world_; }
-
-private:
-  btDefaultCollisionConfiguration config_;
-  btCollisionDispatcher dispatcher_{&config_};
-  btDbvtBroadphase broadphase_;
-  btSequentialImpulseConstraintSolver solver_;
-  std::vector<std::unique_ptr<btCollisionShape>> shapes_;
-  std::vector<std::unique_ptr<btRigidBody>> bodies_;
-  btDiscreteDynamicsWorld world_{&dispatcher_, &broadphase_, &solver_, &config_};
-};
+// ---- Simulations (scenarios/bullet_scenes.hpp's world) ------------------------------------
 
 Ellipsoid3<double> body_of(const btRigidBody* b) {
   return static_cast<const EllipsoidShape*>(b->getCollisionShape())->body(b->getWorldTransform());
@@ -681,12 +636,12 @@ TEST(BulletSimulation, EllipsoidRestsOnAPlaneAtItsSupportHeight) {
   // speculative (it removes the approach velocity beyond gap / dt), so the body stops at the
   // contact, not sunk by the Baumgarte rest of g dt^2 / ERP (8.5e-4 here) a contact found only
   // on penetration would leave: measured 6e-9 (float), asserted 1e-6.
-  Simulation sim;
+  BulletWorld sim(true);
   sim.add_plane(V3(0, 0, 1), 0);
   const double turn = 0.7;
   const M3 R = Eigen::AngleAxisd(turn, Eigen::Vector3d::UnitZ()).toRotationMatrix();
   const V3 radii(0.4, 0.3, 0.15);
-  btRigidBody* e = sim.add(std::make_unique<EllipsoidShape>(bt(radii)), pose(R, V3(0.2, -0.1, 0.17)), 1.0);
+  btRigidBody* e = sim.add(std::make_unique<EllipsoidShape>(scenarios::to_bt(radii)), scenarios::bullet_pose(R, V3(0.2, -0.1, 0.17)), 1.0);
   const double dt = 1.0 / 240;
   sim.run(2.0, dt);
   const double height = double(e->getWorldTransform().getOrigin().z());
@@ -709,14 +664,14 @@ struct Energy {
   double before, after, momentum_change, a_velocity_x;
 };
 Energy elastic_collision(bool ellipsect, bool speculative) {
-  Simulation sim(ellipsect);
+  BulletWorld sim(ellipsect);
   sim.world().setGravity(btVector3(0, 0, 0));
   if (!speculative) sim.world().getSolverInfo().m_splitImpulsePenetrationThreshold = 0;
   std::mt19937_64 rng(3);
   btRigidBody* a = sim.add(std::make_unique<EllipsoidShape>(btVector3(0.5, 0.3, 0.2)),
-                           pose(scenarios::detail::rotation<3>(rng), V3(-1, 0.05, 0)), 1.0);
+                           scenarios::bullet_pose(scenarios::detail::rotation<3>(rng), V3(-1, 0.05, 0)), 1.0);
   btRigidBody* b = sim.add(std::make_unique<EllipsoidShape>(btVector3(0.4, 0.35, 0.25)),
-                           pose(scenarios::detail::rotation<3>(rng), V3(1, -0.05, 0.1)), 1.5);
+                           scenarios::bullet_pose(scenarios::detail::rotation<3>(rng), V3(1, -0.05, 0.1)), 1.5);
   for (btRigidBody* x : {a, b}) {
     x->setRestitution(1);
     x->setFriction(0);
@@ -757,15 +712,10 @@ struct Rocking {
   double worst, lowest_tilt, highest_tilt;
 };
 Rocking rocking_spheroid(bool ellipsect) {
-  Simulation sim(ellipsect);
-  sim.add_plane(V3(0, 0, 1), 0);
-  const double a = 0.4, b = 0.2, tilt = 25 * M_PI / 180;
-  const M3 R = Eigen::AngleAxisd(-tilt, Eigen::Vector3d::UnitY()).toRotationMatrix();
+  BulletWorld sim(ellipsect);
+  const double a = 0.4, b = 0.2;
   auto support_height = [&](const V3& u) { return std::sqrt(a * a * u.z() * u.z() + b * b * (1 - u.z() * u.z())); };
-  btRigidBody* e = sim.add(std::make_unique<EllipsoidShape>(btVector3(btScalar(a), btScalar(b), btScalar(b))),
-                           pose(R, V3(0, 0, support_height(R.col(0)))), 1.0);
-  e->setFriction(btScalar(0.8));
-  e->setActivationState(DISABLE_DEACTIVATION);
+  btRigidBody* e = scenarios::add_spheroid(sim, a, b, 25 * M_PI / 180);
   Rocking r{0, 1, 0};
   for (int i = 0; i < 480; ++i) {
     sim.run(1.0 / 240, 1.0 / 240);
@@ -798,19 +748,8 @@ struct Pile {
   double deepest_pair, deepest_wall, fastest;
 };
 Pile pile(bool ellipsect) {
-  Simulation sim(ellipsect);
-  const std::vector<std::pair<V3, double>> walls = {
-      {V3(0, 0, 1), 0}, {V3(1, 0, 0), -1}, {V3(-1, 0, 0), -1}, {V3(0, 1, 0), -1}, {V3(0, -1, 0), -1}};
-  for (const auto& [n, k] : walls) sim.add_plane(n, k);
-  std::mt19937_64 rng(9);
-  std::vector<btRigidBody*> bodies;
-  for (int i = 0; i < 27; ++i) {
-    const V3 radii(scenarios::detail::uniform(rng, 0.15, 0.3), scenarios::detail::uniform(rng, 0.12, 0.25),
-                   scenarios::detail::uniform(rng, 0.1, 0.2));
-    const V3 c(-0.6 + 0.6 * (i % 3), -0.6 + 0.6 * ((i / 3) % 3), 0.4 + 0.7 * (i / 9));
-    bodies.push_back(
-        sim.add(std::make_unique<EllipsoidShape>(bt(radii)), pose(scenarios::detail::rotation<3>(rng), c), 1.0));
-  }
+  BulletWorld sim(ellipsect);
+  const std::vector<btRigidBody*> bodies = scenarios::add_pile(sim, 27);
   sim.run(4.0, 1.0 / 240);
   Pile p{0, 0, 0};
   for (std::size_t i = 0; i < bodies.size(); ++i) {
@@ -821,7 +760,7 @@ Pile pile(bool ellipsect) {
       EXPECT_NE(d.status, DistanceStatus::did_not_converge);
       p.deepest_pair = std::min(p.deepest_pair, d.distance);
     }
-    for (const auto& [n, k] : walls)
+    for (const auto& [n, k] : scenarios::pile_walls)
       p.deepest_wall = std::min(p.deepest_wall, signed_distance(a, make_half_space<double, 3>(n * k, n)).distance);
   }
   return p;
