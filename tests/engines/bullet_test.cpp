@@ -478,7 +478,7 @@ void check_both_orders(const Ellipsoid3<double>& a, const std::function<std::uni
 
 TEST(BulletShapes, SpheresMatchTheReference) {
   int compared = 0;
-  for (int i = 0; i < 16; ++i) {
+  for (int i = 0; i < 32; ++i) {
     const auto c = centered(scenarios::make_case<3>(scenarios::Category::random, static_cast<std::uint64_t>(200 + i)));
     const double radius = c.b.radii().mean();
     const auto ball = make_ball<double, 3>(c.b.center(), radius);
@@ -488,7 +488,9 @@ TEST(BulletShapes, SpheresMatchTheReference) {
         c.a, [&] { return std::make_unique<btSphereShape>(btScalar(radius)); }, scenarios::bullet_pose(M3::Identity(), c.b.center()),
         want, size, "sphere " + std::to_string(i), compared);
   }
-  EXPECT_GT(compared, 10);
+  // About half the random pairs are near enough, in both orders (the draws, and so the pairs,
+  // differ between compilers: tests/support.hpp).
+  EXPECT_GT(compared, 16);
 }
 
 TEST(BulletShapes, BoxesMatchTheReference) {
