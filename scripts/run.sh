@@ -161,8 +161,10 @@ fuzz_all() {
 # ---- web: the demo page (web/) --------------------------------------------------------
 # Debian's emscripten ships its system libraries prebuilt (a frozen cache), so nothing of
 # Emscripten's own is compiled here. Its JS optimizer needs Debian's acorn module, which a
-# Node from elsewhere does not look for: NODE_PATH.
+# Node from elsewhere does not look for: NODE_PATH. The 3D page's three.js comes from
+# web/node_modules (npm ci), copied into the site by the build.
 build_web() {
+  (cd web && npm ci --no-audit --no-fund --loglevel=error)
   NODE_PATH=/usr/share/nodejs emcmake cmake -S web -B build/web -G Ninja "${launcher[@]}" >/dev/null
   NODE_PATH=/usr/share/nodejs cmake --build build/web -j "$(nproc)"
   echo "==> demo page: build/web/site/ ($(stat -c %s build/web/site/ellipsect.wasm) bytes of wasm)"
@@ -173,7 +175,6 @@ build_web() {
 web_test() {
   build_web
   cmake --build build/release --target web_native_answers
-  (cd web && npm ci --no-audit --no-fund --loglevel=error)
   node web/tests/browser_test.mjs build/web/site build/release/tests/web_native_answers build/web/test-output
 }
 # ---- end web

@@ -1,11 +1,10 @@
 // The demos: handles, drawing and read-outs. Every answer comes from the library through
 // Module.answer(demo, params) (web/src/answers.hpp); this file only draws and converts.
-'use strict';
+import {BLUE, GREEN, GREY, ORANGE, RED, flatten, format, ready, renderAnswer, showTimes} from './common.js';
 
 const SCALE = 40;     // pixels per world unit
 const SNAP = 1 / 16;  // handles snap to this grid (exact binary fractions)
 const GRAB = 12;      // pixels within which a handle is grabbed
-const RED = '#d00', GREEN = '#080', ORANGE = '#d80', BLUE = '#05c', GREY = '#999';
 
 let Module = null;
 
@@ -131,25 +130,6 @@ function circleHandles(prefix, c) {
   ];
 }
 
-function flatten(prefix, obj) {
-  const out = {};
-  for (const [k, v] of Object.entries(obj)) out[prefix + '.' + k] = v;
-  return out;
-}
-
-// ---- read-outs -----------------------------------------------------------------------
-
-function format(v) {
-  if (typeof v === 'string') return v;
-  if (typeof v === 'number') return Number.isInteger(v) || !Number.isFinite(v) ? String(v) : v.toPrecision(6);
-  const parts = [];
-  for (let i = 0; i < v.length; i += 2) parts.push('(' + format(v[i]) + ', ' + format(v[i + 1]) + ')');
-  return parts.join(' ') || '–';
-}
-
-// The exact value, as JSON (NaN as null, like the native program's output).
-function exact(v) { return JSON.stringify(typeof v === 'object' ? Array.from(v) : v); }
-
 // ---- the demos ----------------------------------------------------------------------
 
 // A demo: its state, params() for the library, handles(), draw(view, answer) and
@@ -203,30 +183,8 @@ class Demo {
     this.answer = answer;
     this.view.clear();
     if (answer.error === undefined) this.draw(this.view, answer);
-    this.render(answer);
-    const t2 = performance.now();
-    document.getElementById('query-ms').textContent = (t1 - t0).toFixed(3);
-    document.getElementById('frame-ms').textContent = (t2 - t0).toFixed(3);
-  }
-  render(answer) {
-    const [text, cls] = answer.error !== undefined ? ['invalid input: ' + answer.message, 'failed'] : this.headline(answer);
-    const head = this.section.querySelector('.headline');
-    head.textContent = text;
-    head.className = 'headline ' + cls;
-    head.dataset.verdict = cls;
-    const rows = [];
-    for (const [key, value] of Object.entries(answer)) {
-      if ((this.hidden || []).some((h) => key.startsWith(h))) continue;
-      const tr = document.createElement('tr'), th = document.createElement('th'), td = document.createElement('td');
-      th.textContent = key;
-      td.textContent = format(value);
-      td.dataset.testid = this.id + ':' + key;
-      td.dataset.value = exact(value);
-      tr.append(th, td);
-      rows.push(tr);
-    }
-    this.table.replaceChildren(...rows);
-    this.section.querySelector('.params').textContent = JSON.stringify(this.params());
+    renderAnswer(this, answer);
+    showTimes(t1 - t0, performance.now() - t0);
   }
   drawHandles() {
     for (const h of this.handles()) this.view.dot(h.at(), '#333', {radius: 6, ring: true});
@@ -633,7 +591,5 @@ createEllipsect().then((m) => {
     demos[d.id] = d;
     d.update();
   }
-  const status = document.getElementById('status');
-  status.textContent = 'ready';
-  status.dataset.ready = 'true';
+  ready();
 });

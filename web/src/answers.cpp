@@ -1,10 +1,15 @@
 #include "answers.hpp"
 
 #include <ellipsect/ellipsect.hpp>
+#include <ellipsect/packing.hpp>
+
+#include <Eigen/Geometry>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <numbers>
+#include <random>
 #include <stdexcept>
 
 namespace ellipsect::web {
@@ -203,78 +208,6 @@ Answer slide(const Params& p) {
           {"moved", list(s.moved)}};
 }
 
-// Where the body touches the triangle (NaN when it does not).
-Vec2<double> touching_point(const Ellipse2<double>& body, const Triangle<double, 2>& triangle) {
-  const Vec2<double> still = Vec2<double>::Zero();
-  const Contact<double, 2> c = first_contact(body, still, triangle, still, 0.0);
-  return c.status == ContactStatus::touching_at_start ? c.point : Vec2<double>::Constant(std::nan(""));
-}
-
-// Collide and slide through the triangle mesh of the vertices v0 ... v(vertices - 1) (vK.x,
-// vK.y) and the triangles t0 ... t(triangles - 1) (tK.a, tK.b, tK.c: vertex indices; a
-// repeated index makes a segment) towards the target (tx, ty): the slide, its path round by
-// round with the triangle hit and the contact point of each round that ended at a contact,
-// and at the end the mesh's relation and each triangle touched with its contact point.
-// Slide holds no per-round record, so the rounds are replayed: with Options::max_slide_rounds
-// = k the slide makes its first k rounds (slide.hpp), those of the uncapped call (the
-// triangle queries are closed forms, untouched by the cap: triangle.hpp); k runs to the
-// first cap at which the slide is not blocked, which is the number of rounds.
-Answer mesh_slide(const Params& p) {
-  const auto e = ellipse(p, "e");
-  std::vector<double> vertices;
-  for (int k = 0; k < static_cast<int>(get(p, "vertices")); ++k) {
-    const std::string v = indexed("v", k);
-    vertices.insert(vertices.end(), {get(p, v + ".x"), get(p, v + ".y")});
-  }
-  std::vector<std::int64_t> triangles;
-  for (int k = 0; k < static_cast<int>(get(p, "triangles")); ++k)
-    for (const char* corner : {".a", ".b", ".c"})
-      triangles.push_back(static_cast<std::int64_t>(get(p, indexed("t", k) + corner)));
-  const auto mesh = TriangleMesh<double, 2>::from_arrays(vertices, triangles);
-  const Vec2<double> displacement = point(p, "tx", "ty") - e.center();
-  const Slide<double, 2> s = collide_and_slide(e, displacement, mesh);
-
-  int rounds = 0;
-  std::vector<double> path = list(e.center()), hit_points;
-  std::vector<int> hits;
-  if (s.status == SlideStatus::moved || s.status == SlideStatus::slid || s.status == SlideStatus::blocked) {
-    for (Options cap; rounds < Options{}.max_slide_rounds;) {
-      cap.max_slide_rounds = ++rounds;
-      const Slide<double, 2> r = collide_and_slide(e, displacement, mesh, cap);
-      path.insert(path.end(), {r.body.center().x(), r.body.center().y()});
-      if (r.contacts > static_cast<int>(hits.size())) {
-        hits.push_back(r.last_contact);
-        const Vec2<double> at = touching_point(r.body, mesh.triangle(r.last_contact));
-        hit_points.insert(hit_points.end(), {at.x(), at.y()});
-      }
-      if (r.status != SlideStatus::blocked) break;
-    }
-  }
-
-  const MeshRelation end = classify(s.body, mesh);
-  std::vector<int> touched;
-  std::vector<double> touched_points;
-  for (std::size_t k = 0; k < mesh.triangle_count(); ++k) {
-    const Vec2<double> at = touching_point(s.body, mesh.triangle(k));
-    if (std::isnan(at.x())) continue;
-    touched.push_back(static_cast<int>(k));
-    touched_points.insert(touched_points.end(), {at.x(), at.y()});
-  }
-  return {{"status", label(to_string(s.status))},
-          {"contacts", double(s.contacts)},
-          {"last_contact", double(s.last_contact)},
-          {"end", list(s.body.center())},
-          {"moved", list(s.moved)},
-          {"rounds", double(rounds)},
-          {"path", path},
-          {"hits", indices(hits)},
-          {"hits.points", hit_points},
-          {"relation", label(to_string(end.relation))},
-          {"relation.triangle", double(end.triangle)},
-          {"touched", indices(touched)},
-          {"touched.points", touched_points}};
-}
-
 // Points to bodies (geometry.hpp): the points p0 .. p(n-1) (pk.x, pk.y); the enclosing
 // ellipse, the hull's faces (points and outward normals) with the largest ellipse inside
 // them, and the least-squares ellipse. Each part answers or says why not (its .error).
@@ -328,7 +261,500 @@ Answer geometry(const Params& p) {
   return out;
 }
 
+
+// ---- 3D ---------------------------------------------------------------------------------
+
+Vec3<double> point3(const Params& p, const std::string& n) { return {get(p, n + "x"), get(p, n + "y"), get(p, n + "z")}; }
+
+std::vector<double> list3(const Vec3<double>& v) { return {v.x(), v.y(), v.z()}; }
+
+// Runs f; an InputError comes out naming the field within the body `n` ("a.radii[1]").
+template <class F>
+auto within(const std::string& n, F f) {
+  try {
+    return f();
+  } catch (const InputError& e) {
+    const std::string said = e.what(), prefix = "ellipsect: " + e.field() + ": ";
+    throw InputError(n + "." + e.field(), said.starts_with(prefix) ? said.substr(prefix.size()) : said);
+  }
+}
+
+// A 3D body "x": its center x.cx, x.cy, x.cz, radii x.r0, x.r1, x.r2 and axes Rz(x.yaw)
+// Ry(x.pitch) Rx(x.roll) (radians; the columns of the rotation are the axes of the radii).
+Ellipsoid3<double> ellipsoid3(const Params& p, const std::string& n) {
+  using Turn = Eigen::AngleAxisd;
+  const Mat3<double> axes = (Turn(get(p, n + ".yaw"), Eigen::Vector3d::UnitZ()) *
+                             Turn(get(p, n + ".pitch"), Eigen::Vector3d::UnitY()) *
+                             Turn(get(p, n + ".roll"), Eigen::Vector3d::UnitX())).toRotationMatrix();
+  const Vec3<double> radii{get(p, n + ".r0"), get(p, n + ".r1"), get(p, n + ".r2")};
+  return within(n, [&] { return make_ellipsoid<double>(point3(p, n + ".c"), axes, radii); });
+}
+
+// A body as the library stores it, for drawing: name.center, name.axes (column-major 3x3),
+// name.radii.
+void add_body(Answer& out, const std::string& name, const Ellipsoid3<double>& e) {
+  const Mat3<double> axes = e.axes();
+  out.insert(out.end(), {{name + ".center", list3(e.center())},
+                         {name + ".axes", std::vector<double>(axes.data(), axes.data() + 9)},
+                         {name + ".radii", list3(e.radii())}});
+}
+
+void add_gradient(Answer& out, const std::string& name, const BodyGradient<double, 3>& g) {
+  out.insert(out.end(), {{name + ".center", list3(g.center)},
+                         {name + ".orientation", list3(g.orientation)},
+                         {name + ".radii", list3(g.radii)}});
+}
+
+// Two ellipsoids a and b: the relation, the signed distance with its witnesses and its
+// gradient by each body's parameters (gradient.hpp), the Perram-Wertheim F with mu = sqrt(F)
+// (the factor by which both bodies, scaled about their centers, touch), and the distance of
+// closest approach along the line of the centers (compared with the centers' distance).
+Answer pair3d(const Params& p) {
+  const auto a = ellipsoid3(p, "a"), b = ellipsoid3(p, "b");
+  const DistanceGradient<double, 3> g = signed_distance_gradient(a, b);
+  const Distance<double, 3>& d = g.value;
+  const ContactFunction<double> f = perram_wertheim(a, b);
+  Answer out;
+  add_body(out, "a", a);
+  add_body(out, "b", b);
+  out.insert(out.end(), {{"relation", label(to_string(classify(a, b)))},
+                         {"distance.status", label(to_string(d.status))},
+                         {"distance", d.distance},
+                         {"point_a", list3(d.point_a)},
+                         {"point_b", list3(d.point_b)},
+                         {"normal", list3(d.normal)}});
+  add_gradient(out, "gradient.a", g.a);
+  add_gradient(out, "gradient.b", g.b);
+  out.insert(out.end(), {{"pw.status", label(to_string(f.status))},
+                         {"pw.f", f.f},
+                         {"pw.mu", std::sqrt(f.f)},
+                         {"pw.lambda", f.lambda},
+                         {"center_distance", (b.center() - a.center()).norm()}});
+  part(out, "approach", [&] {
+    const ClosestApproach<double, 3> c = closest_approach(a, b, Vec3<double>(b.center() - a.center()));
+    out.insert(out.end(), {{"approach.status", label(to_string(c.status))},
+                           {"approach.distance", c.distance},
+                           {"approach.point", list3(c.point)},
+                           {"approach.normal", list3(c.normal)}});
+  });
+  return out;
+}
+
+// A body's rigid motion "x": velocity x.vx, x.vy, x.vz; angular velocity x.wx, x.wy, x.wz
+// (radians per unit time); growth x.g (contact.hpp).
+RigidMotion<double, 3> motion3(const Params& p, const std::string& n) {
+  RigidMotion<double, 3> m;
+  m.velocity = point3(p, n + ".v");
+  m.angular_velocity = point3(p, n + ".w");
+  m.growth = get(p, n + ".g");
+  return m;
+}
+
+// The samples of a sampling CCD over the window: overlap at t_k = k t_max / 10, k = 1 .. 10.
+constexpr int ccd_samples = 10;
+
+// Bodies a and b in rigid motion (motion3) over [0, t_max]: the certified first contact
+// (contact.hpp), the bodies at 0, at the viewed time t and at the contact time, and what a sampling
+// CCD makes of the window: the samples' overlaps, the first sample that overlaps, and its
+// verdict against the certified contact (missed: no sample overlaps; late: the first that
+// does is after the contact, by sampling.delay; agrees: neither finds a contact).
+Answer motion3d(const Params& p) {
+  const auto a = ellipsoid3(p, "a"), b = ellipsoid3(p, "b");
+  const auto ma = motion3(p, "a"), mb = motion3(p, "b");
+  const double t_max = get(p, "t_max"), t = get(p, "t");
+  const auto at = [&](double s) {
+    return std::pair{within("a", [&] { return body_at(a, ma, s); }), within("b", [&] { return body_at(b, mb, s); })};
+  };
+  const auto [a_t, b_t] = at(t);  // throws for a motion first_contact would call invalid_input
+  const Contact<double, 3> c = first_contact(a, ma, b, mb, t_max);
+  if (c.status == ContactStatus::invalid_input) throw InputError("t_max", "must be >= 0 (first_contact: invalid_input)");
+  Answer out{{"contact.status", label(to_string(c.status))},
+             {"contact.time", c.time},
+             {"contact.point", list3(c.point)},
+             {"contact.normal", list3(c.normal)},
+             {"contact.iterations", double(c.iterations)}};
+  add_body(out, "a", a);
+  add_body(out, "b", b);
+  add_body(out, "a_t", a_t);
+  add_body(out, "b_t", b_t);
+  out.emplace_back("relation_t", label(to_string(classify(a_t, b_t))));
+  const bool contact = c.status == ContactStatus::hit || c.status == ContactStatus::touching_at_start ||
+                       c.status == ContactStatus::overlapping_at_start;
+  if (contact) {
+    const auto [a_c, b_c] = at(c.time);
+    add_body(out, "a_c", a_c);
+    add_body(out, "b_c", b_c);
+  }
+  std::vector<double> times, overlaps;
+  double first = std::nan("");
+  for (int k = 1; k <= ccd_samples; ++k) {
+    const double s = k * t_max / ccd_samples;
+    const auto [a_s, b_s] = at(s);
+    const bool hit = overlap(a_s, b_s);
+    times.push_back(s);
+    overlaps.push_back(hit ? 1.0 : 0.0);
+    if (hit && std::isnan(first)) first = s;
+  }
+  const char* verdict = !contact ? (std::isnan(first) ? "agrees" : "contradicts")
+                        : std::isnan(first) ? "missed"
+                                            : "late";
+  out.insert(out.end(), {{"samples.times", times},
+                         {"samples.overlap", overlaps},
+                         {"sampling.time", first},
+                         {"sampling.delay", contact ? first - c.time : std::nan("")},
+                         {"sampling.verdict", std::string(verdict)}});
+  return out;
+}
+
 }  // namespace
+
+// Where the body touches the triangle (NaN when it does not).
+template <int N>
+Vec<double, N> touching_point(const Ellipsoid<double, N>& body, const Triangle<double, N>& triangle) {
+  const Vec<double, N> still = Vec<double, N>::Zero();
+  const Contact<double, N> c = first_contact(body, still, triangle, still, 0.0);
+  return c.status == ContactStatus::touching_at_start ? c.point : Vec<double, N>::Constant(std::nan(""));
+}
+
+template <int N>
+std::vector<double> coordinates(const Vec<double, N>& v) {
+  if constexpr (N == 2) return list(v); else return list3(v);
+}
+
+// Collide and slide of the ellipse (2D: "e" as ellipse() reads it) or ellipsoid (3D: as
+// ellipsoid3() reads it) through the triangle mesh of the vertices v0 ... v(vertices - 1)
+// (vK.x, vK.y, and in 3D vK.z) and the triangles t0 ... t(triangles - 1) (tK.a, tK.b, tK.c:
+// vertex indices; a repeated index makes a segment) towards the target (tx, ty, and in 3D tz):
+// the slide, its path round by round with the triangle hit and the contact point of each round
+// that ended at a contact, and at the end the mesh's relation and each triangle touched with
+// its contact point (3D: the start body too, for drawing).
+// Slide holds no per-round record, so the rounds are replayed: with Options::max_slide_rounds
+// = k the slide makes its first k rounds (slide.hpp), those of the uncapped call (the
+// triangle queries are closed forms, untouched by the cap: triangle.hpp); k runs to the
+// first cap at which the slide is not blocked, which is the number of rounds.
+template <int N>
+Answer mesh_slide(const Params& p) {
+  const Ellipsoid<double, N> e = [&] {
+    if constexpr (N == 2) return ellipse(p, "e"); else return ellipsoid3(p, "e");
+  }();
+  const Vec<double, N> target = [&] {
+    if constexpr (N == 2) return point(p, "tx", "ty"); else return point3(p, "t");
+  }();
+  std::vector<double> vertices;
+  for (int k = 0; k < static_cast<int>(get(p, "vertices")); ++k) {
+    const std::string v = indexed("v", k);
+    for (int d = 0; d < N; ++d) vertices.push_back(get(p, v + '.' + "xyz"[d]));
+  }
+  std::vector<std::int64_t> triangles;
+  for (int k = 0; k < static_cast<int>(get(p, "triangles")); ++k)
+    for (const char* corner : {".a", ".b", ".c"})
+      triangles.push_back(static_cast<std::int64_t>(get(p, indexed("t", k) + corner)));
+  const auto mesh = TriangleMesh<double, N>::from_arrays(vertices, triangles);
+  const Vec<double, N> displacement = target - e.center();
+  const Slide<double, N> s = collide_and_slide(e, displacement, mesh);
+
+  int rounds = 0;
+  std::vector<double> path = coordinates<N>(e.center()), hit_points;
+  std::vector<int> hits;
+  if (s.status == SlideStatus::moved || s.status == SlideStatus::slid || s.status == SlideStatus::blocked) {
+    for (Options cap; rounds < Options{}.max_slide_rounds;) {
+      cap.max_slide_rounds = ++rounds;
+      const Slide<double, N> r = collide_and_slide(e, displacement, mesh, cap);
+      const std::vector<double> at_end = coordinates<N>(r.body.center());
+      path.insert(path.end(), at_end.begin(), at_end.end());
+      if (r.contacts > static_cast<int>(hits.size())) {
+        hits.push_back(r.last_contact);
+        const std::vector<double> at = coordinates<N>(touching_point(r.body, mesh.triangle(r.last_contact)));
+        hit_points.insert(hit_points.end(), at.begin(), at.end());
+      }
+      if (r.status != SlideStatus::blocked) break;
+    }
+  }
+
+  const MeshRelation end = classify(s.body, mesh);
+  std::vector<int> touched;
+  std::vector<double> touched_points;
+  for (std::size_t k = 0; k < mesh.triangle_count(); ++k) {
+    const Vec<double, N> at = touching_point(s.body, mesh.triangle(k));
+    if (std::isnan(at.x())) continue;
+    touched.push_back(static_cast<int>(k));
+    const std::vector<double> c = coordinates<N>(at);
+    touched_points.insert(touched_points.end(), c.begin(), c.end());
+  }
+  Answer out{{"status", label(to_string(s.status))},
+             {"contacts", double(s.contacts)},
+             {"last_contact", double(s.last_contact)},
+             {"end", coordinates<N>(s.body.center())},
+             {"moved", coordinates<N>(s.moved)},
+             {"rounds", double(rounds)},
+             {"path", path},
+             {"hits", indices(hits)},
+             {"hits.points", hit_points},
+             {"relation", label(to_string(end.relation))},
+             {"relation.triangle", double(end.triangle)},
+             {"touched", indices(touched)},
+             {"touched.points", touched_points}};
+  if constexpr (N == 3) add_body(out, "e", e);
+  return out;
+}
+
+// ---- Live packing -------------------------------------------------------------------------
+
+namespace {
+
+// Raw bits of mt19937_64 as a uniform double in [0, 1): the standard fixes the engine's
+// output (not its distributions'), so the wasm and native starts are the same.
+double uniform(std::mt19937_64& rng) { return double(rng() >> 11) * 0x1p-53; }
+
+// A random orientation from a normalized random vector (2D: (cos, sin); 3D: a quaternion),
+// by square roots alone (correctly rounded everywhere).
+template <int N>
+Mat<double, N> random_axes(std::mt19937_64& rng) {
+  Eigen::Matrix<double, N == 2 ? 2 : 4, 1> v;
+  do {
+    for (auto& x : v) x = 2 * uniform(rng) - 1;
+  } while (!(v.squaredNorm() > 0.01 && v.squaredNorm() <= 1));
+  v.normalize();
+  if constexpr (N == 2) {
+    Mat<double, 2> a;
+    a << v[0], -v[1], v[1], v[0];
+    return a;
+  } else {
+    return Quat<double>(v[0], v[1], v[2], v[3]).toRotationMatrix();
+  }
+}
+
+// A whole number in [lo, hi] under `name` (InputError naming it otherwise).
+std::int64_t whole(const Params& p, const std::string& name, double lo, double hi) {
+  const double v = get(p, name);
+  if (!(v >= lo && v <= hi && v == std::floor(v)))
+    throw InputError(name, "must be a whole number in [" + std::to_string(std::int64_t(lo)) + ", " +
+                               std::to_string(std::int64_t(hi)) + "]");
+  return static_cast<std::int64_t>(v);
+}
+
+double body_volume(const Vec<double, 2>& r) { return std::numbers::pi * r[0] * r[1]; }
+double body_volume(const Vec<double, 3>& r) { return 4.0 / 3.0 * std::numbers::pi * r[0] * r[1] * r[2]; }
+
+}  // namespace
+
+// Lubachevsky-Stillinger compression (packing.hpp), run a bounded number of collisions at a
+// time. The protocol is jam_packing's: HardBodies growing at the schedule's rate (thermal
+// speeds per largest diameter), every 20 collisions per body the reduced pressure
+// p = 1 + (virial change) / (N n kT dt) over the interval, the velocities rescaled to kT = 1
+// and the rate set from the schedule at p; jammed at p >= the target. So are its box (density
+// 0.2 at the start, less where the lattice below needs a larger one) and its size rule (each
+// body under an eighth of the box side). The start differs: the bodies (largest radius 1, the
+// others 1 / aspect) on a cubic lattice (cells at least 2.1 wide: no two touch), each turned at
+// random, velocities uniform in [-1, 1) less their mean, no spin.
+template <int N>
+class Compression {
+  static constexpr double initial_density = 0.2, min_cell = 2.1;
+
+public:
+  explicit Compression(const Params& p)
+      : n_(static_cast<int>(whole(p, "n", 2, 1e6))), target_(get(p, "pressure")), schedule_(schedule(p)) {
+    const double aspect = get(p, "aspect");
+    if (!(aspect >= 1) || !std::isfinite(aspect)) throw InputError("aspect", "must be finite and >= 1");
+    if (!(target_ > 1) || !std::isfinite(target_)) throw InputError("pressure", "must be finite and > 1");
+    Vec<double, N> radii = Vec<double, N>::Constant(1.0 / aspect);
+    radii[0] = 1.0;
+    volume_ = n_ * body_volume(radii);
+    int m = 1;  // lattice cells per side
+    while (std::pow(m, N) < n_) ++m;
+    const double side = std::max(std::pow(volume_ / initial_density, 1.0 / N), min_cell * m);
+    if (!(8 < side)) throw InputError("n", "too few bodies: each must be under an eighth of the box side");
+    const double cell = side / m;
+    PeriodicBox<N> box;
+    box.size.fill(side);
+    std::mt19937_64 rng(static_cast<std::uint64_t>(whole(p, "seed", 0, 0x1p53)));
+    std::vector<Ellipsoid<double, N>> bodies;
+    std::vector<RigidMotion<double, N>> motions(static_cast<std::size_t>(n_));
+    Vec<double, N> mean = Vec<double, N>::Zero();
+    for (int i = 0; i < n_; ++i) {
+      Vec<double, N> c;
+      for (int k = 0, q = i; k < N; ++k, q /= m) c[k] = (q % m + 0.5) * cell;
+      bodies.push_back(Ellipsoid<double, N>::from_axes(c, random_axes<N>(rng), radii));
+      for (int k = 0; k < N; ++k) motions[i].velocity[k] = 2 * uniform(rng) - 1;
+      mean += motions[i].velocity;
+    }
+    for (auto& mo : motions) mo.velocity -= mean / n_;
+    box_volume_ = std::pow(side, N);
+    system_.emplace(bodies, motions, box, 0.1, expansion(schedule_.rate_at(0)));
+    system_->rescale(1.0 / std::sqrt(system_->temperature()), system_->expansion());
+    start_interval();
+  }
+
+  // Runs up to `collisions` collisions, stopping where jammed.
+  void advance(int collisions) {
+    for (int k = 0; k < collisions && !jammed_; ++k) {
+      // Growing bodies always meet: an event is always ahead.
+      if (system_->step().status != HardStatus::collided) throw std::logic_error("ellipsect: packing: no event");
+      if (system_->collisions() >= next_update_) update();
+    }
+  }
+
+  // status (growing, jammed), collisions, time, density now, the last interval's pressure (NaN
+  // before the first) and the (density, pressure) of every interval.
+  Answer state() const {
+    const HardBodies<N>& s = *system_;
+    return {{"status", std::string(jammed_ ? "jammed" : "growing")},
+            {"collisions", double(s.collisions())},
+            {"time", s.now()},
+            {"density", density(s.now())},
+            {"pressure", pressure_},
+            {"history", history_},
+            {"box", std::vector<double>(s.box().size.begin(), s.box().size.end())}};
+  }
+
+  // The bodies for drawing (centers wrapped into the box): "centers", "axes" (column-major)
+  // and "radii", N, N * N and N numbers per body, now or, once jammed, halfway to the next
+  // event (where no pair touches, as jam_packing leaves them), with the contacts there.
+  Answer bodies() const {
+    const std::vector<Ellipsoid<double, N>> shapes = system_->shapes_at(shown_time());
+    std::vector<double> centers, axes, radii;
+    for (const auto& b : shapes) {
+      const Mat<double, N> a = b.axes();
+      centers.insert(centers.end(), b.center().data(), b.center().data() + N);
+      axes.insert(axes.end(), a.data(), a.data() + N * N);
+      radii.insert(radii.end(), b.radii().data(), b.radii().data() + N);
+    }
+    Answer out{{"bodies.time", shown_time()}, {"centers", centers}, {"axes", axes}, {"radii", radii}};
+    if (jammed_) add_contacts(out, shapes);
+    return out;
+  }
+
+private:
+  static GrowthSchedule schedule(const Params& p) {
+    const double rate = get(p, "rate");
+    if (!(rate > 0) || !std::isfinite(rate)) throw InputError("rate", "must be finite and > 0");
+    return GrowthSchedule{{0.0, rate}, {1e2, rate / 5}};
+  }
+  double expansion(double rate) const { return rate / 2; }  // d scale / dt: the largest diameter is 2
+  double density(double t) const { return volume_ * std::pow(system_->scale_at(t), N) / box_volume_; }
+  double shown_time() const { return jammed_ ? jam_time_ : system_->now(); }
+  void start_interval() {
+    t_last_ = system_->now();
+    virial_last_ = system_->virial();
+    next_update_ = system_->collisions() + std::uint64_t(20) * std::uint64_t(n_);
+  }
+  void update() {
+    HardBodies<N>& s = *system_;
+    const double dt = s.now() - t_last_, kt = (1.0 + s.temperature()) / 2;
+    pressure_ = dt > 0 ? 1.0 + (s.virial() - virial_last_) / (N * n_ * kt * dt) : std::numeric_limits<double>::infinity();
+    history_.insert(history_.end(), {density(s.now()), pressure_});
+    if (pressure_ >= target_) {
+      jammed_ = true;
+      const double next = s.next_event();
+      jam_time_ = std::isfinite(next) ? (s.now() + next) / 2 : s.now();
+      return;
+    }
+    s.rescale(1.0 / std::sqrt(s.temperature()), expansion(schedule_.rate_at(pressure_)));
+    start_interval();
+  }
+  // Contacts: pairs whose Perram-Wertheim mu - 1 is below 100 / target (jam_packing's default
+  // gap), found among the candidate pairs of the bodies grown by 1 + gap; each as the segment
+  // between the centers (through the image); "overlapping": pairs classify does not find
+  // separated or touching (0 in a sound run).
+  void add_contacts(Answer& out, const std::vector<Ellipsoid<double, N>>& shapes) const {
+    const double gap = 100 / target_;
+    const PeriodicBox<N>& box = system_->box();
+    std::vector<Ellipsoid<double, N>> grown;
+    for (const auto& b : shapes) grown.push_back(Ellipsoid<double, N>::from_axes(b.center(), b.axes(), b.radii() * (1 + gap)));
+    std::vector<double> segments;
+    int contacts = 0, overlapping = 0;
+    for (const ImagePair<N>& q : candidate_pairs<double, N>(grown, box)) {
+      Vec<double, N> offset;
+      for (int k = 0; k < N; ++k) offset[k] = q.image[k] * box.size[k];
+      const Ellipsoid<double, N>& a = shapes[q.i];
+      const Ellipsoid<double, N> b = shapes[q.j].translated(offset);
+      const Relation r = classify(a, b);
+      if (r != Relation::separated && r != Relation::touching) ++overlapping;
+      if (std::sqrt(perram_wertheim(a, b).f) - 1 < gap) {
+        ++contacts;
+        segments.insert(segments.end(), a.center().data(), a.center().data() + N);
+        segments.insert(segments.end(), b.center().data(), b.center().data() + N);
+      }
+    }
+    out.insert(out.end(), {{"contacts", double(contacts)},
+                           {"mean_contacts", 2.0 * contacts / n_},
+                           {"overlapping", double(overlapping)},
+                           {"contacts.segments", segments}});
+  }
+
+  int n_;
+  double target_;
+  GrowthSchedule schedule_;
+  std::optional<HardBodies<N>> system_;
+  double volume_ = 0, box_volume_ = 0, t_last_ = 0, virial_last_ = 0;
+  double pressure_ = std::nan(""), jam_time_ = 0;
+  std::uint64_t next_update_ = 0;
+  bool jammed_ = false;
+  std::vector<double> history_;
+};
+
+namespace {
+
+LivePacking::Run make_run(const Params& p) {
+  const double dim = get(p, "dim");
+  if (dim == 2) return std::make_unique<Compression<2>>(p);
+  if (dim == 3) return std::make_unique<Compression<3>>(p);
+  throw InputError("dim", "must be 2 or 3");
+}
+
+// The native answers of the live packing: run to `collisions` (or, without it, to jamming),
+// its state and bodies; "packing_check": the overlapping pairs (classify, through the periodic
+// box's images) of the bodies given as the page drew them (centers, axes, radii as from
+// LivePacking::bodies, under the names centers.k, axes.k, radii.k; box.k).
+Answer packing(const Params& p) {
+  LivePacking live(p);
+  const auto it = p.find("collisions");
+  if (it != p.end()) {
+    live.advance(static_cast<int>(it->second));
+  } else {
+    while (std::get<std::string>(live.state().front().second) != "jammed") live.advance(1000);
+  }
+  Answer out = live.state();
+  for (auto& entry : live.bodies()) out.push_back(std::move(entry));
+  return out;
+}
+
+template <int N>
+Answer packing_check(const Params& p) {
+  const int n = static_cast<int>(get(p, "n"));
+  PeriodicBox<N> box;
+  for (int k = 0; k < N; ++k) box.size[k] = get(p, indexed("box.", k));
+  std::vector<Ellipsoid<double, N>> bodies;
+  for (int i = 0; i < n; ++i) {
+    Vec<double, N> c, r;
+    Mat<double, N> a;
+    for (int k = 0; k < N; ++k) c[k] = get(p, indexed("centers.", N * i + k)), r[k] = get(p, indexed("radii.", N * i + k));
+    for (int k = 0; k < N * N; ++k) a.data()[k] = get(p, indexed("axes.", N * N * i + k));
+    bodies.push_back(Ellipsoid<double, N>::from_axes(c, a, r));
+  }
+  int overlapping = 0;
+  for (const ImagePair<N>& q : candidate_pairs<double, N>(bodies, box)) {
+    Vec<double, N> offset;
+    for (int k = 0; k < N; ++k) offset[k] = q.image[k] * box.size[k];
+    const Relation r = classify(bodies[q.i], bodies[q.j].translated(offset));
+    if (r != Relation::separated && r != Relation::touching) ++overlapping;
+  }
+  return {{"overlapping", double(overlapping)}};
+}
+
+}  // namespace
+
+LivePacking::LivePacking(const Params& params) : run_(make_run(params)) {}
+LivePacking::~LivePacking() = default;
+void LivePacking::advance(int collisions) {
+  std::visit([&](auto& r) { r->advance(collisions); }, run_);
+}
+Answer LivePacking::state() const {
+  return std::visit([](const auto& r) { return r->state(); }, run_);
+}
+Answer LivePacking::bodies() const {
+  return std::visit([](const auto& r) { return r->bodies(); }, run_);
+}
 
 Answer answer(std::string_view demo, const Params& params) {
   try {
@@ -338,8 +764,13 @@ Answer answer(std::string_view demo, const Params& params) {
     if (demo == "swept") return swept(params);
     if (demo == "relation") return relation(params);
     if (demo == "slide") return slide(params);
-    if (demo == "mesh_slide") return mesh_slide(params);
+    if (demo == "mesh_slide") return mesh_slide<2>(params);
+    if (demo == "mesh_slide3d") return mesh_slide<3>(params);
     if (demo == "geometry") return geometry(params);
+    if (demo == "pair3d") return pair3d(params);
+    if (demo == "motion3d") return motion3d(params);
+    if (demo == "packing") return packing(params);
+    if (demo == "packing_check") return get(params, "dim") == 2 ? packing_check<2>(params) : packing_check<3>(params);
   } catch (const InputError& e) {
     return {{"error", e.field()}, {"message", std::string(e.what())}};
   }

@@ -5,11 +5,13 @@
 // coordinate changes of the swept demo's reduced frame.
 //
 // Inputs are named numbers (Params); an ellipse "x" is x.cx, x.cy, x.angle, x.r0, x.r1,
-// a circle x.cx, x.cy, x.r. Missing names throw std::out_of_range; invalid shapes come
+// a circle x.cx, x.cy, x.r; an ellipsoid x.cx, x.cy, x.cz, x.yaw, x.pitch, x.roll, x.r0,
+// x.r1, x.r2 (web/src/answers.cpp: pair3d, motion3d). Missing names throw std::out_of_range; invalid shapes come
 // back as {error: field, message: text} (the library's InputError).
 #pragma once
 
 #include <map>
+#include <memory>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -24,7 +26,29 @@ using Value = std::variant<double, std::string, std::vector<double>>;
 using Answer = std::vector<std::pair<std::string, Value>>;
 
 // Names of the demos: "ellipse_circle", "segment_circle", "polygonal", "swept",
-// "relation", "slide", "mesh_slide", "geometry". Throws std::invalid_argument for another name.
+// "relation", "slide", "mesh_slide", "geometry", "pair3d", "motion3d", "mesh_slide3d", "packing" (a
+// LivePacking run to jamming, or to params "collisions"), "packing_check". Throws std::invalid_argument for another name.
 Answer answer(std::string_view demo, const Params& params);
+
+template <int N>
+class Compression;
+
+// A packing growing to jamming, run a bounded number of collisions at a time (the page runs
+// it frame by frame): params dim (2, 3), n (bodies), aspect (largest radius over the others,
+// >= 1), rate (growth, thermal speeds per largest diameter), pressure (reduced pressure at
+// which it is jammed), seed. Throws InputError naming the field.
+class LivePacking {
+public:
+  explicit LivePacking(const Params& params);
+  ~LivePacking();
+  void advance(int collisions);  // up to this many collisions; none once jammed
+  Answer state() const;          // status (growing, jammed), collisions, density, pressure, ...
+  Answer bodies() const;         // the bodies to draw; once jammed, the contacts too
+
+  using Run = std::variant<std::unique_ptr<Compression<2>>, std::unique_ptr<Compression<3>>>;
+
+private:
+  Run run_;
+};
 
 }  // namespace ellipsect::web

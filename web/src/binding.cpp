@@ -1,11 +1,14 @@
 // JavaScript binding of the demo answers (answers.hpp): Module.answer(demo, params) takes
 // a plain object of numbers and returns a plain object of numbers, strings and
-// Float64Arrays. Conversion only.
+// Float64Arrays; the page's one live packing (answers.hpp's LivePacking) is
+// Module.packingStart(params) (its state, or {error, message}), packingAdvance(collisions),
+// packingState() and packingBodies(). Conversion only.
 #include "answers.hpp"
 
 #include <emscripten/bind.h>
 #include <emscripten/val.h>
 
+#include <optional>
 #include <string>
 #include <variant>
 #include <vector>
@@ -23,7 +26,7 @@ val to_js(const Value& v) {
   return val(emscripten::typed_memory_view(list.size(), list.data())).call<val>("slice");
 }
 
-val answer_js(const std::string& demo, const val& params) {
+Params to_params(const val& params) {
   Params p;
   const val keys = val::global("Object").call<val>("keys", params);
   const int n = keys["length"].as<int>();
@@ -31,11 +34,38 @@ val answer_js(const std::string& demo, const val& params) {
     const std::string key = keys[i].as<std::string>();
     p.emplace(key, params[key].as<double>());
   }
+  return p;
+}
+
+val to_js(const Answer& answer) {
   val out = val::object();
-  for (const auto& [name, value] : answer(demo, p)) out.set(name, to_js(value));
+  for (const auto& [name, value] : answer) out.set(name, to_js(value));
   return out;
 }
 
+val answer_js(const std::string& demo, const val& params) { return to_js(answer(demo, to_params(params))); }
+
+std::optional<LivePacking> live;
+
+val packing_start(const val& params) {
+  live.reset();
+  try {
+    live.emplace(to_params(params));
+  } catch (const ellipsect::InputError& e) {
+    return to_js(Answer{{"error", e.field()}, {"message", std::string(e.what())}});
+  }
+  return to_js(live->state());
+}
+void packing_advance(int collisions) { live.value().advance(collisions); }
+val packing_state() { return to_js(live.value().state()); }
+val packing_bodies() { return to_js(live.value().bodies()); }
+
 }  // namespace
 
-EMSCRIPTEN_BINDINGS(ellipsect_web) { emscripten::function("answer", &answer_js); }
+EMSCRIPTEN_BINDINGS(ellipsect_web) {
+  emscripten::function("answer", &answer_js);
+  emscripten::function("packingStart", &packing_start);
+  emscripten::function("packingAdvance", &packing_advance);
+  emscripten::function("packingState", &packing_state);
+  emscripten::function("packingBodies", &packing_bodies);
+}

@@ -1,11 +1,12 @@
-// Browser test of the demo page: headless Chromium drives every demo with the mouse to
-// scripted positions, reads the verdicts and numbers from the page and compares them with
-// the native library's answers for the same inputs (web/tests/native_answers.cpp).
+// Browser test of the demo pages (index.html, 3d.html): headless Chromium drives every demo
+// with the mouse and keyboard to scripted positions and values, reads the verdicts and numbers
+// from the page and compares them with the native library's answers for the same inputs
+// (web/tests/native_answers.cpp). The 3D page renders through WebGL in software (SwiftShader).
 //
 //   node web/tests/browser_test.mjs SITE_DIR NATIVE_ANSWERS OUT_DIR
 //
 // SITE_DIR: the built page (build/web/site); NATIVE_ANSWERS: the native program;
-// OUT_DIR: screenshots (one per scenario, page.png) and results.json. Exit status 1 on
+// OUT_DIR: screenshots (one per scenario and permalink, page.png for the 2D page) and results.json. Exit status 1 on
 // any mismatch, unexpected verdict or console error.
 import {chromium} from 'playwright-core';
 import {execFileSync} from 'node:child_process';
@@ -27,7 +28,9 @@ const TOLERANCE = 1e-9;
 // makes n (n + 1) / 2 + n rounds for a slide of n (it replays them: web/src/answers.cpp);
 // the geometry demo's inscribed ellipse is a barrier method in long double, which the wasm
 // build computes in 128-bit software floating point.
-const FRAME_BUDGET_MS = {mesh_slide: 3, geometry: 10};
+// motion3d: a rigid first contact and ten sampled overlaps.
+// mesh_slide3d: the same replay over its 26 triangles.
+const FRAME_BUDGET_MS = {mesh_slide: 3, geometry: 10, motion3d: 5, mesh_slide3d: 10};
 // Counts that follow the arithmetic: the inscribed ellipse's Newton steps in the wasm
 // build's 128-bit long double against the native 80-bit one (the answers agree to TOLERANCE).
 const STEP_COUNTS = new Set(['inscribe.iterations']);
@@ -52,16 +55,24 @@ const url = `http://127.0.0.1:${server.address().port}/`;
 const failures = [];
 const fail = (msg) => { failures.push(msg); console.log('FAIL ' + msg); };
 
-const browser = await chromium.launch({executablePath: '/usr/bin/chromium', args: ['--no-sandbox']});
+const browser = await chromium.launch({executablePath: '/usr/bin/chromium',
+                                       args: ['--no-sandbox', '--use-angle=swiftshader', '--enable-unsafe-swiftshader',
+                                              '--ignore-gpu-blocklist']});
 const page = await browser.newPage({viewport: {width: 1100, height: 900}});
 const consoleErrors = [];
 page.on('console', (m) => { if (m.type() === 'error') consoleErrors.push(m.text()); });
 page.on('pageerror', (e) => consoleErrors.push(String(e)));
 
 const started = Date.now();
-await page.goto(url);
-await page.waitForSelector('[data-testid=status][data-ready=true]', {timeout: 30000});
-console.log(`page ready in ${Date.now() - started} ms`);
+const loadTimes = {};
+// Opens a page of the site (path and hash) and waits until the library has answered every demo.
+async function open(path) {
+  const t0 = Date.now();
+  await page.goto(url + path);
+  await page.waitForSelector('[data-testid=status][data-ready=true]', {timeout: 30000});
+  loadTimes[path] = Date.now() - t0;
+  console.log(`${path} ready in ${loadTimes[path]} ms`);
+}
 
 // ---- actions -------------------------------------------------------------------------
 
@@ -226,31 +237,213 @@ function checkGeometry(s, {params, shown: a, verdict}) {
   }
 }
 
-const results = [];
-for (const s of scenarios) {
-  for (const [kind, what, to] of s.actions) {
-    if (kind === 'drag') await drag(s.demo, what, to);
-    else if (kind === 'level') await testid('polygonal-level').fill(what);
-    else if (kind === 'time') await testid('swept-time').fill(what);
-    else if (kind === 'body') await testid('polygonal-body').selectOption(what);
-    else if (kind === 'cover') await testid('polygonal-cover').setChecked(what);
-    else if (kind === 'click') await testid(what).click();
-    else if (kind === 'press') await press(s.demo, what);
-    else if (kind === 'shift') await press(s.demo, what, true);
-  }
-  const shown = await readDemo(s.demo);
-  for (const [key, want] of Object.entries(s.expect))
-    if (shown.shown[key] !== want) fail(`${s.name}: ${key} is ${JSON.stringify(shown.shown[key])}, expected ${JSON.stringify(want)}`);
-  if (s.demo === 'mesh_slide') checkMeshSlide(s, shown);
-  if (s.demo === 'geometry') checkGeometry(s, shown);
-  await page.locator('#' + s.demo).screenshot({path: join(out, s.name + '.png')});
-  results.push({...s, ...shown});
-  console.log(`${s.name}: ${shown.headline}`);
+// The 3D page (3d.html). `fill`: a value typed into a field (the test id demo-name); `drag3d`: a
+// handle (or, with null, the view itself: an orbit, `moves` naming a handle whose place on
+// screen must change) dragged by pixels; `check`: more conditions on what is shown.
+const overlapsAt = (a, times) => times.map((t) => a['samples.overlap'][a['samples.times'].indexOf(t)]);
+const scenarios3d = [
+  {name: 'pair3d-start', demo: 'pair3d', actions: [],
+   expect: {relation: 'separated', 'distance.status': 'separated', 'pw.status': 'ok', 'approach.status': 'ok'},
+   check(r, bad) {  // F > 1 apart; the gradient by b's center is the normal, by a's its opposite
+     const a = r.shown;
+     if (!(a['pw.f'] > 1 && a.distance > 0)) bad(`F ${a['pw.f']}, distance ${a.distance}`);
+     if (!(a['approach.distance'] > a.distance)) bad('closest approach along the centers shorter than the distance');
+   }},
+  {name: 'pair3d-orbit', demo: 'pair3d', actions: [['drag3d', null, [120, 0]]], moves: 'b.center',
+   expect: {relation: 'separated'}},
+  {name: 'pair3d-drag-a-center', demo: 'pair3d', actions: [['drag3d', 'a.center', [60, -20]]],
+   check(r, bad) { if (r.params['a.cx'] === 0 && r.params['a.cy'] === 0 && r.params['a.cz'] === 0) bad('a did not move'); },
+   expect: {}},
+  {name: 'pair3d-overlapping', demo: 'pair3d',
+   actions: [['fill', 'a.cx', 0], ['fill', 'a.cy', 0], ['fill', 'a.cz', 0], ['fill', 'b.cx', 2.5], ['fill', 'b.cy', 0.5], ['fill', 'b.cz', 0]],
+   expect: {relation: 'overlapping', 'distance.status': 'overlapping'},
+   check(r, bad) { if (!(r.shown['pw.f'] < 1 && r.shown.distance < 0)) bad(`F ${r.shown['pw.f']}, distance ${r.shown.distance}`); }},
+  {name: 'pair3d-turn-sliders', demo: 'pair3d', actions: [['fill', 'b.cx', 3.5], ['fill', 'b.yaw', 90], ['fill', 'a.pitch', 0]],
+   expect: {relation: 'overlapping'}, check(r, bad) { if (Math.abs(r.params['b.yaw'] - Math.PI / 2) > 1e-15) bad(`yaw ${r.params['b.yaw']}`); }},
+  {name: 'pair3d-zero-radius', demo: 'pair3d', actions: [['fill', 'a.r1', 0]],
+   expect: {error: 'a.radii[1]'}, check(r, bad) { if (r.verdict !== 'failed' || !r.headline.includes('a.radii[1]')) bad(r.headline); }},
+  {name: 'pair3d-radius-restored', demo: 'pair3d', actions: [['fill', 'a.r1', 1.5]], expect: {'pw.status': 'ok'}},
+
+  {name: 'motion3d-fast-spin', demo: 'motion3d', actions: [['click', 'motion3d-preset-fast-spin']],
+   expect: {'contact.status': 'hit', 'sampling.verdict': 'missed'}},
+  {name: 'motion3d-at-contact', demo: 'motion3d', actions: [['click', 'motion3d-to-contact']],
+   expect: {'contact.status': 'hit', relation_t: 'touching'}},
+  {name: 'motion3d-tumbling-needles', demo: 'motion3d', actions: [['click', 'motion3d-preset-tumbling-needles']],
+   expect: {'contact.status': 'hit', 'sampling.verdict': 'late'},
+   check(r, bad) {  // the first overlapping sample is after the contact, none before
+     const a = r.shown, before = a['samples.times'].filter((t) => t < a['sampling.time']);
+     if (!(a['sampling.time'] > a['contact.time'])) bad(`sampled ${a['sampling.time']}, contact ${a['contact.time']}`);
+     if (overlapsAt(a, before).some((x) => x)) bad('an earlier sample overlaps');
+   }},
+  {name: 'motion3d-time-slider', demo: 'motion3d', actions: [['fill', 'time', 0.6]],
+   check(r, bad) { if (r.params.t !== 0.6 * r.params.t_max) bad(`t ${r.params.t}`); },
+   expect: {'contact.status': 'hit'}},
+  {name: 'motion3d-grazing', demo: 'motion3d', actions: [['click', 'motion3d-preset-grazing']],
+   expect: {'contact.status': 'hit', 'sampling.verdict': 'missed'}},
+  {name: 'motion3d-drag-b', demo: 'motion3d', actions: [['drag3d', 'b.center', [0, 40]]],
+   check(r, bad) { if (r.params['b.cx'] === 0.6 && r.params['b.cy'] === 2.05 && r.params['b.cz'] === 0) bad('b did not move'); },
+   expect: {}},
+  {name: 'motion3d-negative-growth', demo: 'motion3d', actions: [['fill', 'a.g', -1]],
+   expect: {error: 'a.growth'}, check(r, bad) { if (r.verdict !== 'failed') bad(r.headline); }},
+  {name: 'motion3d-negative-window', demo: 'motion3d', actions: [['fill', 'a.g', 0], ['fill', 't_max', -1]],
+   expect: {error: 't_max'}},
+  {name: 'motion3d-window-restored', demo: 'motion3d', actions: [['fill', 't_max', 2]], expect: {}},
+
+  // The 3D level's triangles: 0, 1 floor; 2 .. 11 the box (8, 9 its face towards -x); 12, 13 the
+  // ramp; 14 .. 23 the ledge; 24, 25 the wall.
+  {name: 'mesh_slide3d-along-the-box', demo: 'mesh_slide3d', actions: [], check: checkSlide3d,
+   expect: {status: 'slid', contacts: 1, rounds: 2, hits: '8', relation: 'touching', touched: '1,8'}},
+  {name: 'mesh_slide3d-into-the-wall', demo: 'mesh_slide3d', actions: [['fill', 'tx', 7], ['fill', 'ty', 0]], check: checkSlide3d,
+   expect: {status: 'slid', contacts: 1, hits: '24', relation: 'touching', touched: '0,24'}},
+  {name: 'mesh_slide3d-up-the-ramp', demo: 'mesh_slide3d', actions: [['fill', 'e.cy', -3.5], ['fill', 'ty', -3.5], ['fill', 'tx', 0]],
+   check: checkSlide3d, expect: {status: 'slid', contacts: 1, hits: '13', relation: 'separated'}},
+  {name: 'mesh_slide3d-into-the-floor', demo: 'mesh_slide3d',
+   actions: [['fill', 'e.cy', 0], ['fill', 'tx', -2], ['fill', 'ty', 0], ['fill', 'tz', -1]], check: checkSlide3d,
+   expect: {status: 'slid', contacts: 0, relation: 'touching', touched: '1'}},
+  {name: 'mesh_slide3d-drag-target', demo: 'mesh_slide3d', actions: [['drag3d', 'target', [160, -60]]], check: checkSlide3d, expect: {}},
+  {name: 'mesh_slide3d-zero-radius', demo: 'mesh_slide3d', actions: [['fill', 'e.r2', 0]], expect: {error: 'e.radii[2]'}},
+  {name: 'mesh_slide3d-radius-restored', demo: 'mesh_slide3d', actions: [['fill', 'e.r2', 0.5]], check: checkSlide3d, expect: {}},
+
+  // The live packing: a wrong field; a few collisions at one a frame, then three single steps
+  // (the state compared with the native run to the same count); runs to jamming in 2D and 3D,
+  // checked against the native run to jamming (the same start; the trajectories part after
+  // many collisions, so the density within PACKING_DENSITY) and the page's final bodies
+  // checked for overlaps by the native library.
+  {name: 'packing-bad-size', demo: 'packing', actions: [['fill', 'n', 5], ['click', 'packing-start']], expect: {error: 'n'}},
+  {name: 'packing-steps', demo: 'packing',
+   actions: [['fill', 'n', 60], ['fill', 'dim', 2], ['fill', 'aspect', 1.6], ['fill', 'rate', 0.1], ['fill', 'pressure', 1000],
+             ['fill', 'seed', 1], ['fill', 'per-slice', 1], ['click', 'packing-start'], ['click', 'packing-pause'],
+             ['click', 'packing-step'], ['click', 'packing-step'], ['click', 'packing-step']],
+   expect: {status: 'growing'}, native: (r) => ({...r.params, collisions: r.shown.collisions}),
+   check(r, bad) { if (!(r.shown.collisions >= 3 && r.shown.collisions < 200)) bad(`${r.shown.collisions} collisions`); }},
+  {name: 'packing-jam-2d', demo: 'packing', actions: [['fill', 'per-slice', 4000], ['click', 'packing-start'], ['jammed']],
+   expect: {status: 'jammed', overlapping: 0}, native: null, check: checkJammed},
+  {name: 'packing-jam-3d', demo: 'packing',
+   actions: [['fill', 'dim', 3], ['fill', 'n', 64], ['fill', 'aspect', 1.4], ['fill', 'rate', 0.3], ['click', 'packing-start'], ['jammed']],
+   expect: {status: 'jammed', overlapping: 0}, native: null, check: checkJammed},
+];
+
+// The slide never ends inside the mesh, and its path, replayed round by round, ends where it does.
+function checkSlide3d({shown: a}, bad) {
+  if (!['separated', 'touching'].includes(a.relation)) bad(`ends ${a.relation} with triangle ${a['relation.triangle']}`);
+  if (a.path.slice(-3).some((x, k) => x !== a.end[k])) bad(`the path ends at ${a.path.slice(-3)}, the slide at ${a.end}`);
 }
+
+const PACKING_DENSITY = 0.03;
+// The packing's library work runs in a worker, so no frame of the page waits for it; the
+// view lags it by one slice (15 ms and a chunk of collisions by design), which must stay
+// within this for 95% of the slices (wall clock: a loaded machine stretches a few).
+const LIBRARY_MS_PER_SLICE = 50;
+function checkJammed(r, bad) {
+  const a = r.shown, [reference] = JSON.parse(execFileSync(nativeProgram, {input: JSON.stringify([{demo: 'packing', params: r.params}])}));
+  if (!(a.pressure >= r.params.pressure)) bad(`pressure ${a.pressure}`);
+  if (!(Math.abs(a.density - reference.density) < PACKING_DENSITY)) bad(`density ${a.density}, native ${reference.density}`);
+  const bodies = {dim: r.params.dim, n: r.params.n};
+  for (const key of ['centers', 'axes', 'radii', 'box']) a[key].forEach((v, k) => { bodies[`${key}.${k}`] = v; });
+  const [check] = JSON.parse(execFileSync(nativeProgram, {input: JSON.stringify([{demo: 'packing_check', params: bodies}])}));
+  if (check.overlapping !== 0) bad(`${check.overlapping} pairs of the page's bodies overlap (native classify)`);
+  const slices = [...r.slices].sort((x, y) => x - y), p95 = slices[Math.floor(0.95 * (slices.length - 1))];
+  if (!(p95 < LIBRARY_MS_PER_SLICE)) bad(`a twentieth of the slices of library work took more than ${p95} ms`);
+  console.log(`  density ${a.density} (native ${reference.density}), ${a.collisions} collisions (native ${reference.collisions}), ` +
+              `${slices.length} slices of library work: median ${slices[slices.length >> 1].toFixed(1)} ms, ` +
+              `95th percentile ${p95.toFixed(1)} ms, most ${slices.at(-1).toFixed(1)} ms`);
+}
+
+// Each 3D demo's permalink (after the scenarios above) opens the page with the same inputs, and
+// the page's location is the permalink of the demo changed last.
+async function checkPermalinks() {
+  const hash = await page.evaluate(() => location.hash), demos = ['pair3d', 'motion3d', 'mesh_slide3d', 'packing'];
+  const links = {}, params = {};
+  for (const demo of demos) {
+    links[demo] = await testid(demo + '-permalink').getAttribute('href');
+    params[demo] = await testid(demo + '-params').textContent();
+  }
+  if (hash !== links.packing) fail(`location ${hash}, the last demo changed links ${links.packing}`);
+  for (const demo of demos) {
+    await page.goto('about:blank');  // a load, not a change of hash
+    await open('3d.html' + links[demo]);
+    const restored = await testid(demo + '-params').textContent();
+    if (restored !== params[demo]) fail(`${demo} permalink: ${restored}, expected ${params[demo]}`);
+    await page.locator('#' + demo).screenshot({path: join(out, demo + '-permalink.png')});
+  }
+}
+
+// A drag on a 3D view: from a handle (or, for an orbit, from a point of the view away from
+// the bodies) by (dx, dy) pixels.
+async function drag3d(demo, handle, [dx, dy]) {
+  await page.locator('#' + demo + ' canvas.view').scrollIntoViewIfNeeded();
+  const from = handle ? await page.evaluate(([d, h]) => window.ellipsectDemo.handleClient(d, h), [demo, handle])
+    : await page.locator('#' + demo + ' canvas.view').evaluate((c) => { const r = c.getBoundingClientRect(); return [r.left + 30, r.bottom - 30]; });
+  await page.mouse.move(from[0], from[1]);
+  await page.mouse.down();
+  await page.mouse.move(from[0] + dx, from[1] + dy, {steps: 6});
+  await page.mouse.up();
+}
+
+const results = [];
+async function run(list) {
+  for (const s of list) {
+    const before = s.moves ? await page.evaluate(([d, h]) => window.ellipsectDemo.handleClient(d, h), [s.demo, s.moves]) : null;
+    for (const [kind, what, to] of s.actions) {
+      if (kind === 'drag') await drag(s.demo, what, to);
+      else if (kind === 'level') await testid('polygonal-level').fill(what);
+      else if (kind === 'time') await testid('swept-time').fill(what);
+      else if (kind === 'body') await testid('polygonal-body').selectOption(what);
+      else if (kind === 'cover') await testid('polygonal-cover').setChecked(what);
+      else if (kind === 'click') await testid(what).click();
+      else if (kind === 'press') await press(s.demo, what);
+      else if (kind === 'shift') await press(s.demo, what, true);
+      else if (kind === 'fill') await testid(`${s.demo}-${what}`).fill(String(to));
+      else if (kind === 'drag3d') await drag3d(s.demo, what, to);
+      else if (kind === 'jammed') await page.waitForSelector('[data-testid=packing-headline][data-verdict=no_collision]', {timeout: 240000});
+      // The packing's worker has answered every message and the page has drawn the last one.
+      if (s.demo === 'packing') await page.waitForFunction(() => { const d = window.ellipsectDemo.demos.packing; return d.pending === 0 && d.latest === null; });
+    }
+    const shown = await readDemo(s.demo);
+    if (s.demo === 'packing') shown.slices = await page.evaluate(() => window.ellipsectDemo.demos.packing.slices);
+    for (const [key, want] of Object.entries(s.expect))
+      if (shown.shown[key] !== want) fail(`${s.name}: ${key} is ${JSON.stringify(shown.shown[key])}, expected ${JSON.stringify(want)}`);
+    if (s.demo === 'mesh_slide') checkMeshSlide(s, shown);
+    if (s.demo === 'geometry') checkGeometry(s, shown);
+    if (s.check) s.check(shown, (msg) => fail(`${s.name}: ${msg}`));
+    if (s.moves) {  // an orbit: the camera turned (the handle is elsewhere on screen), nothing else changed
+      const after = await page.evaluate(([d, h]) => window.ellipsectDemo.handleClient(d, h), [s.demo, s.moves]);
+      if (Math.hypot(after[0] - before[0], after[1] - before[1]) < 5) fail(`${s.name}: the view did not turn`);
+    }
+    await page.locator('#' + s.demo).screenshot({path: join(out, s.name + '.png')});
+    results.push({...s, ...shown});
+    console.log(`${s.name}: ${shown.headline}`);
+  }
+}
+
+// The mean time of a query and of a frame (query, drawing, read-outs) of each demo over
+// `frames` frames; the query within its budget.
+const timing = {};
+async function time(demos, frames = 100) {
+  for (const demo of demos) {
+    const query = await page.evaluate((d) => window.ellipsectDemo.time(d, 300), demo);
+    const frame = await page.evaluate(([d, n]) => window.ellipsectDemo.time(d, n, true), [demo, frames]);
+    timing[demo] = {query_ms: query, frame_ms: frame};
+    console.log(`${demo}: query ${query.toFixed(4)} ms, frame (query + drawing) ${frame.toFixed(4)} ms`);
+    if (!(query < budget(demo))) fail(`${demo}: ${query} ms per query, budget ${budget(demo)} ms`);
+  }
+}
+
+await open('');
+await run(scenarios);
+await time(['ellipse_circle', 'segment_circle', 'polygonal', 'swept', 'relation', 'slide', 'mesh_slide', 'geometry']);
+await page.screenshot({path: join(out, 'page.png'), fullPage: true});
+
+await open('3d.html');
+await run(scenarios3d);
+await time(['pair3d', 'motion3d', 'mesh_slide3d'], 10);  // software WebGL: slow frames
+await checkPermalinks();
 
 // ---- the native answers for the same inputs ---------------------------------------------
 
-const native = JSON.parse(execFileSync(nativeProgram, {input: JSON.stringify(results.map((r) => ({demo: r.demo, params: r.params})))}));
+// `native`: the inputs of the native answer to compare with (null: none, its check compares).
+const compared_results = results.filter((r) => r.native !== null);
+const native = JSON.parse(execFileSync(nativeProgram, {input: JSON.stringify(compared_results.map((r) => ({demo: r.demo, params: r.native ? r.native(r) : r.params})))}));
 let compared = 0, identical = 0, worst = 0;
 function same(a, b, where) {
   if (Array.isArray(b)) {
@@ -266,7 +459,7 @@ function same(a, b, where) {
   }
   fail(`${where}: page ${JSON.stringify(a)}, native ${JSON.stringify(b)}`);
 }
-results.forEach((r, i) => {
+compared_results.forEach((r, i) => {
   const keys = new Set([...Object.keys(r.shown), ...Object.keys(native[i])]);
   for (const key of keys) {
     const [a, b] = [r.shown[key], native[i][key]];
@@ -277,21 +470,9 @@ results.forEach((r, i) => {
 console.log(`compared ${compared} values with the native library: ${identical} identical, ` +
             `largest relative difference ${worst.toExponential(2)}`);
 
-// ---- time per frame -------------------------------------------------------------------
-
-const timing = {};
-for (const demo of ['ellipse_circle', 'segment_circle', 'polygonal', 'swept', 'relation', 'slide', 'mesh_slide', 'geometry']) {
-  const query = await page.evaluate((d) => window.ellipsectDemo.time(d, 300), demo);
-  const frame = await page.evaluate((d) => window.ellipsectDemo.time(d, 100, true), demo);
-  timing[demo] = {query_ms: query, frame_ms: frame};
-  console.log(`${demo}: query ${query.toFixed(4)} ms, frame (query + drawing) ${frame.toFixed(4)} ms`);
-  if (!(query < budget(demo))) fail(`${demo}: ${query} ms per query, budget ${budget(demo)} ms`);
-}
-
-await page.screenshot({path: join(out, 'page.png'), fullPage: true});
 for (const e of consoleErrors) fail('console: ' + e);
-writeFileSync(join(out, 'results.json'), JSON.stringify({results, native, timing, consoleErrors, failures}, null, 1));
+writeFileSync(join(out, 'results.json'), JSON.stringify({results, native, timing, loadTimes, consoleErrors, failures}, null, 1));
 await browser.close();
 server.close();
-console.log(failures.length ? `${failures.length} failure(s)` : `all ${scenarios.length} scenarios passed (${Date.now() - started} ms)`);
+console.log(failures.length ? `${failures.length} failure(s)` : `all ${results.length} scenarios passed (${Date.now() - started} ms)`);
 process.exit(failures.length ? 1 : 0);
