@@ -16,6 +16,8 @@
 #include <cstdint>
 #include <cstdio>
 #include <limits>
+#include <numbers>
+#include <stdexcept>
 #include <span>
 #include <string>
 #include <vector>
@@ -190,6 +192,97 @@ TEST(Packing, NoRoomForTheStartIsAStatus) {
   EXPECT_EQ(to_string(p.status), "no_start");
   EXPECT_TRUE(p.bodies.empty());
   EXPECT_EQ(p.collisions, 0u);
+}
+
+// Compression run in slices of any size is jam_packing: the same collisions, bodies and
+// history bit for bit, since an update comes after the same collision however the run is cut;
+// it is `compressing` until the end and advances no further after it.
+template <int N>
+void expect_same_packing(const Packing<N>& a, const Packing<N>& b) {
+  EXPECT_EQ(a.status, b.status);
+  EXPECT_EQ(a.collisions, b.collisions);
+  EXPECT_EQ(a.time, b.time);
+  EXPECT_EQ(a.density, b.density);
+  EXPECT_EQ(a.pressure, b.pressure);
+  EXPECT_EQ(a.history, b.history);
+  EXPECT_EQ(a.contacts, b.contacts);
+  EXPECT_EQ(a.rattlers, b.rattlers);
+  ASSERT_EQ(a.bodies.size(), b.bodies.size());
+  for (std::size_t i = 0; i < a.bodies.size(); ++i) {
+    EXPECT_EQ(a.bodies[i].center(), b.bodies[i].center()) << i;
+    EXPECT_EQ(a.bodies[i].radii(), b.bodies[i].radii()) << i;
+  }
+}
+
+TEST(Packing, CompressionInSlicesIsJamPacking) {
+  const std::vector<Vec<double, 2>> ellipses(40, Vec<double, 2>(1.0, 0.6));
+  PackingOptions o;
+  o.schedule = {{0.0, 0.2}, {1e2, 0.04}};
+  o.pressure = 1e3;
+  const Packing<2> whole = jam_packing<2>(ellipses, o);
+  ASSERT_EQ(whole.status, PackingStatus::jammed);
+  for (const std::uint64_t slice : {1u, 7u, 800u}) {
+    Compression<2> c(ellipses, o);
+    std::size_t updates = 0;
+    while (c.status() == PackingStatus::compressing) {
+      EXPECT_EQ(to_string(c.status()), "compressing");
+      const std::uint64_t before = c.system().collisions();
+      c.advance(slice);
+      EXPECT_LE(c.system().collisions() - before, slice);
+      EXPECT_GE(c.history().size(), updates);
+      updates = c.history().size();
+      EXPECT_EQ(c.density_at(c.system().now()) > 0.0, true);
+    }
+    expect_same_packing(c.packing(), whole);
+    const std::uint64_t end = c.system().collisions();
+    c.advance(100);
+    EXPECT_EQ(c.system().collisions(), end);
+  }
+  // A cap inside a slice ends it there.
+  o.max_collisions = 300;
+  Compression<2> capped(ellipses, o);
+  capped.advance(1'000'000);
+  EXPECT_EQ(capped.status(), PackingStatus::collision_limit);
+  EXPECT_EQ(capped.system().collisions(), 300u);
+  expect_same_packing(capped.packing(), jam_packing<2>(ellipses, o));
+}
+
+// From the caller's start: the bodies' own box and volume; bodies at rest are refused, and a
+// compression with no start has no system.
+TEST(Packing, CompressionFromAGivenStart) {
+  PeriodicBox<3> box;
+  box.size = {16.0, 16.0, 16.0};  // jammed, each body's bounding box is about a third of its side
+  std::vector<Ellipsoid<double, 3>> bodies;
+  std::vector<RigidMotion<double, 3>> motions;
+  for (int i = 0; i < 64; ++i) {
+    const Vec<double, 3> c(2.0 + 4.0 * (i % 4), 2.0 + 4.0 * (i / 4 % 4), 2.0 + 4.0 * (i / 16));
+    bodies.push_back(Ellipsoid<double, 3>::from_axes(c, Mat<double, 3>::Identity(), Vec<double, 3>(1.0, 0.8, 0.6)));
+    RigidMotion<double, 3> m;
+    m.velocity = Vec<double, 3>(std::sin(1.0 + i), std::cos(2.0 * i), std::sin(3.0 * i));
+    motions.push_back(m);
+  }
+  PackingOptions o;
+  o.schedule = {{0.0, 0.3}};
+  o.pressure = 3e2;
+  Compression<3> c(bodies, motions, box, o);
+  EXPECT_NEAR(c.density_at(0.0), 64 * 4.0 / 3.0 * std::numbers::pi * 0.48 / 4096.0, 1e-15);
+  EXPECT_NEAR(c.system().temperature(), 1.0, 1e-12);
+  while (c.status() == PackingStatus::compressing) c.advance(500);
+  const Packing<3> p = c.packing();
+  EXPECT_EQ(p.status, PackingStatus::jammed);
+  EXPECT_EQ(p.box.size, box.size);
+  EXPECT_EQ(p.overlapping, 0u);
+  expect_no_overlap(p);
+  const std::vector<RigidMotion<double, 3>> still(bodies.size());
+  expect_field([&] { Compression<3>(bodies, still, box, o); }, "motions");
+  const std::vector<Vec<double, 3>> spheres(60, Vec<double, 3>::Constant(1.0));
+  PackingOptions dense;
+  dense.initial_density = 0.45;
+  Compression<3> none(spheres, dense);
+  EXPECT_EQ(none.status(), PackingStatus::no_start);
+  EXPECT_THROW((void)none.system(), std::logic_error);
+  none.advance(10);
+  EXPECT_TRUE(none.packing().bodies.empty());
 }
 
 }  // namespace ELLIPSECT_UNITY_ID

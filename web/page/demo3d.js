@@ -185,15 +185,18 @@ class Demo3D {
     for (const [k, v] of new URLSearchParams(hash.slice(this.id.length + 2))) if (k in this.s) this.s[k] = Number(v);
     return true;
   }
-  // Handles on the centers named prefix.cx, prefix.cy, prefix.cz.
-  centerHandle(prefix) {
+  // Handles on the centers named prefix.cx, prefix.cy, prefix.cz (`flat`: in the plane z = 0,
+  // moving cx and cy alone).
+  centerHandle(prefix, flat = false) {
     const s = this.s, names = ['cx', 'cy', 'cz'].map((k) => prefix + '.' + k);
+    if (flat) return {name: prefix + '.center', at: () => [s[names[0]], s[names[1]], 0], set: (p) => { s[names[0]] = p[0]; s[names[1]] = p[1]; }};
     return {name: prefix + '.center', at: () => names.map((n) => s[n]), set: (p) => names.forEach((n, i) => { s[n] = p[i]; })};
   }
   update({user = true} = {}) {
     const t0 = performance.now();
     const answer = this.query();
     const t1 = performance.now();
+    this.maxQueryMs = Math.max(this.maxQueryMs ?? 0, t1 - t0);  // the most a frame waited for the library
     this.answer = answer;
     this.sync();
     this.view.clear();
@@ -223,23 +226,32 @@ function bindBodies(demo) {
   }
 }
 
-// Two ellipsoids: relation, signed distance, Perram-Wertheim F and the gradient.
+// A 2D answer's point or body in the plane z = 0 (a body as a thin disc); 3D ones unchanged.
+const lift = (p) => (p && p.length === 2 ? [p[0], p[1], 0] : p);
+const liftBody = (b) => (b.center.length === 3 ? b : {center: lift(b.center), radii: [b.radii[0], b.radii[1], 0.02],
+                                                      axes: [b.axes[0], b.axes[1], 0, b.axes[2], b.axes[3], 0, 0, 0, 1]});
+// The fields that a 2D body (center x, y, radii r0, r1, turned by yaw) does not have.
+const NOT_2D = ['cz', 'r2', 'pitch', 'roll'];
+
+// Two ellipsoids (or, with the toggle, two ellipses in the plane z = 0): relation, signed
+// distance, Perram-Wertheim F and the gradient.
 function pairDemo() {
   const demo = new Demo3D('pair3d', {
-    s: {...body('a', [0, 0, 0], [20, 10, 0], [3, 1.5, 1]), ...body('b', [4, 1.5, 1], [-30, 25, 0], [2, 1, 0.75])},
+    s: {dim: 3, ...body('a', [0, 0, 0], [20, 10, 0], [3, 1.5, 1]), ...body('b', [4, 1.5, 1], [-30, 25, 0], [2, 1, 0.75])},
     hidden: bodyKeys('a', 'b'),
-    handles: () => [demo.centerHandle('a'), demo.centerHandle('b')],
+    handles: () => [demo.centerHandle('a', demo.s.dim === 2), demo.centerHandle('b', demo.s.dim === 2)],
     draw(v, r) {
       const apart = r.relation === 'separated' || r.relation === 'touching';
-      v.ellipsoid(bodyOf(r, 'a'), apart ? BLUE : RED, {opacity: 0.45});
-      v.ellipsoid(bodyOf(r, 'b'), apart ? ORANGE : RED, {opacity: 0.45});
-      v.segment(r.point_a, r.point_b, '#222');
-      v.point(r.point_a, BLUE);
-      v.point(r.point_b, ORANGE);
-      v.arrow(r.point_a, r.normal, RED);
-      v.arrow(r['a.center'], r['gradient.a.center'], GREEN);
-      v.arrow(r['b.center'], r['gradient.b.center'], GREEN);
-      if (r['approach.point']) v.point(r['approach.point'], GREY, 0.06);
+      v.ellipsoid(liftBody(bodyOf(r, 'a')), apart ? BLUE : RED, {opacity: 0.45});
+      v.ellipsoid(liftBody(bodyOf(r, 'b')), apart ? ORANGE : RED, {opacity: 0.45});
+      const [pa, pb] = [lift(r.point_a), lift(r.point_b)];
+      v.segment(pa, pb, '#222');
+      v.point(pa, BLUE);
+      v.point(pb, ORANGE);
+      v.arrow(pa, lift(r.normal), RED);
+      v.arrow(lift(r['a.center']), lift(r['gradient.a.center']), GREEN);
+      v.arrow(lift(r['b.center']), lift(r['gradient.b.center']), GREEN);
+      if (r['approach.point']) v.point(lift(r['approach.point']), GREY, 0.06);
     },
     headline(r) {
       const d = r.relation === 'separated' ? `${format(r.distance)} apart` : `penetration depth ${format(-r.distance)}`;
@@ -248,6 +260,25 @@ function pairDemo() {
     },
   });
   bindBodies(demo);
+  // The 2D toggle: the same fields less the third dimension's, the camera looking down on z = 0.
+  const flat = demo.section.querySelector('[data-testid=pair3d-2d]');
+  flat.addEventListener('change', () => {
+    demo.s.dim = flat.checked ? 2 : 3;
+    demo.lookAt(demo.s.dim);
+    demo.update();
+  });
+  demo.lookAt = (dim) => {
+    const v = demo.view;
+    v.camera.position.set(...(dim === 2 ? [1.5, 0.2, 16] : [8, -13, 9]));
+    v.controls.target.set(dim === 2 ? 1.5 : 0, dim === 2 ? 0.7 : 0, 0);
+    v.controls.update();
+  };
+  const sync = demo.sync.bind(demo);
+  demo.sync = () => {
+    sync();
+    flat.checked = demo.s.dim === 2;
+    for (const {name, input} of demo.fields) input.parentElement.hidden = demo.s.dim === 2 && NOT_2D.includes(name.split('.').pop());
+  };
   return demo;
 }
 
@@ -261,16 +292,24 @@ const MOTION_PRESETS = {
   'tumbling needles': {...body('a', [-5, 0, 0], [0, 0, 0], [2, 0.15, 0.15]), ...body('b', [5, 0.5, 0], [90, 0, 0], [2, 0.15, 0.15]),
                        'a.vx': 2, 'a.vy': 0, 'a.vz': 0, 'a.wx': 3, 'a.wy': 0, 'a.wz': 2, 'a.g': 0,
                        'b.vx': -2, 'b.vy': 0, 'b.vz': 0, 'b.wx': 0, 'b.wy': 2, 'b.wz': 3, 'b.g': 0, t_max: 4, t: 0},
+  // No spin, no growth: first_contact answers by Eberly's translational method, and the
+  // reduced frame is drawn beside (ten samples report the contact late).
+  linear: {...body('a', [-4, 0, 0], [17, 0, 0], [2, 1, 0.6]), ...body('b', [4, 1, 0.5], [-29, 23, 0], [2, 1, 0.75]),
+           'a.vx': 2, 'a.vy': 0, 'a.vz': 0, 'a.wx': 0, 'a.wy': 0, 'a.wz': 0, 'a.g': 0,
+           'b.vx': -1, 'b.vy': 0, 'b.vz': 0, 'b.wx': 0, 'b.wy': 0, 'b.wz': 0, 'b.g': 0, t_max: 4, t: 0},
   grazing: {...body('a', [-6, 0, 0], [0, 0, 0], [1, 1, 1]), ...body('b', [0.6, 2.05, 0], [0, 0, 0], [1, 1, 1]),
             'a.vx': 6, 'a.vy': 0, 'a.vz': 0, 'a.wx': 0, 'a.wy': 0, 'a.wz': 0, 'a.g': 0,
             'b.vx': 0, 'b.vy': 0, 'b.vz': 0, 'b.wx': 0, 'b.wy': 0, 'b.wz': 0, 'b.g': 0.06, t_max: 2, t: 0},
 };
 
 // Rigid motion with growth: the certified first contact, the bodies at the slider's time and
-// at contact, and the ten samples of a sampling CCD beside it.
+// at contact, and the ten samples of a sampling CCD beside it; for linear motion, the seed's
+// reduced frame at the slider's time beside that.
 function motionDemo() {
   const sec = document.getElementById('motion3d');
   const strip = sec.querySelector('canvas.samples'), time = sec.querySelector('[data-testid=motion3d-time]');
+  const reduced = new View3D(sec.querySelector('canvas.reduced'), () => {});
+  const reducedNote = sec.querySelector('[data-testid=motion3d-reduced-note]');
   const demo = new Demo3D('motion3d', {
     s: {...MOTION_PRESETS['fast spin']},
     hidden: ['samples.', ...bodyKeys('a', 'b', 'a_t', 'b_t', 'a_c', 'b_c')],
@@ -289,6 +328,7 @@ function motionDemo() {
       v.ellipsoid(bodyOf(r, 'a_t'), apart ? BLUE : RED);
       v.ellipsoid(bodyOf(r, 'b_t'), apart ? ORANGE : RED);
       drawSamples(r);
+      drawReduced(r);
     },
     headline(r) {
       const text = {hit: `First contact at t = ${format(r['contact.time'])}`, touching_at_start: 'Touching at t = 0',
@@ -323,8 +363,38 @@ function motionDemo() {
     const b = document.createElement('button');
     b.textContent = name;
     b.dataset.testid = 'motion3d-preset-' + name.replaceAll(' ', '-');
-    b.addEventListener('click', () => { demo.s = {...state}; demo.update(); });
+    b.addEventListener('click', () => { demo.s = {...state}; framed = false; demo.update(); });
     presets.append(b);
+  }
+  // The reduced frame (Eberly's figure 3.1): the first body the unit ball at the origin, the
+  // second the axis-aligned ellipsoid moving along a straight line at the reduced velocity
+  // (grey: its center's path over the window; arrow: the velocity); its point P nearest the
+  // origin joined to it (red where |P| <= 1: they touch or overlap).
+  let framed = false;
+  function drawReduced(r) {
+    const linear = r.motion === 'linear';
+    reduced.canvas.hidden = !linear;
+    reducedNote.hidden = linear;
+    framed = framed && linear;
+    if (!linear) return;
+    reduced.clear();
+    const identity = [1, 0, 0, 0, 1, 0, 0, 0, 1], c = r['reduced.center'], u = r['reduced.velocity'], p = r['reduced.p'];
+    const along = (s) => c.map((x, k) => x + (s - demo.s.t) * u[k]);
+    reduced.ellipsoid({center: [0, 0, 0], axes: identity, radii: [1, 1, 1]}, BLUE, {opacity: 0.5});
+    reduced.ellipsoid({center: c, axes: identity, radii: r['reduced.radii']}, ORANGE, {opacity: 0.5});
+    reduced.segment(along(0), along(demo.s.t_max), GREY);
+    reduced.arrow(c, u, GREY);
+    const touching = Math.hypot(...p) <= 1 + 1e-9;  // at the contact time, 1 to rounding
+    reduced.segment([0, 0, 0], p, touching ? RED : '#222');
+    reduced.point(p, touching ? RED : '#222');
+    if (!framed) {  // the camera on the ball and the body's path, once per linear motion
+      const mid = along(demo.s.t_max / 2).map((x) => x / 2), reach = 2 + Math.hypot(...along(0)) + Math.hypot(...along(demo.s.t_max));
+      reduced.controls.target.set(...mid);
+      reduced.camera.position.set(mid[0] + 0.5 * reach, mid[1] - 0.9 * reach, mid[2] + 0.6 * reach);
+      reduced.controls.update();
+      framed = true;
+    }
+    reduced.render();
   }
   // The window [0, t_max] left to right: each sample a dot (red: overlapping, green: apart),
   // the certified contact time a red line, the first overlapping sample ringed, the slider's
@@ -544,7 +614,8 @@ class PackingDemo extends Demo3D {
     if (a.status === 'jammed')
       return [`Jammed at density ${format(a.density)} (reduced pressure ${format(a.pressure)}) after ${a.collisions} collisions; ` +
               `${a.contacts} contacts, ${format(a.mean_contacts)} per body; ${a.overlapping} pairs overlapping.`, 'no_collision'];
-    return [`Growing: density ${format(a.density)} after ${a.collisions} collisions.`, 'undecided'];
+    if (a.status === 'compressing') return [`Growing: density ${format(a.density)} after ${a.collisions} collisions.`, 'undecided'];
+    return [`Stopped (${a.status}) at density ${format(a.density)} after ${a.collisions} collisions.`, 'undecided'];
   }
   draw2(a) {
     const c = this.flat.getContext('2d'), [w] = a.box, k = this.flat.width / w, y = (v) => this.flat.height - v * k;
@@ -638,6 +709,8 @@ window.ellipsectDemo = {
     return demos[id].view.client(h.at());
   },
   client: (id, p) => demos[id].view.client(p),
+  // The most any update of a demo on the page's thread waited for the library (ms).
+  maxQueryMs: (id) => demos[id].maxQueryMs ?? 0,
   time(id, n, frame = false) {
     const d = demos[id], t0 = performance.now();
     for (let i = 0; i < n; i++) if (frame) d.update({user: false}); else d.query();
@@ -652,6 +725,7 @@ createEllipsect().then(async (m) => {
     const d = make();
     demos[d.id] = d;
     const linked = d.restore(decodeURIComponent(location.hash));
+    if (linked && d.lookAt) d.lookAt(d.s.dim);
     d.update({user: false});
     if (linked) d.section.scrollIntoView();
   }

@@ -23,7 +23,7 @@ function slice() {
   for (let done = 0; done < perSlice && performance.now() - t0 < SLICE_MS; done += CHUNK)
     Module.packingAdvance(Math.min(CHUNK, perSlice - done));
   const state = Module.packingState();
-  running = state.status === 'growing';
+  running = state.status === 'compressing';
   post(state, false, performance.now() - t0);
   if (running) setTimeout(slice, 0);
 }

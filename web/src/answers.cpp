@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdint>
 #include <numbers>
+#include <optional>
 #include <random>
 #include <stdexcept>
 
@@ -42,6 +43,22 @@ std::vector<double> list(const std::vector<Vec2<double>>& vs) {
 }
 
 std::string label(std::string_view s) { return std::string(s); }
+
+// The parameter "dim": 2 or 3 (InputError "dim" otherwise).
+int dimension(const Params& p) {
+  const double dim = get(p, "dim");
+  if (dim != 2 && dim != 3) throw InputError("dim", "must be 2 or 3");
+  return int(dim);
+}
+
+Vec3<double> point3(const Params& p, const std::string& n) { return {get(p, n + "x"), get(p, n + "y"), get(p, n + "z")}; }
+
+std::vector<double> list3(const Vec3<double>& v) { return {v.x(), v.y(), v.z()}; }
+
+template <int N>
+std::vector<double> coordinates(const Vec<double, N>& v) {
+  if constexpr (N == 2) return list(v); else return list3(v);
+}
 
 // prefix + k, as "w3" (appended, not `indexed("w", k)`, where GCC 12 warns falsely
 // of an overlapping memcpy).
@@ -131,38 +148,45 @@ Answer polygonal(const Params& p) {
   return out;
 }
 
-// Eberly's first contact, the bodies at the viewed time t, and the reduced frame at t
-// (his figures 2.2 and 3.1): Y = diag(1 / r_a) R_a^T (X - K_a) makes a the unit circle;
-// b becomes the quadric M2 = S^T M_b S (S the inverse map) about K2, whose principal axes
-// R (from_quadric) give Z = R^T Y, where b is axis-aligned. P: b's point nearest the origin.
+// Eberly's reduced frame of a and b moving apart at `velocity` (b's less a's) (his figures
+// 2.2 and 3.1): Y = diag(1 / r_a) R_a^T (X - K_a) makes a the unit ball; b becomes the quadric
+// M2 = S^T M_b S (S the inverse map) about K2, whose principal axes R (from_quadric) give
+// Z = R^T Y, where b is axis-aligned: reduced.center, reduced.radii, reduced.p (b's point
+// nearest the origin: a and b touch where it is at distance 1) and reduced.velocity (b's in Z).
+template <int N>
+void add_reduced_frame(Answer& out, const Ellipsoid<double, N>& a, const Ellipsoid<double, N>& b,
+                       const Vec<double, N>& velocity) {
+  const Mat<double, N> to_y = a.radii().cwiseInverse().asDiagonal() * a.axes().transpose();
+  const Mat<double, N> from_y = a.axes() * a.radii().asDiagonal();
+  Mat<double, N> m2 = from_y.transpose() * b.quadric() * from_y;
+  m2 = (0.5 * (m2 + m2.transpose())).eval();
+  const auto by = Ellipsoid<double, N>::from_quadric(to_y * (b.center() - a.center()), m2);
+  const Mat<double, N> to_z = by.axes().transpose();
+  const auto bz = Ellipsoid<double, N>::from_axes(to_z * by.center(), Mat<double, N>::Identity(), by.radii());
+  const ClosestPoint<double, N> cp = closest_point(bz, Vec<double, N>::Zero());
+  out.insert(out.end(), {{"reduced.center", coordinates<N>(bz.center())},
+                         {"reduced.radii", coordinates<N>(bz.radii())},
+                         {"reduced.p", coordinates<N>(cp.point)},
+                         {"reduced.velocity", coordinates<N>(Vec<double, N>(to_z * to_y * velocity))}});
+}
+
+// Eberly's first contact, the bodies at the viewed time t, and the reduced frame at t.
 Answer swept(const Params& p) {
   const auto a0 = ellipse(p, "a"), b0 = ellipse(p, "b");
   const Vec2<double> va = point(p, "a.vx", "a.vy"), vb = point(p, "b.vx", "b.vy");
   const double t = get(p, "t");
   const Contact<double, 2> c = first_contact(a0, va, b0, vb, get(p, "t_max"));
   const auto a = a0.translated(t * va), b = b0.translated(t * vb);
-
-  const Mat2<double> to_y = a.radii().cwiseInverse().asDiagonal() * a.axes().transpose();
-  const Mat2<double> from_y = a.axes() * a.radii().asDiagonal();
-  Mat2<double> m2 = from_y.transpose() * b.quadric() * from_y;
-  m2(0, 1) = m2(1, 0) = 0.5 * (m2(0, 1) + m2(1, 0));
-  const auto by = Ellipse2<double>::from_quadric(to_y * (b.center() - a.center()), m2);
-  const Mat2<double> to_z = by.axes().transpose();
-  const auto bz = Ellipse2<double>::from_axes(to_z * by.center(), Mat2<double>::Identity(), by.radii());
-  const ClosestPoint<double, 2> cp = closest_point(bz, Vec2<double>::Zero());
-
-  return {{"status", label(to_string(c.status))},
+  Answer out{{"status", label(to_string(c.status))},
           {"time", c.time},
           {"point", list(c.point)},
           {"normal", list(c.normal)},
           {"iterations", double(c.iterations)},
           {"relation_t", label(to_string(classify(a, b)))},
           {"a_center_t", list(a.center())},
-          {"b_center_t", list(b.center())},
-          {"reduced.center", list(bz.center())},
-          {"reduced.radii", list(bz.radii())},
-          {"reduced.p", list(cp.point)},
-          {"reduced.velocity", list(to_z * to_y * (vb - va))}};
+          {"b_center_t", list(b.center())}};
+  add_reduced_frame<2>(out, a, b, Vec2<double>(vb - va));
+  return out;
 }
 
 Answer relation(const Params& p) {
@@ -264,9 +288,6 @@ Answer geometry(const Params& p) {
 
 // ---- 3D ---------------------------------------------------------------------------------
 
-Vec3<double> point3(const Params& p, const std::string& n) { return {get(p, n + "x"), get(p, n + "y"), get(p, n + "z")}; }
-
-std::vector<double> list3(const Vec3<double>& v) { return {v.x(), v.y(), v.z()}; }
 
 // Runs f; an InputError comes out naming the field within the body `n` ("a.radii[1]").
 template <class F>
@@ -290,29 +311,48 @@ Ellipsoid3<double> ellipsoid3(const Params& p, const std::string& n) {
   return within(n, [&] { return make_ellipsoid<double>(point3(p, n + ".c"), axes, radii); });
 }
 
-// A body as the library stores it, for drawing: name.center, name.axes (column-major 3x3),
+// The pair explorer's body "x" in N dimensions: in 3D ellipsoid3's; in 2D the ellipse of
+// center x.cx, x.cy, radii x.r0, x.r1, turned by x.yaw (the turn about z).
+template <int N>
+Ellipsoid<double, N> pair_body(const Params& p, const std::string& n) {
+  if constexpr (N == 3) {
+    return ellipsoid3(p, n);
+  } else {
+    return within(n, [&] {
+      return make_ellipse<double>(point(p, n + ".cx", n + ".cy"), get(p, n + ".yaw"), point(p, n + ".r0", n + ".r1"));
+    });
+  }
+}
+
+// A body as the library stores it, for drawing: name.center, name.axes (column-major N x N),
 // name.radii.
-void add_body(Answer& out, const std::string& name, const Ellipsoid3<double>& e) {
-  const Mat3<double> axes = e.axes();
-  out.insert(out.end(), {{name + ".center", list3(e.center())},
-                         {name + ".axes", std::vector<double>(axes.data(), axes.data() + 9)},
-                         {name + ".radii", list3(e.radii())}});
+template <int N>
+void add_body(Answer& out, const std::string& name, const Ellipsoid<double, N>& e) {
+  const Mat<double, N> axes = e.axes();
+  out.insert(out.end(), {{name + ".center", coordinates<N>(e.center())},
+                         {name + ".axes", std::vector<double>(axes.data(), axes.data() + N * N)},
+                         {name + ".radii", coordinates<N>(e.radii())}});
 }
 
-void add_gradient(Answer& out, const std::string& name, const BodyGradient<double, 3>& g) {
-  out.insert(out.end(), {{name + ".center", list3(g.center)},
-                         {name + ".orientation", list3(g.orientation)},
-                         {name + ".radii", list3(g.radii)}});
+template <int N>
+void add_gradient(Answer& out, const std::string& name, const BodyGradient<double, N>& g) {
+  Value turn;
+  if constexpr (N == 2) turn = g.orientation; else turn = list3(g.orientation);
+  out.insert(out.end(), {{name + ".center", coordinates<N>(g.center)},
+                         {name + ".orientation", turn},
+                         {name + ".radii", coordinates<N>(g.radii)}});
 }
 
-// Two ellipsoids a and b: the relation, the signed distance with its witnesses and its
-// gradient by each body's parameters (gradient.hpp), the Perram-Wertheim F with mu = sqrt(F)
-// (the factor by which both bodies, scaled about their centers, touch), and the distance of
-// closest approach along the line of the centers (compared with the centers' distance).
-Answer pair3d(const Params& p) {
-  const auto a = ellipsoid3(p, "a"), b = ellipsoid3(p, "b");
-  const DistanceGradient<double, 3> g = signed_distance_gradient(a, b);
-  const Distance<double, 3>& d = g.value;
+// Two ellipsoids a and b (or, with dim 2, ellipses: pair_body): the relation, the signed
+// distance with its witnesses and its gradient by each body's parameters (gradient.hpp), the
+// Perram-Wertheim F with mu = sqrt(F) (the factor by which both bodies, scaled about their
+// centers, touch), and the distance of closest approach along the line of the centers
+// (compared with the centers' distance).
+template <int N>
+Answer pair_answer(const Params& p) {
+  const auto a = pair_body<N>(p, "a"), b = pair_body<N>(p, "b");
+  const DistanceGradient<double, N> g = signed_distance_gradient(a, b);
+  const Distance<double, N>& d = g.value;
   const ContactFunction<double> f = perram_wertheim(a, b);
   Answer out;
   add_body(out, "a", a);
@@ -320,9 +360,9 @@ Answer pair3d(const Params& p) {
   out.insert(out.end(), {{"relation", label(to_string(classify(a, b)))},
                          {"distance.status", label(to_string(d.status))},
                          {"distance", d.distance},
-                         {"point_a", list3(d.point_a)},
-                         {"point_b", list3(d.point_b)},
-                         {"normal", list3(d.normal)}});
+                         {"point_a", coordinates<N>(d.point_a)},
+                         {"point_b", coordinates<N>(d.point_b)},
+                         {"normal", coordinates<N>(d.normal)}});
   add_gradient(out, "gradient.a", g.a);
   add_gradient(out, "gradient.b", g.b);
   out.insert(out.end(), {{"pw.status", label(to_string(f.status))},
@@ -331,11 +371,11 @@ Answer pair3d(const Params& p) {
                          {"pw.lambda", f.lambda},
                          {"center_distance", (b.center() - a.center()).norm()}});
   part(out, "approach", [&] {
-    const ClosestApproach<double, 3> c = closest_approach(a, b, Vec3<double>(b.center() - a.center()));
+    const ClosestApproach<double, N> c = closest_approach(a, b, Vec<double, N>(b.center() - a.center()));
     out.insert(out.end(), {{"approach.status", label(to_string(c.status))},
                            {"approach.distance", c.distance},
-                           {"approach.point", list3(c.point)},
-                           {"approach.normal", list3(c.normal)}});
+                           {"approach.point", coordinates<N>(c.point)},
+                           {"approach.normal", coordinates<N>(c.normal)}});
   });
   return out;
 }
@@ -357,7 +397,9 @@ constexpr int ccd_samples = 10;
 // (contact.hpp), the bodies at 0, at the viewed time t and at the contact time, and what a sampling
 // CCD makes of the window: the samples' overlaps, the first sample that overlaps, and its
 // verdict against the certified contact (missed: no sample overlaps; late: the first that
-// does is after the contact, by sampling.delay; agrees: neither finds a contact).
+// does is after the contact, by sampling.delay; agrees: neither finds a contact). "motion":
+// linear where neither body spins or grows (first_contact then answers by Eberly's
+// translational method), with the reduced frame at t (add_reduced_frame); rigid otherwise.
 Answer motion3d(const Params& p) {
   const auto a = ellipsoid3(p, "a"), b = ellipsoid3(p, "b");
   const auto ma = motion3(p, "a"), mb = motion3(p, "b");
@@ -378,6 +420,10 @@ Answer motion3d(const Params& p) {
   add_body(out, "a_t", a_t);
   add_body(out, "b_t", b_t);
   out.emplace_back("relation_t", label(to_string(classify(a_t, b_t))));
+  const bool linear = ma.angular_velocity.isZero(0.0) && mb.angular_velocity.isZero(0.0) && ma.growth == 0.0 &&
+                      mb.growth == 0.0;
+  out.emplace_back("motion", std::string(linear ? "linear" : "rigid"));
+  if (linear) add_reduced_frame<3>(out, a_t, b_t, Vec3<double>(mb.velocity - ma.velocity));
   const bool contact = c.status == ContactStatus::hit || c.status == ContactStatus::touching_at_start ||
                        c.status == ContactStatus::overlapping_at_start;
   if (contact) {
@@ -414,11 +460,6 @@ Vec<double, N> touching_point(const Ellipsoid<double, N>& body, const Triangle<d
   const Vec<double, N> still = Vec<double, N>::Zero();
   const Contact<double, N> c = first_contact(body, still, triangle, still, 0.0);
   return c.status == ContactStatus::touching_at_start ? c.point : Vec<double, N>::Constant(std::nan(""));
-}
-
-template <int N>
-std::vector<double> coordinates(const Vec<double, N>& v) {
-  if constexpr (N == 2) return list(v); else return list3(v);
 }
 
 // Collide and slide of the ellipse (2D: "e" as ellipse() reads it) or ellipsoid (3D: as
@@ -538,168 +579,126 @@ double body_volume(const Vec<double, 3>& r) { return 4.0 / 3.0 * std::numbers::p
 
 }  // namespace
 
-// Lubachevsky-Stillinger compression (packing.hpp), run a bounded number of collisions at a
-// time. The protocol is jam_packing's: HardBodies growing at the schedule's rate (thermal
-// speeds per largest diameter), every 20 collisions per body the reduced pressure
-// p = 1 + (virial change) / (N n kT dt) over the interval, the velocities rescaled to kT = 1
-// and the rate set from the schedule at p; jammed at p >= the target. So are its box (density
-// 0.2 at the start, less where the lattice below needs a larger one) and its size rule (each
-// body under an eighth of the box side). The start differs: the bodies (largest radius 1, the
-// others 1 / aspect) on a cubic lattice (cells at least 2.1 wide: no two touch), each turned at
-// random, velocities uniform in [-1, 1) less their mean, no spin.
+// The live packing: the packing module's Compression, from a start of the page's own whose
+// draws come from mt19937_64's raw bits and square roots alone, so that the wasm and native
+// runs are the same (std's distributions and libm's sines differ between the two). n bodies
+// (the largest radius 1, the others 1 / aspect) on a cubic lattice (cells at least 2.1 wide:
+// no two touch) in a box with density 0.2 at the start (larger where the lattice needs it;
+// each body under an eighth of its side, as jam_packing has it), each turned at random,
+// velocities uniform in [-1, 1) less their mean, no spin. Growth at `rate` (thermal speeds
+// per largest diameter), a fifth of it from reduced pressure 100; jammed at `pressure`.
 template <int N>
-class Compression {
-  static constexpr double initial_density = 0.2, min_cell = 2.1;
-
-public:
-  explicit Compression(const Params& p)
-      : n_(static_cast<int>(whole(p, "n", 2, 1e6))), target_(get(p, "pressure")), schedule_(schedule(p)) {
-    const double aspect = get(p, "aspect");
-    if (!(aspect >= 1) || !std::isfinite(aspect)) throw InputError("aspect", "must be finite and >= 1");
-    if (!(target_ > 1) || !std::isfinite(target_)) throw InputError("pressure", "must be finite and > 1");
-    Vec<double, N> radii = Vec<double, N>::Constant(1.0 / aspect);
-    radii[0] = 1.0;
-    volume_ = n_ * body_volume(radii);
-    int m = 1;  // lattice cells per side
-    while (std::pow(m, N) < n_) ++m;
-    const double side = std::max(std::pow(volume_ / initial_density, 1.0 / N), min_cell * m);
-    if (!(8 < side)) throw InputError("n", "too few bodies: each must be under an eighth of the box side");
-    const double cell = side / m;
-    PeriodicBox<N> box;
-    box.size.fill(side);
-    std::mt19937_64 rng(static_cast<std::uint64_t>(whole(p, "seed", 0, 0x1p53)));
-    std::vector<Ellipsoid<double, N>> bodies;
-    std::vector<RigidMotion<double, N>> motions(static_cast<std::size_t>(n_));
-    Vec<double, N> mean = Vec<double, N>::Zero();
-    for (int i = 0; i < n_; ++i) {
-      Vec<double, N> c;
-      for (int k = 0, q = i; k < N; ++k, q /= m) c[k] = (q % m + 0.5) * cell;
-      bodies.push_back(Ellipsoid<double, N>::from_axes(c, random_axes<N>(rng), radii));
-      for (int k = 0; k < N; ++k) motions[i].velocity[k] = 2 * uniform(rng) - 1;
-      mean += motions[i].velocity;
-    }
-    for (auto& mo : motions) mo.velocity -= mean / n_;
-    box_volume_ = std::pow(side, N);
-    system_.emplace(bodies, motions, box, 0.1, expansion(schedule_.rate_at(0)));
-    system_->rescale(1.0 / std::sqrt(system_->temperature()), system_->expansion());
-    start_interval();
-  }
-
-  // Runs up to `collisions` collisions, stopping where jammed.
-  void advance(int collisions) {
-    for (int k = 0; k < collisions && !jammed_; ++k) {
-      // Growing bodies always meet: an event is always ahead.
-      if (system_->step().status != HardStatus::collided) throw std::logic_error("ellipsect: packing: no event");
-      if (system_->collisions() >= next_update_) update();
-    }
-  }
-
-  // status (growing, jammed), collisions, time, density now, the last interval's pressure (NaN
-  // before the first) and the (density, pressure) of every interval.
-  Answer state() const {
-    const HardBodies<N>& s = *system_;
-    return {{"status", std::string(jammed_ ? "jammed" : "growing")},
-            {"collisions", double(s.collisions())},
-            {"time", s.now()},
-            {"density", density(s.now())},
-            {"pressure", pressure_},
-            {"history", history_},
-            {"box", std::vector<double>(s.box().size.begin(), s.box().size.end())}};
-  }
-
-  // The bodies for drawing (centers wrapped into the box): "centers", "axes" (column-major)
-  // and "radii", N, N * N and N numbers per body, now or, once jammed, halfway to the next
-  // event (where no pair touches, as jam_packing leaves them), with the contacts there.
-  Answer bodies() const {
-    const std::vector<Ellipsoid<double, N>> shapes = system_->shapes_at(shown_time());
-    std::vector<double> centers, axes, radii;
-    for (const auto& b : shapes) {
-      const Mat<double, N> a = b.axes();
-      centers.insert(centers.end(), b.center().data(), b.center().data() + N);
-      axes.insert(axes.end(), a.data(), a.data() + N * N);
-      radii.insert(radii.end(), b.radii().data(), b.radii().data() + N);
-    }
-    Answer out{{"bodies.time", shown_time()}, {"centers", centers}, {"axes", axes}, {"radii", radii}};
-    if (jammed_) add_contacts(out, shapes);
-    return out;
-  }
-
-private:
-  static GrowthSchedule schedule(const Params& p) {
-    const double rate = get(p, "rate");
-    if (!(rate > 0) || !std::isfinite(rate)) throw InputError("rate", "must be finite and > 0");
-    return GrowthSchedule{{0.0, rate}, {1e2, rate / 5}};
-  }
-  double expansion(double rate) const { return rate / 2; }  // d scale / dt: the largest diameter is 2
-  double density(double t) const { return volume_ * std::pow(system_->scale_at(t), N) / box_volume_; }
-  double shown_time() const { return jammed_ ? jam_time_ : system_->now(); }
-  void start_interval() {
-    t_last_ = system_->now();
-    virial_last_ = system_->virial();
-    next_update_ = system_->collisions() + std::uint64_t(20) * std::uint64_t(n_);
-  }
-  void update() {
-    HardBodies<N>& s = *system_;
-    const double dt = s.now() - t_last_, kt = (1.0 + s.temperature()) / 2;
-    pressure_ = dt > 0 ? 1.0 + (s.virial() - virial_last_) / (N * n_ * kt * dt) : std::numeric_limits<double>::infinity();
-    history_.insert(history_.end(), {density(s.now()), pressure_});
-    if (pressure_ >= target_) {
-      jammed_ = true;
-      const double next = s.next_event();
-      jam_time_ = std::isfinite(next) ? (s.now() + next) / 2 : s.now();
-      return;
-    }
-    s.rescale(1.0 / std::sqrt(s.temperature()), expansion(schedule_.rate_at(pressure_)));
-    start_interval();
-  }
-  // Contacts: pairs whose Perram-Wertheim mu - 1 is below 100 / target (jam_packing's default
-  // gap), found among the candidate pairs of the bodies grown by 1 + gap; each as the segment
-  // between the centers (through the image); "overlapping": pairs classify does not find
-  // separated or touching (0 in a sound run).
-  void add_contacts(Answer& out, const std::vector<Ellipsoid<double, N>>& shapes) const {
-    const double gap = 100 / target_;
-    const PeriodicBox<N>& box = system_->box();
-    std::vector<Ellipsoid<double, N>> grown;
-    for (const auto& b : shapes) grown.push_back(Ellipsoid<double, N>::from_axes(b.center(), b.axes(), b.radii() * (1 + gap)));
-    std::vector<double> segments;
-    int contacts = 0, overlapping = 0;
-    for (const ImagePair<N>& q : candidate_pairs<double, N>(grown, box)) {
-      Vec<double, N> offset;
-      for (int k = 0; k < N; ++k) offset[k] = q.image[k] * box.size[k];
-      const Ellipsoid<double, N>& a = shapes[q.i];
-      const Ellipsoid<double, N> b = shapes[q.j].translated(offset);
-      const Relation r = classify(a, b);
-      if (r != Relation::separated && r != Relation::touching) ++overlapping;
-      if (std::sqrt(perram_wertheim(a, b).f) - 1 < gap) {
-        ++contacts;
-        segments.insert(segments.end(), a.center().data(), a.center().data() + N);
-        segments.insert(segments.end(), b.center().data(), b.center().data() + N);
-      }
-    }
-    out.insert(out.end(), {{"contacts", double(contacts)},
-                           {"mean_contacts", 2.0 * contacts / n_},
-                           {"overlapping", double(overlapping)},
-                           {"contacts.segments", segments}});
-  }
-
-  int n_;
-  double target_;
-  GrowthSchedule schedule_;
-  std::optional<HardBodies<N>> system_;
-  double volume_ = 0, box_volume_ = 0, t_last_ = 0, virial_last_ = 0;
-  double pressure_ = std::nan(""), jam_time_ = 0;
-  std::uint64_t next_update_ = 0;
-  bool jammed_ = false;
-  std::vector<double> history_;
+struct LiveRun {
+  std::optional<Compression<N>> compression;
+  int n = 0;
+  std::optional<Packing<N>> end;  // the packing, once ended
 };
 
 namespace {
 
+template <int N>
+std::unique_ptr<LiveRun<N>> live_run(const Params& p) {
+  constexpr double initial_density = 0.2, min_cell = 2.1;
+  const int n = static_cast<int>(whole(p, "n", 2, 1e5));
+  const double aspect = get(p, "aspect"), rate = get(p, "rate");
+  if (!(aspect >= 1) || !std::isfinite(aspect)) throw InputError("aspect", "must be finite and >= 1");
+  if (!(rate > 0) || !std::isfinite(rate)) throw InputError("rate", "must be finite and > 0");
+  PackingOptions options;
+  options.pressure = get(p, "pressure");  // InputError "pressure" outside (1, inf)
+  options.schedule = GrowthSchedule{{0.0, rate}, {1e2, rate / 5}};
+  Vec<double, N> radii = Vec<double, N>::Constant(1.0 / aspect);
+  radii[0] = 1.0;
+  int m = 1;  // lattice cells per side
+  while (std::pow(m, N) < n) ++m;
+  const double side = std::max(std::pow(n * body_volume(radii) / initial_density, 1.0 / N), min_cell * m);
+  if (!(8 < side)) throw InputError("n", "too few bodies: each must be under an eighth of the box side");
+  const double cell = side / m;
+  PeriodicBox<N> box;
+  box.size.fill(side);
+  std::mt19937_64 rng(static_cast<std::uint64_t>(whole(p, "seed", 0, 0x1p53)));
+  std::vector<Ellipsoid<double, N>> bodies;
+  std::vector<RigidMotion<double, N>> motions(static_cast<std::size_t>(n));
+  Vec<double, N> mean = Vec<double, N>::Zero();
+  for (int i = 0; i < n; ++i) {
+    Vec<double, N> c;
+    for (int k = 0, q = i; k < N; ++k, q /= m) c[k] = (q % m + 0.5) * cell;
+    bodies.push_back(Ellipsoid<double, N>::from_axes(c, random_axes<N>(rng), radii));
+    for (int k = 0; k < N; ++k) motions[i].velocity[k] = 2 * uniform(rng) - 1;
+    mean += motions[i].velocity;
+  }
+  for (auto& mo : motions) mo.velocity -= mean / n;
+  auto run = std::make_unique<LiveRun<N>>();
+  run->compression.emplace(bodies, motions, box, options);
+  run->n = n;
+  return run;
+}
+
+// Up to `collisions` collisions; at the end, the packing.
+template <int N>
+void advance(LiveRun<N>& run, int collisions) {
+  if (run.end) return;
+  run.compression->advance(static_cast<std::uint64_t>(std::max(collisions, 0)));
+  if (run.compression->status() != PackingStatus::compressing) run.end = run.compression->packing();
+}
+
+// status (compressing, jammed, collision_limit), collisions, time, density now, the last
+// interval's pressure (NaN before the first) and the (density, pressure) of every interval.
+template <int N>
+Answer state(const LiveRun<N>& run) {
+  const Compression<N>& c = *run.compression;
+  const HardBodies<N>& s = c.system();
+  std::vector<double> history;
+  for (const auto& h : c.history()) history.insert(history.end(), h.begin(), h.end());
+  return {{"status", std::string(to_string(c.status()))},
+          {"collisions", double(s.collisions())},
+          {"time", s.now()},
+          {"density", c.density_at(s.now())},
+          {"pressure", c.pressure()},
+          {"history", history},
+          {"box", std::vector<double>(s.box().size.begin(), s.box().size.end())}};
+}
+
+// The bodies for drawing (centers wrapped into the box): "centers", "axes" (column-major)
+// and "radii", N, N * N and N numbers per body, now or, once ended, the packing's (halfway
+// to the next event, where no pair touches) with its contacts: "contacts", "mean_contacts",
+// "overlapping" (pairs classify finds neither separated nor touching: 0 in a sound run) and
+// "contacts.segments", each contact as the segment between the centers (through the image).
+template <int N>
+Answer bodies(const LiveRun<N>& run) {
+  const double time = run.end ? run.end->time : run.compression->system().now();
+  const std::vector<Ellipsoid<double, N>> shapes = run.end ? run.end->bodies : run.compression->system().shapes_at(time);
+  std::vector<double> centers, axes, radii;
+  for (const auto& b : shapes) {
+    const Mat<double, N> a = b.axes();
+    centers.insert(centers.end(), b.center().data(), b.center().data() + N);
+    axes.insert(axes.end(), a.data(), a.data() + N * N);
+    radii.insert(radii.end(), b.radii().data(), b.radii().data() + N);
+  }
+  Answer out{{"bodies.time", time}, {"centers", centers}, {"axes", axes}, {"radii", radii}};
+  if (!run.end) return out;
+  const Packing<N>& p = *run.end;
+  std::vector<double> segments;
+  for (const ImagePair<N>& q : p.contacts) {
+    const Vec<double, N> a = p.bodies[q.i].center();
+    Vec<double, N> b = p.bodies[q.j].center();
+    for (int k = 0; k < N; ++k) b[k] += q.image[k] * p.box.size[k];
+    segments.insert(segments.end(), a.data(), a.data() + N);
+    segments.insert(segments.end(), b.data(), b.data() + N);
+  }
+  out.insert(out.end(), {{"contacts", double(p.contacts.size())},
+                         {"mean_contacts", p.mean_contacts},
+                         {"overlapping", double(p.overlapping)},
+                         {"contacts.segments", segments}});
+  return out;
+}
+
+}  // namespace
+
+namespace {
+
 LivePacking::Run make_run(const Params& p) {
-  const double dim = get(p, "dim");
-  if (dim == 2) return std::make_unique<Compression<2>>(p);
-  if (dim == 3) return std::make_unique<Compression<3>>(p);
-  throw InputError("dim", "must be 2 or 3");
+  if (dimension(p) == 2) return live_run<2>(p);
+  return live_run<3>(p);
 }
 
 // The native answers of the live packing: run to `collisions` (or, without it, to jamming),
@@ -712,7 +711,7 @@ Answer packing(const Params& p) {
   if (it != p.end()) {
     live.advance(static_cast<int>(it->second));
   } else {
-    while (std::get<std::string>(live.state().front().second) != "jammed") live.advance(1000);
+    while (std::get<std::string>(live.state().front().second) == "compressing") live.advance(1000);
   }
   Answer out = live.state();
   for (auto& entry : live.bodies()) out.push_back(std::move(entry));
@@ -747,13 +746,13 @@ Answer packing_check(const Params& p) {
 LivePacking::LivePacking(const Params& params) : run_(make_run(params)) {}
 LivePacking::~LivePacking() = default;
 void LivePacking::advance(int collisions) {
-  std::visit([&](auto& r) { r->advance(collisions); }, run_);
+  std::visit([&](auto& r) { web::advance(*r, collisions); }, run_);
 }
 Answer LivePacking::state() const {
-  return std::visit([](const auto& r) { return r->state(); }, run_);
+  return std::visit([](const auto& r) { return web::state(*r); }, run_);
 }
 Answer LivePacking::bodies() const {
-  return std::visit([](const auto& r) { return r->bodies(); }, run_);
+  return std::visit([](const auto& r) { return web::bodies(*r); }, run_);
 }
 
 Answer answer(std::string_view demo, const Params& params) {
@@ -767,10 +766,10 @@ Answer answer(std::string_view demo, const Params& params) {
     if (demo == "mesh_slide") return mesh_slide<2>(params);
     if (demo == "mesh_slide3d") return mesh_slide<3>(params);
     if (demo == "geometry") return geometry(params);
-    if (demo == "pair3d") return pair3d(params);
+    if (demo == "pair3d") return dimension(params) == 2 ? pair_answer<2>(params) : pair_answer<3>(params);
     if (demo == "motion3d") return motion3d(params);
     if (demo == "packing") return packing(params);
-    if (demo == "packing_check") return get(params, "dim") == 2 ? packing_check<2>(params) : packing_check<3>(params);
+    if (demo == "packing_check") return dimension(params) == 2 ? packing_check<2>(params) : packing_check<3>(params);
   } catch (const InputError& e) {
     return {{"error", e.field()}, {"message", std::string(e.what())}};
   }

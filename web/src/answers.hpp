@@ -31,21 +31,22 @@ using Answer = std::vector<std::pair<std::string, Value>>;
 Answer answer(std::string_view demo, const Params& params);
 
 template <int N>
-class Compression;
+struct LiveRun;
 
-// A packing growing to jamming, run a bounded number of collisions at a time (the page runs
-// it frame by frame): params dim (2, 3), n (bodies), aspect (largest radius over the others,
-// >= 1), rate (growth, thermal speeds per largest diameter), pressure (reduced pressure at
-// which it is jammed), seed. Throws InputError naming the field.
+// A packing growing to jamming (the packing module's Compression), run a bounded number of
+// collisions at a time (the page runs it slice by slice): params dim (2, 3), n (bodies),
+// aspect (largest radius over the others, >= 1), rate (growth, thermal speeds per largest
+// diameter), pressure (reduced pressure at which it is jammed), seed. Throws InputError
+// naming the field.
 class LivePacking {
 public:
   explicit LivePacking(const Params& params);
   ~LivePacking();
-  void advance(int collisions);  // up to this many collisions; none once jammed
-  Answer state() const;          // status (growing, jammed), collisions, density, pressure, ...
-  Answer bodies() const;         // the bodies to draw; once jammed, the contacts too
+  void advance(int collisions);  // up to this many collisions; none once ended
+  Answer state() const;          // status (compressing, jammed, ...), collisions, density, pressure, ...
+  Answer bodies() const;         // the bodies to draw; once ended, the contacts too
 
-  using Run = std::variant<std::unique_ptr<Compression<2>>, std::unique_ptr<Compression<3>>>;
+  using Run = std::variant<std::unique_ptr<LiveRun<2>>, std::unique_ptr<LiveRun<3>>>;
 
 private:
   Run run_;

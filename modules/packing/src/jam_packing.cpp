@@ -21,7 +21,7 @@ using packing::inertia;
 using packing::volume;
 
 std::string_view to_string(PackingStatus s) noexcept {
-  static constexpr std::string_view names[] = {"jammed", "collision_limit", "no_start"};  // in the enum's order
+  static constexpr std::string_view names[] = {"jammed", "collision_limit", "no_start", "compressing"};  // in the enum's order
   const auto k = static_cast<std::size_t>(s);
   return k < std::size(names) ? names[k] : "?";
 }
@@ -111,38 +111,6 @@ std::vector<RigidMotion<double, N>> thermal_motions(const std::vector<Ellipsoid<
   return motions;
 }
 
-// The compression: runs `system` in updates of collisions_per_update collisions per body,
-// measuring the reduced pressure over each, rescaling to kT = 1 and setting the growth rate
-// from the schedule, until jammed or at the collision cap; `out` gets the status, the last
-// pressure and the history. `expansion(rate)`: d scale / dt for a schedule rate; `total`:
-// the bodies' volume at scale 1.
-template <int N, class Expansion>
-void compress(HardBodies<N>& system, const PackingOptions& options, Expansion expansion, double total,
-              double box_volume, Packing<N>& out) {
-  const double n = double(system.size());
-  const std::uint64_t per_update = std::uint64_t(int(options.collisions_per_update)) * system.size();
-  const std::uint64_t cap = options.max_collisions;
-  double t_last = system.now(), virial_last = system.virial();
-  for (;;) {
-    const std::uint64_t target = system.collisions() + per_update;
-    while (system.collisions() < target && system.collisions() < cap)
-      // Growing bodies always meet: an event is always ahead.
-      if (system.step().status != HardStatus::collided) throw std::logic_error("ellipsect: jam_packing: no event");
-    const double dt = system.now() - t_last, kt = (1.0 + system.temperature()) / 2;
-    out.pressure = dt > 0.0 ? 1.0 + (system.virial() - virial_last) / (N * n * kt * dt) : inf;
-    out.density = total * std::pow(system.scale_at(system.now()), N) / box_volume;
-    out.history.push_back({out.density, out.pressure});
-    if (out.pressure >= options.pressure) {
-      out.status = PackingStatus::jammed;
-      return;
-    }
-    if (system.collisions() >= cap) return;
-    system.rescale(1.0 / std::sqrt(system.temperature()), expansion(options.schedule.rate_at(out.pressure)));
-    t_last = system.now();
-    virial_last = system.virial();
-  }
-}
-
 // Contacts and the final check, on the candidate pairs of the final bodies grown by 1 + gap
 // about their centers: a pair with mu - 1 < gap overlaps when both are grown by mu, so the
 // boxes of the grown bodies meet (those of the bodies themselves need not).
@@ -192,46 +160,122 @@ void remove_rattlers(Packing<N>& out) {
 }  // namespace
 
 template <int N>
-Packing<N> jam_packing(std::span<const Vec<double, N>> radii, const PackingOptions& options) {
+Compression<N>::Compression(std::span<const Vec<double, N>> radii, const PackingOptions& options) : options_(options) {
   if (radii.size() < 2) throw InputError("radii", "must hold at least two bodies");
   for (std::size_t i = 0; i < radii.size(); ++i)
     if (!radii[i].allFinite() || !(radii[i].minCoeff() > 0.0))
       throw InputError("radii[" + std::to_string(i) + "]", "must be finite and > 0");
   double total = 0.0, largest = 0.0;
   for (const auto& r : radii) total += volume<N>(r), largest = std::max(largest, r.maxCoeff());
-  Packing<N> out;
-  const double side = std::pow(total / options.initial_density, 1.0 / N), box_volume = std::pow(side, N);
-  for (int k = 0; k < N; ++k) out.box.size[k] = side;
+  const double side = std::pow(total / options.initial_density, 1.0 / N);
+  for (int k = 0; k < N; ++k) box_.size[k] = side;
   if (!(8 * largest < side)) throw InputError("radii", "too few bodies: each must be under an eighth of the box side");
-
   std::mt19937_64 rng(options.seed);
-  const auto start = random_start<N>(radii, out.box, rng);
+  const auto start = random_start<N>(radii, box_, rng);
   if (!start) {
-    out.status = PackingStatus::no_start;
-    return out;
+    status_ = PackingStatus::no_start;
+    return;
   }
-  // d scale / dt from the rate in thermal speeds per largest diameter.
-  const auto expansion = [&](double rate) { return rate / (2 * largest); };
-  HardBodies<N> system(*start, thermal_motions<N>(*start, rng), out.box, options.skin,
-                       expansion(options.schedule.stages().front().rate));
-  system.rescale(1.0 / std::sqrt(system.temperature()), system.expansion());
-  compress<N>(system, options, expansion, total, box_volume, out);
+  begin(*start, thermal_motions<N>(*start, rng));
+}
 
-  // The packing halfway to the next event, where no pair touches: the pair that collided last
-  // has moved apart (at the end of the collision it touches to within rounding).
-  out.collisions = system.collisions();
-  out.rebuilds = system.rebuilds();
-  const double next = system.next_event();
-  out.time = std::isfinite(next) ? system.now() + (next - system.now()) / 2 : system.now();
-  out.bodies = system.shapes_at(out.time);
-  out.density = total * std::pow(system.scale_at(out.time), N) / box_volume;
-  out.predictions_overlapping = system.overlaps();
-  out.predictions_stopped = system.stopped();
-  find_contacts<N>(out, options.contact_gap > 0.0 ? double(options.contact_gap) : 100.0 / options.pressure);
+template <int N>
+Compression<N>::Compression(std::span<const Ellipsoid<double, N>> bodies,
+                            std::span<const RigidMotion<double, N>> motions, const PeriodicBox<N>& box,
+                            const PackingOptions& options)
+    : options_(options), box_(box) {
+  begin(bodies, motions);
+}
+
+template <int N>
+void Compression<N>::begin(std::span<const Ellipsoid<double, N>> bodies, std::span<const RigidMotion<double, N>> motions) {
+  for (const auto& b : bodies) total_ += volume<N>(b.radii()), largest_ = std::max(largest_, b.radii().maxCoeff());
+  box_volume_ = 1.0;
+  for (int k = 0; k < N; ++k) box_volume_ *= box_.size[k];
+  system_.emplace(bodies, motions, box_, options_.skin, expansion(options_.schedule.stages().front().rate));
+  if (!(system_->temperature() > 0.0)) throw InputError("motions", "must not all be at rest");
+  system_->rescale(1.0 / std::sqrt(system_->temperature()), system_->expansion());
+  start_interval();
+}
+
+template <int N>
+void Compression<N>::advance(std::uint64_t collisions) {
+  for (std::uint64_t k = 0; k < collisions && status_ == PackingStatus::compressing; ++k) {
+    // Growing bodies always meet: an event is always ahead.
+    if (system_->step().status != HardStatus::collided) throw std::logic_error("ellipsect: Compression: no event");
+    if (system_->collisions() >= next_update_ || system_->collisions() >= options_.max_collisions) update();
+  }
+}
+
+template <int N>
+const HardBodies<N>& Compression<N>::system() const {
+  if (!system_) throw std::logic_error("ellipsect: Compression: no start, no system");
+  return *system_;
+}
+
+template <int N>
+double Compression<N>::density_at(double t) const {
+  return total_ * std::pow(system().scale_at(t), N) / box_volume_;
+}
+
+template <int N>
+void Compression<N>::start_interval() {
+  t_last_ = system_->now();
+  virial_last_ = system_->virial();
+  next_update_ = system_->collisions() + std::uint64_t(int(options_.collisions_per_update)) * system_->size();
+}
+
+// The reduced pressure over the interval, then jammed, at the cap, or the thermostat (kT = 1)
+// and the schedule's rate at the pressure for the next interval.
+template <int N>
+void Compression<N>::update() {
+  HardBodies<N>& s = *system_;
+  const double dt = s.now() - t_last_, kt = (1.0 + s.temperature()) / 2;
+  pressure_ = dt > 0.0 ? 1.0 + (s.virial() - virial_last_) / (N * double(s.size()) * kt * dt) : inf;
+  history_.push_back({density_at(s.now()), pressure_});
+  if (pressure_ >= options_.pressure) {
+    status_ = PackingStatus::jammed;
+  } else if (s.collisions() >= options_.max_collisions) {
+    status_ = PackingStatus::collision_limit;
+  } else {
+    s.rescale(1.0 / std::sqrt(s.temperature()), expansion(options_.schedule.rate_at(pressure_)));
+    start_interval();
+  }
+}
+
+template <int N>
+Packing<N> Compression<N>::packing() {
+  Packing<N> out;
+  out.status = status_;
+  out.box = box_;
+  if (!system_) return out;
+  HardBodies<N>& s = *system_;
+  // The pair that collided last has moved apart halfway to the next event (at the end of
+  // the collision it touches to within rounding).
+  const double next = s.next_event();
+  out.time = std::isfinite(next) ? s.now() + (next - s.now()) / 2 : s.now();
+  out.bodies = s.shapes_at(out.time);
+  out.density = density_at(out.time);
+  out.pressure = pressure_;
+  out.history = history_;
+  out.collisions = s.collisions();
+  out.rebuilds = s.rebuilds();
+  out.predictions_overlapping = s.overlaps();
+  out.predictions_stopped = s.stopped();
+  find_contacts<N>(out, options_.contact_gap > 0.0 ? double(options_.contact_gap) : 100.0 / options_.pressure);
   remove_rattlers<N>(out);
   return out;
 }
 
+template <int N>
+Packing<N> jam_packing(std::span<const Vec<double, N>> radii, const PackingOptions& options) {
+  Compression<N> c(radii, options);
+  while (c.status() == PackingStatus::compressing) c.advance(std::uint64_t(options.max_collisions));
+  return c.packing();
+}
+
+template class Compression<2>;
+template class Compression<3>;
 template Packing<2> jam_packing<2>(std::span<const Vec<double, 2>>, const PackingOptions&);
 template Packing<3> jam_packing<3>(std::span<const Vec<double, 3>>, const PackingOptions&);
 

@@ -38,6 +38,7 @@
 #include <cstdint>
 #include <initializer_list>
 #include <limits>
+#include <optional>
 #include <queue>
 #include <span>
 #include <string_view>
@@ -213,7 +214,8 @@ struct PackingOptions {
 enum class PackingStatus {
   jammed,           // reduced pressure reached options.pressure
   collision_limit,  // options.max_collisions reached first
-  no_start          // the random start found no room for a body in 1000 tries: bodies empty
+  no_start,         // the random start found no room for a body in 1000 tries: bodies empty
+  compressing       // Compression only: neither yet
 };
 std::string_view to_string(PackingStatus s) noexcept;
 
@@ -237,14 +239,59 @@ struct Packing {
   std::vector<std::array<double, 2>> history;
 };
 
-// N bodies with the given radii (their shapes; the scale is chosen so that the start has
-// options.initial_density) at random non-overlapping positions and orientations in a cube
-// (square) box, random velocities and angular velocities at kT = 1, compressed by
-// HardBodies with expansion until jammed. Every `collisions_per_update` collisions per
-// body: the reduced pressure p = 1 + virial / (N d kT dt) over the interval, the velocities
-// rescaled to kT = 1, the growth rate from the schedule at p. Throws InputError naming the
-// radius (radii[i]), or "radii" for fewer than two bodies or too few for the box (each
-// under an eighth of its side); the options are valid by their types.
+// The compression, a bounded number of collisions at a time (for a caller that shows it
+// as it goes; jam_packing runs one to its end). The start: N bodies with the given radii
+// (their shapes; the scale is chosen so that the start has options.initial_density) at
+// random non-overlapping positions and orientations in a cube (square) box, random
+// velocities and angular velocities at kT = 1. Then HardBodies with expansion; every
+// `collisions_per_update` collisions per body the reduced pressure p = 1 + virial /
+// (N d kT dt) over the interval, the velocities rescaled to kT = 1, the growth rate from
+// the schedule at p, until p reaches options.pressure (jammed) or the collisions
+// options.max_collisions (collision_limit). Throws InputError naming the radius
+// (radii[i]), or "radii" for fewer than two bodies or too few for the box (each under an
+// eighth of its side); the options are valid by their types. Or from the caller's start:
+// bodies at scale 1 in `box` (as HardBodies takes them), velocities and angular velocities
+// (rescaled to kT = 1 first; not all at rest: InputError "motions"), options.seed and
+// options.initial_density unused.
+template <int N>
+class Compression {
+public:
+  explicit Compression(std::span<const Vec<double, N>> radii, const PackingOptions& options = {});
+  Compression(std::span<const Ellipsoid<double, N>> bodies, std::span<const RigidMotion<double, N>> motions,
+              const PeriodicBox<N>& box, const PackingOptions& options = {});
+
+  // Runs up to `collisions` more collisions, fewer where the compression ends on the way.
+  void advance(std::uint64_t collisions);
+  PackingStatus status() const noexcept { return status_; }  // compressing until it ends
+  // The bodies' system (not at no_start, where there is none: std::logic_error).
+  const HardBodies<N>& system() const;
+  // The packing fraction at time t (>= the last event's).
+  double density_at(double t) const;
+  // The reduced pressure of the last update (NaN before the first), and (density, p) of each.
+  double pressure() const noexcept { return pressure_; }
+  const std::vector<std::array<double, 2>>& history() const noexcept { return history_; }
+  // The packing as it stands (jam_packing's answer once ended): the bodies halfway to the
+  // next event, where no pair touches, their contacts, rattlers and checks.
+  Packing<N> packing();
+
+private:
+  // d scale / dt for a schedule rate, in thermal speeds per largest diameter.
+  double expansion(double rate) const noexcept { return rate / (2 * largest_); }
+  void begin(std::span<const Ellipsoid<double, N>> bodies, std::span<const RigidMotion<double, N>> motions);
+  void start_interval();
+  void update();
+
+  PackingOptions options_;
+  PeriodicBox<N> box_{};
+  double total_ = 0.0, box_volume_ = 0.0, largest_ = 0.0;  // volume at scale 1; largest radius
+  std::optional<HardBodies<N>> system_;
+  PackingStatus status_ = PackingStatus::compressing;
+  double pressure_ = std::numeric_limits<double>::quiet_NaN(), t_last_ = 0.0, virial_last_ = 0.0;
+  std::uint64_t next_update_ = 0;
+  std::vector<std::array<double, 2>> history_;
+};
+
+// Compression(radii, options) run to its end: its packing().
 template <int N>
 Packing<N> jam_packing(std::span<const Vec<double, N>> radii, const PackingOptions& options = {});
 
