@@ -516,7 +516,7 @@ function slideDemo() {
 const packingSphere = new THREE.SphereGeometry(1, 20, 10);  // many bodies: coarser
 
 // A packing growing to jamming (answers.hpp's LivePacking), animated: the library runs it in
-// a worker (packing_worker.js), in slices of at most `per frame` collisions and about 15 ms,
+// a worker (packing_worker.js), one slice a frame of at most `per slice` collisions and about 15 ms,
 // so the page's frames never wait for it; each frame draws the latest bodies. The density
 // and the reduced pressure of each interval are plotted; at jamming, the contact network.
 class PackingDemo extends Demo3D {

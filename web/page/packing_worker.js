@@ -1,12 +1,13 @@
 // The live packing's library work, off the page's thread (demo3d.js, PackingDemo): the
 // library's one LivePacking (web/src/binding.cpp), run in slices of at most `perSlice`
-// collisions that start no new chunk after SLICE_MS, each slice posting the state and the
-// bodies. Messages in: {start: params}, {run: bool}, {perSlice: n}, {step: true}; each but
+// collisions that start no new chunk after SLICE_MS, one slice a frame (PERIOD_MS apart,
+// start to start: at perSlice 1, 60 collisions a second, which a person can follow), each
+// slice posting the state and the bodies. Messages in: {start: params}, {run: bool}, {perSlice: n}, {step: true}; each but
 // perSlice answered with {reply: true, state, bodies}; slices post {state, bodies, ms}.
 'use strict';
 importScripts('ellipsect.js');
 
-const SLICE_MS = 15;
+const SLICE_MS = 15, PERIOD_MS = 1000 / 60;
 const CHUNK = 4;
 let Module = null, running = false, perSlice = 400;
 let started = {error: 'start', message: 'not started'};  // the last start's answer: a run, or why not
@@ -24,8 +25,9 @@ function slice() {
     Module.packingAdvance(Math.min(CHUNK, perSlice - done));
   const state = Module.packingState();
   running = state.status === 'compressing';
-  post(state, false, performance.now() - t0);
-  if (running) setTimeout(slice, 0);
+  const ms = performance.now() - t0;
+  post(state, false, ms);
+  if (running) setTimeout(slice, Math.max(0, PERIOD_MS - ms));
 }
 
 onmessage = async ({data}) => {
