@@ -20,8 +20,10 @@
 // exactly). Separated
 // and touching bodies need one descent, started in {g > 0}: g is concave and positively
 // homogeneous, so its maximum on that cone is unique. Penetration depth is not a convex
-// problem (g can have several local maxima), so overlapping bodies also start from the
-// best directions sampled on both bodies' Gauss maps, and the deepest descent wins.
+// problem (g can have several local maxima): the first descent's answer stands where the
+// depth inside an ellipsoid within the bodies' Minkowski sum, fitted at that answer, proves
+// it global (docs/distance.md); otherwise overlapping bodies also start from the best
+// directions sampled on both bodies' Gauss maps, and the deepest descent wins.
 //
 // A trust-region step rejected because it crossed a kink of g (the support radius of a thin
 // body turns sharply where n is orthogonal to its long axes) is cut at the kink.

@@ -14,14 +14,18 @@
 //   re-decided in the wider type when rounding could flip it; the world normal of the
 //   sphere body at P starts the descent (the ball scaled by |P| touches O there, so that
 //   plane separates the bodies when |P| > 1).
-// * Overlapping bodies: penetration is not convex, so the descent also starts from the
-//   best sampled directions of both Gauss maps; the deepest converged descent wins.
+// * Overlapping bodies: penetration is not convex. The first descent's minimum is the
+//   global one where the depth of r in an ellipsoid inside the Minkowski sum, fitted at
+//   that minimum, reaches it (detail/depth_bound.hpp); otherwise the descent also starts
+//   from the reduced-frame direction and the best sampled directions of both Gauss maps,
+//   and the deepest converged descent wins.
 // * The computation is written with the sphere body first, so swapping the arguments
 //   swaps the points and negates the normal without changing a bit.
 #include <ellipsect/distance.hpp>
 
 #include "detail/certificates-inl.hpp"
 #include "detail/classify_impl.hpp"
+#include "detail/depth_bound.hpp"
 #include "detail/distance_gap.hpp"
 #include "detail/exact_relation.hpp"
 #include "detail/gradient.hpp"
@@ -129,6 +133,17 @@ DistanceStatus exact_status(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b) 
 template <int N>
 constexpr int penetration_starts = N == 2 ? 3 : 4;
 
+// Whether the depth phi at `at` is within depth_certificate of the global minimum of phi: the
+// lower bound of detail/depth_bound.hpp reaches it less the margin (which also holds the
+// bound's rounding, a few dozen ulps of the size), scale = the largest radii plus the depth.
+inline constexpr double depth_certificate = 1e-13;
+
+template <class R, int N>
+bool certified_deepest(const detail::GapBodies<R, N>& g, const detail::GapAt<R, N>& at) noexcept {
+  const R scale = g.radii1.maxCoeff() + g.radii2.maxCoeff() + abs(at.phi);
+  return detail::depth_lower_bound<R, N>(g, at) >= at.phi - R(depth_certificate) * scale;
+}
+
 // The solve in working precision R, s the sphere body (detail::order_pair).
 template <class R, class T, int N>
 Distance<T, N> solve(const Ellipsoid<T, N>& s, const Ellipsoid<T, N>& o, bool a_is_s, const Options& options,
@@ -173,9 +188,13 @@ Distance<T, N> solve(const Ellipsoid<T, N>& s, const Ellipsoid<T, N>& o, bool a_
       out.distance = T(0);
       return out;
     }
-    std::array<Vec<R, N>, penetration_starts<N>> sampled;
-    const int found = detail::sampled_starts<R, N, penetration_starts<N>>(g, sampled);
-    for (int i = 0; i < found; ++i) starts[count++] = sampled[i];
+    if (best.converged && certified_deepest(g, best.at)) {
+      count = 0;
+    } else {
+      std::array<Vec<R, N>, penetration_starts<N>> sampled;
+      const int found = detail::sampled_starts<R, N, penetration_starts<N>>(g, sampled);
+      for (int i = 0; i < found; ++i) starts[count++] = sampled[i];
+    }
   }
   for (int i = 0; i < count; ++i) {
     const auto d = detail::descend<R, N>(g, starts[i], options.max_distance_iterations);
