@@ -114,6 +114,19 @@ template <class T, int N>
 Distance<T, N> signed_distance(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b,
                                const Options& options = {}) noexcept;
 
+// The same, started from `hint`, a direction from a towards b (the normal of an earlier
+// answer for a nearby pair: a simulation's last step, an advancement's last distance). The
+// answer meets the same claims as without it; only the cost changes: a hint near the answer
+// settles a separated pair, or a penetration that the depth bound proves global
+// (docs/distance.md), by its descent alone, without the cold start; any other hint (zero,
+// not finite, far off, or a pair within the band) costs that descent more.
+template <class T, int N>
+Distance<T, N> distance(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b, const Options& options,
+                        const VecArg<T, N>& hint) noexcept;
+template <class T, int N>
+Distance<T, N> signed_distance(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b, const Options& options,
+                               const VecArg<T, N>& hint) noexcept;
+
 // ---- Gradient (gradient.hpp's parameters) ---------------------------------------------
 //
 // signed_distance(a, b) and the derivatives of its distance d. By the envelope theorem, with

@@ -36,7 +36,9 @@ R depth_lower_bound(const GapBodies<R, N>& g, const GapAt<R, N>& at) noexcept {
   const TangentBasis<R, N> ta = tangent_basis<R, N>(a), tb = tangent_basis<R, N>(b);
   // The derivatives of the unit vectors along the tangent basis of n, in the planes
   // orthogonal to them: X for B_2 n (in tb), Y for B_1 n (in ta).
-  const TangentMat<R, N> x = tb.transpose() * g.b2 * at.q * at.inv2, y = ta.transpose() * g.b1 * at.q * at.inv1;
+  TangentMat<R, N> x = tb.transpose() * g.b2 * at.q, y = ta.transpose() * g.b1 * at.q;
+  x *= at.inv2;
+  y *= at.inv1;
   TangentMat<R, N> turn;  // orthogonal, as close to taking x to y as can be
   if constexpr (N == 2) {
     turn(0, 0) = x(0, 0) * y(0, 0) >= R(0) ? R(1) : R(-1);
@@ -59,7 +61,7 @@ R depth_lower_bound(const GapBodies<R, N>& g, const GapAt<R, N>& at) noexcept {
   Mat<R, N> u;
   left_singular<R, N>(c, sigma, u);
   const Vec<R, N> k = -(u.transpose() * g.r);  // E's center seen from r, in E's axes
-  constexpr R none = -std::numeric_limits<R>::infinity();
+  const R none = -std::numeric_limits<R>::infinity();
   if (!(sigma.minCoeff() > R(0)) || !(level_at_origin<R, N>(sigma, k) <= R(0))) return none;
   const R depth = closest_from_inside<R, N>(sigma, k).norm;
   return isfinite(depth) ? depth : none;

@@ -89,7 +89,8 @@ struct ShapeParty {
   // the distance's normal where the slab along it is open by an eighth of the body's largest
   // radius plus 64 ulps of T of its terms (far above the tangency band and the slab's
   // rounding): the step then costs the shape's vertices along u and one support point.
-  Distance<T, N> near(const Ellipsoid<T, N>& body, bool touched) const noexcept {
+  // (The shapes' distances take no hint.)
+  Distance<T, N> near(const Ellipsoid<T, N>& body, bool touched, const Vec<T, N>&) const noexcept {
     const R ulp = R(std::numeric_limits<T>::epsilon());
     const std::optional<Vec<R, N>> inside = ObstacleTraits<Shape>::inner_point(shape);
     if (!touched && inside) {

@@ -174,9 +174,10 @@ struct Party {
 // First contact of `a` in rigid motion with another party, by conservative advancement
 // (contact.hpp). Other provides, at a time t:
 //   bool at(R t)                          forms the party at t (false: beyond the type's range);
-//   Distance<T, N> near(body, bool touched)  the distance at t (may be a far estimate:
+//   Distance<T, N> near(body, bool touched, hint)  the distance at t (may be a far estimate:
 //                                         slab_step; never with touched, which asks for the
-//                                         distance itself);
+//                                         distance itself), `hint` the last step's normal
+//                                         (NaN at the first) to start its descent from;
 //   Distance<T, N> exact(body)            the signed distance at t (for a hit found overlapping);
 //   Party side(n, body)                   as above;
 //   bool never(n, body, margin)           certifies that the two never meet from t on.
@@ -206,11 +207,13 @@ Contact<T, N> advance(const Ellipsoid<T, N>& a, const RigidMotion<T, N>& motion,
   touch.point_a.setConstant(nan);
   touch.point_b.setConstant(nan);
   touch.normal.setConstant(nan);
+  Vec<T, N> hint = Vec<T, N>::Constant(nan);  // the last step's normal
   for (int step = 0; step < options.max_motion_steps; ++step) {
     out.iterations = step;
     const Ellipsoid<T, N> body = moved(a, motion, T(t));
     if (!finite(body) || !other.at(t)) break;  // moved, turned or grown beyond the type's range
-    const Distance<T, N> d = other.near(body, touched);
+    const Distance<T, N> d = other.near(body, touched, hint);
+    hint = d.normal;
     if (step == 0 && d.status == DistanceStatus::overlapping) {
       out.status = ContactStatus::overlapping_at_start;
       out.time = T(0);
@@ -278,7 +281,7 @@ Contact<T, N> advance(const Ellipsoid<T, N>& a, const RigidMotion<T, N>& motion,
       // bodies' size over their speed, 4 ulps of t can exceed that slab's gap.)
       const bool resolved = margin <= (turning.small * turning.scale(t) + b.small) / 4;
       if (t > R(0) && resolved && gap <= margin + 4 * ulp * t * fastest)
-        return fill(ContactStatus::hit, t, d.point_a.allFinite() ? d : other.near(body, true));
+        return fill(ContactStatus::hit, t, d.point_a.allFinite() ? d : other.near(body, true, hint));
       break;
     }
     t += advance;

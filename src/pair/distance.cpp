@@ -138,73 +138,18 @@ constexpr int penetration_starts = N == 2 ? 3 : 4;
 // bound's rounding, a few dozen ulps of the size), scale = the largest radii plus the depth.
 inline constexpr double depth_certificate = 1e-13;
 
+// The bound where it certifies `at`, else -infinity.
 template <class R, int N>
-bool certified_deepest(const detail::GapBodies<R, N>& g, const detail::GapAt<R, N>& at) noexcept {
+R certified_depth(const detail::GapBodies<R, N>& g, const detail::GapAt<R, N>& at) noexcept {
   const R scale = g.radii1.maxCoeff() + g.radii2.maxCoeff() + abs(at.phi);
-  return detail::depth_lower_bound<R, N>(g, at) >= at.phi - R(depth_certificate) * scale;
+  const R bound = detail::depth_lower_bound<R, N>(g, at);
+  return bound >= at.phi - R(depth_certificate) * scale ? bound : -std::numeric_limits<R>::infinity();
 }
 
-// The solve in working precision R, s the sphere body (detail::order_pair).
+// The answer from the descent `best` (status set), s the sphere body.
 template <class R, class T, int N>
-Distance<T, N> solve(const Ellipsoid<T, N>& s, const Ellipsoid<T, N>& o, bool a_is_s, const Options& options,
-                     bool penetration) noexcept {
-  constexpr T nan = std::numeric_limits<T>::quiet_NaN();
-  Distance<T, N> out;
-  out.distance = nan;
-  out.point_a.setConstant(nan);
-  out.point_b.setConstant(nan);
-  out.normal.setConstant(nan);
-
-  const auto g = detail::gap_bodies<R>(s, o);
-  const QuickStart<R, N> quick = quick_start<R>(s, o, g);
-
-  if (quick.status == DistanceStatus::overlapping && !penetration) {
-    out.status = DistanceStatus::overlapping;
-    out.distance = T(0);
-    return out;
-  }
-  // The first descent starts from the quick direction; `starts` holds the others.
-  auto best = detail::descend<R, N>(g, quick.normal, options.max_distance_iterations);
-  out.iterations = best.iterations;
-  std::array<Vec<R, N>, 1 + penetration_starts<N>> starts;
-  int count = 0;
-  if (quick.status) {
-    out.status = *quick.status;
-  } else if (best.converged && -best.at.phi > separation_margin<R>(s, o, g, R(double(options.tolerance)))) {
-    out.status = DistanceStatus::separated;
-  } else {
-    bool doubt;
-    Start<R, N> st = start<R, R>(s, o, R(double(options.tolerance)), doubt);
-    if (doubt) st = start<detail::Wide<R>, R>(s, o, detail::Wide<R>(double(options.tolerance)), doubt);
-    if (st.status == DistanceStatus::touching && options.tolerance.is_exact()) {  // the exact relation decides
-      st.status = exact_status(s, o);
-    }
-    out.status = st.status;
-    // Absent only when S's center lies exactly on O's boundary (the bodies overlap).
-    if (st.normal.squaredNorm() > R(0) && st.normal.allFinite()) starts[count++] = st.normal;
-  }
-  if (out.status == DistanceStatus::overlapping) {
-    if (!penetration) {
-      out.distance = T(0);
-      return out;
-    }
-    if (best.converged && certified_deepest(g, best.at)) {
-      count = 0;
-    } else {
-      std::array<Vec<R, N>, penetration_starts<N>> sampled;
-      const int found = detail::sampled_starts<R, N, penetration_starts<N>>(g, sampled);
-      for (int i = 0; i < found; ++i) starts[count++] = sampled[i];
-    }
-  }
-  for (int i = 0; i < count; ++i) {
-    const auto d = detail::descend<R, N>(g, starts[i], options.max_distance_iterations);
-    out.iterations += d.iterations;
-    // The smallest phi wins (an unconverged one lower than every converged one makes the
-    // answer uncertain); within rounding, a converged descent wins.
-    const R noise = std::max(d.at.noise, best.at.noise);
-    if (d.at.phi < best.at.phi - noise || (d.at.phi <= best.at.phi + noise && d.converged && !best.converged)) best = d;
-  }
-
+Distance<T, N> answer(Distance<T, N>& out, const Ellipsoid<T, N>& s, const Ellipsoid<T, N>& o,
+                      const detail::GapBodies<R, N>& g, const detail::Descent<R, N>& best, bool a_is_s) noexcept {
   const Vec<R, N> point_s = s.center().template cast<R>() + best.at.s1;
   const Vec<R, N> point_o = o.center().template cast<R>() - best.at.s2;
   out.distance = T(-best.at.phi);
@@ -227,16 +172,113 @@ Distance<T, N> solve(const Ellipsoid<T, N>& s, const Ellipsoid<T, N>& o, bool a_
   return out;
 }
 
+// The solve in working precision R, s the sphere body (detail::order_pair). `hint`: a unit
+// direction from s towards o to descend from first, or null. Its descent settles the answer
+// alone where it certifies it: separated by more than the band (a converged descent with
+// g > 0 has the unique maximum), or, for the penetration, a depth that the inner-ellipsoid
+// bound proves global and beyond the band (twice the separation margin: the depth of a pair
+// within the band is at most tol / (1 - tol) times the sphere body's largest radius).
+// Otherwise the solve goes on as without it, the hint's descent one candidate more.
+template <class R, class T, int N>
+Distance<T, N> solve(const Ellipsoid<T, N>& s, const Ellipsoid<T, N>& o, bool a_is_s, const Options& options,
+                     bool penetration, const Vec<R, N>* hint = nullptr) noexcept {
+  constexpr T nan = std::numeric_limits<T>::quiet_NaN();
+  Distance<T, N> out;
+  out.distance = nan;
+  out.point_a.setConstant(nan);
+  out.point_b.setConstant(nan);
+  out.normal.setConstant(nan);
+
+  const auto g = detail::gap_bodies<R>(s, o);
+  std::optional<detail::Descent<R, N>> hinted;
+  if (hint != nullptr) {
+    hinted = detail::descend<R, N>(g, *hint, options.max_distance_iterations);
+    const R margin = separation_margin<R>(s, o, g, R(double(options.tolerance)));
+    if (hinted->converged && -hinted->at.phi > margin) {
+      out.status = DistanceStatus::separated;
+      out.iterations = hinted->iterations;
+      return answer<R>(out, s, o, g, *hinted, a_is_s);
+    }
+    if (penetration && hinted->converged && hinted->at.phi > 2 * margin && certified_depth(g, hinted->at) > 2 * margin) {
+      out.status = DistanceStatus::overlapping;
+      out.iterations = hinted->iterations;
+      return answer<R>(out, s, o, g, *hinted, a_is_s);
+    }
+  }
+  const QuickStart<R, N> quick = quick_start<R>(s, o, g);
+
+  if (quick.status == DistanceStatus::overlapping && !penetration) {
+    out.status = DistanceStatus::overlapping;
+    out.distance = T(0);
+    return out;
+  }
+  // The first descent starts from the quick direction; `starts` holds the others.
+  auto best = detail::descend<R, N>(g, quick.normal, options.max_distance_iterations);
+  out.iterations = best.iterations;
+  if (hinted) {  // the smaller phi, converged first
+    out.iterations += hinted->iterations;
+    if ((hinted->converged && !best.converged) || (hinted->converged == best.converged && hinted->at.phi < best.at.phi))
+      best = *hinted;
+  }
+  std::array<Vec<R, N>, 1 + penetration_starts<N>> starts;
+  int count = 0;
+  if (quick.status) {
+    out.status = *quick.status;
+  } else if (best.converged && -best.at.phi > separation_margin<R>(s, o, g, R(double(options.tolerance)))) {
+    out.status = DistanceStatus::separated;
+  } else {
+    bool doubt;
+    Start<R, N> st = start<R, R>(s, o, R(double(options.tolerance)), doubt);
+    if (doubt) st = start<detail::Wide<R>, R>(s, o, detail::Wide<R>(double(options.tolerance)), doubt);
+    if (st.status == DistanceStatus::touching && options.tolerance.is_exact()) {  // the exact relation decides
+      st.status = exact_status(s, o);
+    }
+    out.status = st.status;
+    // Absent only when S's center lies exactly on O's boundary (the bodies overlap).
+    if (st.normal.squaredNorm() > R(0) && st.normal.allFinite()) starts[count++] = st.normal;
+  }
+  if (out.status == DistanceStatus::overlapping) {
+    if (!penetration) {
+      out.distance = T(0);
+      return out;
+    }
+    if (best.converged && certified_depth(g, best.at) > -std::numeric_limits<R>::infinity()) {
+      count = 0;
+    } else {
+      std::array<Vec<R, N>, penetration_starts<N>> sampled;
+      const int found = detail::sampled_starts<R, N, penetration_starts<N>>(g, sampled);
+      for (int i = 0; i < found; ++i) starts[count++] = sampled[i];
+    }
+  }
+  for (int i = 0; i < count; ++i) {
+    const auto d = detail::descend<R, N>(g, starts[i], options.max_distance_iterations);
+    out.iterations += d.iterations;
+    // The smallest phi wins (an unconverged one lower than every converged one makes the
+    // answer uncertain); within rounding, a converged descent wins.
+    const R noise = std::max(d.at.noise, best.at.noise);
+    if (d.at.phi < best.at.phi - noise || (d.at.phi <= best.at.phi + noise && d.converged && !best.converged)) best = d;
+  }
+  return answer<R>(out, s, o, g, best, a_is_s);
+}
+
 // The solve at the pair's scale (detail/scale.hpp): as given, rescaled by 2^-e with the
 // lengths scaled back, or in the wide type. The sphere body is chosen before rescaling:
 // rescaling can merge two bodies that differ only below the smallest subnormal, and swap
 // symmetry needs the order they had.
+// `hint`: a direction from a towards b, or null (a zero or non-finite one is none).
 template <class T, int N>
 Distance<T, N> solve_at_scale(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b, const Options& options,
-                              bool penetration) noexcept {
+                              bool penetration, const Vec<T, N>* hint = nullptr) noexcept {
   const auto pair = detail::order_pair(a, b);
   return detail::at_scale<detail::Work<T>>(detail::scale_of(a, b), [&]<class W>(auto units) {
-    Distance<T, N> d = solve<W>(units.body(pair.s), units.body(pair.o), pair.a_is_s, options, penetration);
+    std::optional<Vec<W, N>> start;  // from s towards o, unit
+    if (hint != nullptr && hint->allFinite()) {
+      const Vec<W, N> h = (pair.a_is_s ? Vec<T, N>(*hint) : Vec<T, N>(-*hint)).template cast<W>();
+      const W length = h.norm();
+      if (length > W(0) && isfinite(length)) start = Vec<W, N>(h / length);
+    }
+    Distance<T, N> d = solve<W>(units.body(pair.s), units.body(pair.o), pair.a_is_s, options, penetration,
+                                start ? &*start : nullptr);
     units.lengths_out(d.distance, d.point_a, d.point_b);
     if (options.tolerance.is_exact() && d.status != DistanceStatus::did_not_converge &&
         units.loses(a, b)) {  // the status of the pair as given, not of the scaled one
@@ -261,6 +303,18 @@ Distance<T, N> signed_distance(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& 
 }
 
 template <class T, int N>
+Distance<T, N> distance(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b, const Options& options,
+                        const VecArg<T, N>& hint) noexcept {
+  return solve_at_scale(a, b, options, false, &hint);
+}
+
+template <class T, int N>
+Distance<T, N> signed_distance(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b, const Options& options,
+                               const VecArg<T, N>& hint) noexcept {
+  return solve_at_scale(a, b, options, true, &hint);
+}
+
+template <class T, int N>
 DistanceGradient<T, N> signed_distance_gradient(const Ellipsoid<T, N>& a, const Ellipsoid<T, N>& b,
                                                 const Options& options) noexcept {
   using R = detail::Work<T>;
@@ -280,6 +334,10 @@ DistanceGradient<T, N> signed_distance_gradient(const Ellipsoid<T, N>& a, const 
 #define ELLIPSECT_INSTANTIATE(T, N)                                                                              \
   template Distance<T, N> distance<T, N>(const Ellipsoid<T, N>&, const Ellipsoid<T, N>&, const Options&) noexcept; \
   template Distance<T, N> signed_distance<T, N>(const Ellipsoid<T, N>&, const Ellipsoid<T, N>&, const Options&) noexcept; \
+  template Distance<T, N> distance<T, N>(const Ellipsoid<T, N>&, const Ellipsoid<T, N>&, const Options&,          \
+                                         const Vec<T, N>&) noexcept;                                              \
+  template Distance<T, N> signed_distance<T, N>(const Ellipsoid<T, N>&, const Ellipsoid<T, N>&, const Options&,   \
+                                                const Vec<T, N>&) noexcept;                                       \
   template DistanceGradient<T, N> signed_distance_gradient<T, N>(const Ellipsoid<T, N>&, const Ellipsoid<T, N>&,      \
                                                                  const Options&) noexcept;
 ELLIPSECT_FOR_EACH_TYPE_AND_DIM(ELLIPSECT_INSTANTIATE)

@@ -66,7 +66,7 @@ struct BodyParty {
   // the bodies are separated and not touching at the start) plus 64 ulps of T of the
   // separation (the slab's rounding), for radii above 2^-960 (no subnormal products): a
   // step on that slab costs two support points where a distance costs a solve.
-  Distance<T, N> near(const Ellipsoid<T, N>& body_a, bool touched) noexcept {
+  Distance<T, N> near(const Ellipsoid<T, N>& body_a, bool touched, const Vec<T, N>& hint) noexcept {
     const Vec<R, N> between = body_b.center().template cast<R>() - body_a.center().template cast<R>();
     const R apart = between.stableNorm();
     const R size = turning_a.big * turning_a.scale(t) + turning.big * turning.scale(t);
@@ -79,7 +79,7 @@ struct BodyParty {
       far = gap > (first ? R(1e-6) : R(1) / 8) * size + 64 * ulp * (apart + size);
     }
     first = false;
-    if (touched || !far) return distance(body_a, body_b, options);
+    if (touched || !far) return distance(body_a, body_b, options, hint);
     return slab_step<T, N>(between / apart);
   }
   Distance<T, N> exact(const Ellipsoid<T, N>& body_a) const noexcept { return signed_distance(body_a, body_b, options); }

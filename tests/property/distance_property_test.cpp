@@ -51,10 +51,14 @@ DistanceStatus status_of(Relation r) {
                                    : DistanceStatus::overlapping;
 }
 
+// `hint`: the queries started from it (distance.hpp's overloads), null for none; `known`: the
+// reference when computed already.
 template <int N>
-void check_case(const scenarios::Case<N>& c, Tally& tally) {
-  const auto got = signed_distance(c.a, c.b);
-  const auto r = ref::signed_distance<N>(to_ref(c.a), to_ref(c.b));
+void check_case(const scenarios::Case<N>& c, Tally& tally, const Vec<double, N>* hint = nullptr,
+                const ref::SignedDistance<N>* known = nullptr) {
+  const Options cold;
+  const auto got = hint ? signed_distance(c.a, c.b, cold, *hint) : signed_distance(c.a, c.b);
+  const auto r = known ? *known : ref::signed_distance<N>(to_ref(c.a), to_ref(c.b));
   const double want = ref::to_double(r.distance);
   const double scale = c.a.radii().maxCoeff() + c.b.radii().maxCoeff() + std::abs(want);
   const double tol = 1e-12 * scale;
@@ -89,13 +93,15 @@ void check_case(const scenarios::Case<N>& c, Tally& tally) {
   }
 
   // Swap symmetry (identical bodies are the same call), and distance() on the same pair.
+  // (With a hint, the swapped call takes it reversed: for identical bodies, the same call.)
   const bool identical = c.a.center() == c.b.center() && c.a.axes() == c.b.axes() && c.a.radii() == c.b.radii();
-  const auto sw = signed_distance(c.b, c.a);
+  const auto sw = hint ? signed_distance(c.b, c.a, cold, Vec<double, N>(identical ? *hint : -*hint))
+                       : signed_distance(c.b, c.a);
   ASSERT_EQ(sw.distance, got.distance) << describe(c);
   ASSERT_EQ(sw.point_a, identical ? got.point_a : got.point_b) << describe(c);
   ASSERT_EQ(sw.point_b, identical ? got.point_b : got.point_a) << describe(c);
   ASSERT_EQ(sw.normal, (identical ? got.normal : Vec<double, N>(-got.normal))) << describe(c);
-  const auto d = distance(c.a, c.b);
+  const auto d = hint ? distance(c.a, c.b, cold, *hint) : distance(c.a, c.b);
   ASSERT_EQ(d.status, got.status) << describe(c);
   if (got.status == DistanceStatus::overlapping) {
     ASSERT_EQ(d.distance, 0.0) << describe(c);
@@ -125,6 +131,48 @@ void check_against_reference(int per_category) {
 
 TEST(DistanceProperty, MatchesReference2D) { check_against_reference<2>(cases(300)); }
 TEST(DistanceProperty, MatchesReference3D) { check_against_reference<3>(cases(300)); }
+
+// Started from a hint, every claim holds as without it, whatever the hint: the answer's own
+// normal, that normal turned by 0.05 rad (a simulation's last step), its opposite, a random
+// direction, zero and NaN. From the answer's own normal a separated pair converges at its
+// start (no step: `iterations` counts the steps' evaluations); from 0.05 rad off it takes no
+// more steps than the cold start's descent (Newton's quadratic phase: about three and a half
+// either way), without the cold start.
+template <int N>
+void check_hints(int per_category) {
+  Tally tally;
+  std::mt19937_64 rng(11);
+  int separated = 0, evaluations = 0, turned_evaluations = 0, cold_evaluations = 0;
+  for (const auto category : scenarios::all_categories)
+    for (int i = 0; i < per_category; ++i) {
+      const auto c = scenarios::make_case<N>(category, static_cast<std::uint64_t>(i));
+      const auto r = ref::signed_distance<N>(to_ref(c.a), to_ref(c.b));
+      const auto answer = signed_distance(c.a, c.b);
+      if (!answer.normal.allFinite()) continue;
+      const Vec<double, N> turned = (answer.normal + 0.05 * scenarios::detail::unit_vector<N>(rng)).normalized();
+      const std::vector<Vec<double, N>> hints{answer.normal, turned, -answer.normal, scenarios::detail::unit_vector<N>(rng),
+                                              Vec<double, N>::Zero(), Vec<double, N>::Constant(std::nan(""))};
+      for (const auto& h : hints) {
+        check_case<N>(c, tally, &h, &r);
+        if (::testing::Test::HasFatalFailure()) return;
+      }
+      if (answer.status == DistanceStatus::separated) {
+        ++separated;
+        evaluations += distance(c.a, c.b, Options{}, answer.normal).iterations;
+        turned_evaluations += distance(c.a, c.b, Options{}, turned).iterations;
+        cold_evaluations += distance(c.a, c.b).iterations;
+      }
+    }
+  tally.print("signed_distance from hints vs reference, N=" + std::to_string(N));
+  std::printf("  steps per separated pair (%d pairs): %.2f from the answer's normal, %.2f from 0.05 rad off, %.2f cold\n",
+              separated, double(evaluations) / separated, double(turned_evaluations) / separated,
+              double(cold_evaluations) / separated);
+  EXPECT_LE(evaluations, separated / 20);
+  EXPECT_LE(turned_evaluations, cold_evaluations + separated / 20);
+}
+
+TEST(DistanceProperty, HintsKeepEveryClaim2D) { check_hints<2>(cases(40)); }
+TEST(DistanceProperty, HintsKeepEveryClaim3D) { check_hints<3>(cases(40)); }
 
 // The certificate that lets penetration stop after one descent (src/detail/depth_bound.hpp)
 // is a lower bound: at the optimum and at sampled directions, the depth of r in the inner
