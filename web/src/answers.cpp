@@ -589,8 +589,7 @@ double body_volume(const Vec<double, 3>& r) { return 4.0 / 3.0 * std::numbers::p
 // per largest diameter), a fifth of it from reduced pressure 100; jammed at `pressure`.
 template <int N>
 struct LiveRun {
-  std::optional<Compression<N>> compression;
-  int n = 0;
+  std::optional<Compression<N>> compression;  // always set: Compression has no empty state
   std::optional<Packing<N>> end;  // the packing, once ended
 };
 
@@ -629,7 +628,6 @@ std::unique_ptr<LiveRun<N>> live_run(const Params& p) {
   for (auto& mo : motions) mo.velocity -= mean / n;
   auto run = std::make_unique<LiveRun<N>>();
   run->compression.emplace(bodies, motions, box, options);
-  run->n = n;
   return run;
 }
 
