@@ -9,6 +9,7 @@
 // (the rounding of its coordinates, which no answer at 1e6 sizes from the origin can beat):
 //   classify, overlap: the reference's relation outside the band (classify.hpp);
 //   signed_distance: within 1e-12 size, witness points on their boundaries to 1e-12 size + ulp
+//     (also started from a hint near its normal)
 //     (distance.hpp);
 //   first_contact, rigid with spin: never later than the reference's first contact; linear and
 //     rigid, for hits
@@ -106,6 +107,18 @@ void check_static(const Moved<N>& m, const std::string& what) {
   if (d.status != DistanceStatus::touching || std::isfinite(d.point_a[0])) {
     ASSERT_LE(off_boundary<N>(a, d.point_a), 1e-12 * scale + eps * d.point_a.norm()) << what;
     ASSERT_LE(off_boundary<N>(b, d.point_b), 1e-12 * scale + eps * d.point_b.norm()) << what;
+  }
+  // Started from a hint (its own normal turned a little), the same claims.
+  if (d.normal.allFinite()) {
+    Vec<double, N> turn = Vec<double, N>::Zero();
+    turn[0] = 0.03;
+    const auto h = signed_distance(a, b, Options{}, Vec<double, N>((d.normal + turn).normalized()));
+    ASSERT_EQ(h.status, d.status) << what << " (hint)";
+    ASSERT_NEAR(h.distance, ref::to_double(rd.distance), 1e-12 * scale) << what << " (hint)";
+    if (h.status != DistanceStatus::touching || std::isfinite(h.point_a[0])) {
+      ASSERT_LE(off_boundary<N>(a, h.point_a), 1e-12 * scale + eps * h.point_a.norm()) << what << " (hint)";
+      ASSERT_LE(off_boundary<N>(b, h.point_b), 1e-12 * scale + eps * h.point_b.norm()) << what << " (hint)";
+    }
   }
   // perram_wertheim and closest_approach.
   const auto pw = perram_wertheim(a, b);
