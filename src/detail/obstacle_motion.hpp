@@ -95,7 +95,7 @@ struct ShapeParty {
     const std::optional<Vec<R, N>> inside = ObstacleTraits<Shape>::inner_point(shape);
     if (!touched && inside) {
       const Vec<R, N> center = body.center().template cast<R>(), between = *inside - center;
-      const R apart = between.stableNorm(), big = R(body.radii().maxCoeff());
+      const R apart = stable_norm<R, N>(between), big = R(body.radii().maxCoeff());
       if (apart > R(0) && R(body.radii().minCoeff()) > ldexp(R(1), -960)) {
         const Vec<R, N> u = between / apart;
         Vec<R, N> offset;

@@ -8,6 +8,7 @@
 #include "contact_start.hpp"
 #include "shape_access.hpp"
 #include "math.hpp"
+#include "secular.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -35,7 +36,7 @@ R magnitude(const W& omega) noexcept {
   if constexpr (N == 2) {
     return abs(R(omega));
   } else {
-    return omega.template cast<R>().stableNorm();
+    return stable_norm<R, 3>(omega.template cast<R>());
   }
 }
 
@@ -53,32 +54,48 @@ bool valid_growth(T growth) noexcept {
   return growth >= T(0) && isfinite(growth);
 }
 
-// exp(t [omega]x) (Rodrigues' formula in 3D).
+// exp(t [omega]x) (Rodrigues' formula in 3D), its factors formed once per angular velocity.
 template <class T, int N>
-Mat<T, N> rotation(const Omega<T, N>& omega, T t) noexcept {
-  if constexpr (N == 2) {
-    const T angle = omega * t, c = cos(angle), s = sin(angle);
-    Mat<T, 2> rot;
-    rot << c, -s, s, c;
-    return rot;
-  } else {
-    const T rate = omega.stableNorm();
-    if (!(rate > T(0)) || t == T(0)) return Mat<T, 3>::Identity();
-    const Vec<T, 3> k = omega / rate;
-    const T angle = rate * t, c = cos(angle), s = sin(angle);
-    Mat<T, 3> kx;
-    kx << T(0), -k[2], k[1], k[2], T(0), -k[0], -k[1], k[0], T(0);
-    return Mat<T, 3>(Mat<T, 3>::Identity() + s * kx + (T(1) - c) * (kx * kx));
+class Turn {
+ public:
+  explicit Turn(const Omega<T, N>& omega) noexcept : omega_(omega) {
+    if constexpr (N == 3) {
+      rate_ = stable_norm<T, 3>(omega);
+      if (!(rate_ > T(0))) return;
+      const Vec<T, 3> k = omega / rate_;
+      kx_ << T(0), -k[2], k[1], k[2], T(0), -k[0], -k[1], k[0], T(0);
+      kx2_ = kx_ * kx_;
+    }
   }
-}
+  Mat<T, N> at(T t) const noexcept {
+    if constexpr (N == 2) {
+      const T angle = omega_ * t, c = cos(angle), s = sin(angle);
+      Mat<T, 2> rot;
+      rot << c, -s, s, c;
+      return rot;
+    } else {
+      if (!(rate_ > T(0)) || t == T(0)) return Mat<T, 3>::Identity();
+      const T angle = rate_ * t, c = cos(angle), s = sin(angle);
+      return Mat<T, 3>(Mat<T, 3>::Identity() + s * kx_ + (T(1) - c) * kx2_);
+    }
+  }
+
+ private:
+  Omega<T, N> omega_;
+  T rate_ = 0;
+  Mat<T, 3> kx_, kx2_;
+};
 
 // The body at t, unchecked: the moved center or the grown radii may be infinite (callers
 // test them). Radii times exactly 1 where nothing grows.
 template <class T, int N>
-Ellipsoid<T, N> moved(const Ellipsoid<T, N>& body, const RigidMotion<T, N>& motion, T t) noexcept {
+Ellipsoid<T, N> moved(const Ellipsoid<T, N>& body, const RigidMotion<T, N>& motion, const Turn<T, N>& turn, T t) noexcept {
   const Vec<T, N> center = body.center() + t * motion.velocity;
-  return detail::ShapeAccess::unchecked<T, N>(center, rotation<T, N>(motion.angular_velocity, t) * body.axes(),
-                                              body.radii() * (T(1) + motion.growth * t));
+  return detail::ShapeAccess::unchecked<T, N>(center, turn.at(t) * body.axes(), body.radii() * (T(1) + motion.growth * t));
+}
+template <class T, int N>
+Ellipsoid<T, N> moved(const Ellipsoid<T, N>& body, const RigidMotion<T, N>& motion, T t) noexcept {
+  return moved(body, motion, Turn<T, N>(motion.angular_velocity), t);
 }
 
 template <class T, int N>
@@ -129,7 +146,7 @@ struct Turning {
   R configuration(R t) const noexcept {
     return t == R(0) ? R(0) : 4 * (center + t * speed + big * scale(t) * (8 + spin * t));
   }
-  R across(const Vec<R, N>& n) const noexcept { return spin_cross<N>(motion.angular_velocity, n).stableNorm(); }
+  R across(const Vec<R, N>& n) const noexcept { return stable_norm<R, N>(spin_cross<N>(motion.angular_velocity, n)); }
   // (omega x s) . n: the turn's part of the support radius's rate.
   R turn(const Vec<R, N>& n, const Vec<R, N>& offset) const noexcept {
     return n.dot(spin_cross<N>(motion.angular_velocity, offset));
@@ -187,6 +204,7 @@ Contact<T, N> advance(const Ellipsoid<T, N>& a, const RigidMotion<T, N>& motion,
   constexpr T nan = std::numeric_limits<T>::quiet_NaN();
   const R ulp = R(std::numeric_limits<T>::epsilon()), eps = std::numeric_limits<R>::epsilon();
   const Turning<T, N> turning(a, motion);
+  const Turn<T, N> turn(motion.angular_velocity);
   const Vec<R, N> v = motion.velocity.template cast<R>();
   Contact<T, N> out;
   out.time = nan;
@@ -207,67 +225,90 @@ Contact<T, N> advance(const Ellipsoid<T, N>& a, const RigidMotion<T, N>& motion,
   touch.point_a.setConstant(nan);
   touch.point_b.setConstant(nan);
   touch.normal.setConstant(nan);
-  Vec<T, N> hint = Vec<T, N>::Constant(nan);  // the last step's normal
+  touch.distance = nan;
+  Vec<T, N> hint = Vec<T, N>::Constant(nan);  // the last distance's normal
+  Distance<T, N> d = touch;                   // the last distance: its normal is the steps' axis
+  R taken_advance = 0;                        // the advance of the step that took it
+  bool take = true;                           // the next step takes a distance
   for (int step = 0; step < options.max_motion_steps; ++step) {
     out.iterations = step;
-    const Ellipsoid<T, N> body = moved(a, motion, T(t));
+    const Ellipsoid<T, N> body = moved(a, motion, turn, T(t));
     if (!finite(body) || !other.at(t)) break;  // moved, turned or grown beyond the type's range
-    const Distance<T, N> d = other.near(body, touched, hint);
-    hint = d.normal;
-    if (step == 0 && d.status == DistanceStatus::overlapping) {
-      out.status = ContactStatus::overlapping_at_start;
-      out.time = T(0);
-      return out;
-    }
-    if (step == 0 && d.status == DistanceStatus::touching) return fill(ContactStatus::touching_at_start, 0, d);
-    if (out_of_range) break;
-    if (d.status == DistanceStatus::overlapping)  // within rounding of the contact
-      return touched ? fill(ContactStatus::hit, touch_time, touch) : fill(ContactStatus::hit, t, other.exact(body));
-    if (d.status == DistanceStatus::separated && touched)  // grazed within the band
-      return fill(ContactStatus::hit, touch_time, touch);
-
-    const Vec<R, N> n = d.normal.template cast<R>();
-    Vec<R, N> offset;
-    const R rho = support(body, n, offset);
-    const R along = n.dot(body.center().template cast<R>());
-    const Party b = other.side(n, body);
-    // The gap g_n = low - n . c - rho, less the rounding of this step's bodies and its own.
-    const R margin = ulp * (turning.configuration(t) + b.configuration) + 8 * eps * (abs(along) + rho + b.magnitude);
-    const R gap = b.low - along - rho - margin;
-    const R rate_margin = 32 * ulp * (turning.rates(t) + b.speed);
-    const R across = turning.across(n), turned = turning.turn(n, offset);
-    const R slope = b.rate - n.dot(v) - turning.rate(t, rho, turned) - rate_margin;
-    const R fastest = b.falling + n.dot(v) + turning.rising(t, across) + rate_margin;
-    const R curvature = (turning.curvature(t, across, turned) + b.curvature) * (1 + 32 * ulp);
-    const R reach = std::min(turning.reach(t), b.reach);
-    // The first zero of the larger of the two lower bounds of g_n beyond t (infinite where
+    // The gap g_n along the axis n at t, less the rounding of this step's bodies and its own,
+    // and the step to the first zero of the larger of its two lower bounds (infinite where
     // neither has one; the second holds up to `reach`).
-    const R inf = std::numeric_limits<R>::infinity();
-    R advance = 0;
-    if (gap > R(0)) {
-      const R first_order = fastest > R(0) ? gap / fastest : inf;
-      R second_order;
-      if (curvature > R(0)) {
-        const R root = sqrt(slope * slope + 2 * curvature * gap);
-        second_order = slope <= R(0) ? 2 * gap / (root - slope) : (slope + root) / curvature;
-      } else {
-        second_order = slope < R(0) ? gap / -slope : inf;
+    struct Gap {
+      R gap, margin, fastest, advance, small;  // small: the other party's smallest radius
+    };
+    auto gap_along = [&](const Vec<R, N>& n) {
+      Vec<R, N> offset;
+      const R rho = support(body, n, offset);
+      const R along = n.dot(body.center().template cast<R>());
+      const Party b = other.side(n, body);
+      Gap g;
+      g.small = b.small;
+      g.margin = ulp * (turning.configuration(t) + b.configuration) + 8 * eps * (abs(along) + rho + b.magnitude);
+      g.gap = b.low - along - rho - g.margin;
+      const R rate_margin = 32 * ulp * (turning.rates(t) + b.speed);
+      const R across = turning.across(n), turned = turning.turn(n, offset);
+      const R slope = b.rate - n.dot(v) - turning.rate(t, rho, turned) - rate_margin;
+      g.fastest = b.falling + n.dot(v) + turning.rising(t, across) + rate_margin;
+      const R curvature = (turning.curvature(t, across, turned) + b.curvature) * (1 + 32 * ulp);
+      const R reach = std::min(turning.reach(t), b.reach);
+      const R inf = std::numeric_limits<R>::infinity();
+      g.advance = 0;
+      if (g.gap > R(0)) {
+        const R first_order = g.fastest > R(0) ? g.gap / g.fastest : inf;
+        R second_order;
+        if (curvature > R(0)) {
+          const R root = sqrt(slope * slope + 2 * curvature * g.gap);
+          second_order = slope <= R(0) ? 2 * g.gap / (root - slope) : (slope + root) / curvature;
+        } else {
+          second_order = slope < R(0) ? g.gap / -slope : inf;
+        }
+        g.advance = std::max(first_order, std::min(second_order, reach)) * (1 - 8 * ulp);
       }
-      advance = std::max(first_order, std::min(second_order, reach)) * (1 - 8 * ulp);
+      return g;
+    };
+    Gap g;
+    if (!take) {
+      // Bilateral advancement: the last distance's axis kept while its own steps make
+      // progress (two support points where a distance costs a descent); a step below
+      // an eighth of the one that took the distance means the axis has done its work.
+      g = gap_along(d.normal.template cast<R>());
+      take = !(8 * g.advance > taken_advance && t + g.advance > t);
     }
-    if (d.status == DistanceStatus::touching) {
-      if (!touched) {
-        touched = true;
+    if (take) {
+      d = other.near(body, touched, hint);
+      hint = d.normal;
+      if (step == 0 && d.status == DistanceStatus::overlapping) {
+        out.status = ContactStatus::overlapping_at_start;
+        out.time = T(0);
+        return out;
+      }
+      if (step == 0 && d.status == DistanceStatus::touching) return fill(ContactStatus::touching_at_start, 0, d);
+      if (out_of_range) break;
+      if (d.status == DistanceStatus::overlapping)  // within rounding of the contact
+        return touched ? fill(ContactStatus::hit, touch_time, touch) : fill(ContactStatus::hit, t, other.exact(body));
+      if (d.status == DistanceStatus::separated && touched)  // grazed within the band
+        return fill(ContactStatus::hit, touch_time, touch);
+      g = gap_along(d.normal.template cast<R>());
+      taken_advance = g.advance;
+      if (d.status == DistanceStatus::touching) {
+        if (!touched) {
+          touched = true;
+          touch_time = t;
+          touch = d;
+        }
+        // Converged: no certified progress left at the resolution of the claim.
+        if (!(g.advance > 1e-14 * t)) return fill(ContactStatus::hit, t, d);
         touch_time = t;
         touch = d;
       }
-      // Converged: no certified progress left at the resolution of the claim.
-      if (!(advance > 1e-14 * t)) return fill(ContactStatus::hit, t, d);
-      touch_time = t;
-      touch = d;
     }
-    if (other.never(n, body, margin)) advance = inf;
-    if (advance == inf || t + advance > R(t_max)) {
+    R advance = g.advance;
+    if (other.never(d.normal.template cast<R>(), body, g.margin)) advance = std::numeric_limits<R>::infinity();
+    if (advance == std::numeric_limits<R>::infinity() || t + advance > R(t_max)) {
       if (touched) return fill(ContactStatus::hit, touch_time, touch);
       out.status = ContactStatus::no_contact_in_window;
       return out;
@@ -279,12 +320,13 @@ Contact<T, N> advance(const Ellipsoid<T, N>& a, const RigidMotion<T, N>& motion,
       // the bounds are beyond the range of the type (speeds or spins near overflow).
       // (A slab step carries no points: the distance gives them. At times far beyond the
       // bodies' size over their speed, 4 ulps of t can exceed that slab's gap.)
-      const bool resolved = margin <= (turning.small * turning.scale(t) + b.small) / 4;
-      if (t > R(0) && resolved && gap <= margin + 4 * ulp * t * fastest)
+      const bool resolved = g.margin <= (turning.small * turning.scale(t) + g.small) / 4;
+      if (t > R(0) && resolved && g.gap <= g.margin + 4 * ulp * t * g.fastest)
         return fill(ContactStatus::hit, t, d.point_a.allFinite() ? d : other.near(body, true, hint));
       break;
     }
     t += advance;
+    take = touched;
   }
   if (touched) return fill(ContactStatus::hit, touch_time, touch);
   out.status = ContactStatus::did_not_converge;

@@ -45,6 +45,7 @@ struct BodyParty {
   const Options& options;
   Turning<T, N> turning;
   Vec<R, N> velocity;
+  Turn<T, N> turn;
   R t = 0;
   Ellipsoid<T, N> body_b;
   bool first = true;
@@ -52,11 +53,11 @@ struct BodyParty {
   BodyParty(const Ellipsoid<T, N>& a, const RigidMotion<T, N>& motion_a, const Ellipsoid<T, N>& b_,
             const RigidMotion<T, N>& m, const Options& o) noexcept
       : turning_a(a, motion_a), velocity_a(motion_a.velocity.template cast<R>()), b(b_), motion_b(m), options(o),
-        turning(b_, m), velocity(m.velocity.template cast<R>()) {}
+        turning(b_, m), velocity(m.velocity.template cast<R>()), turn(m.angular_velocity) {}
 
   bool at(R time) noexcept {
     t = time;
-    body_b = moved(b, motion_b, T(t));
+    body_b = moved(b, motion_b, turn, T(t));
     return finite(body_b);
   }
   // Bounding balls (radius R at t) apart by more than their radii: the direction between the
@@ -68,7 +69,7 @@ struct BodyParty {
   // step on that slab costs two support points where a distance costs a solve.
   Distance<T, N> near(const Ellipsoid<T, N>& body_a, bool touched, const Vec<T, N>& hint) noexcept {
     const Vec<R, N> between = body_b.center().template cast<R>() - body_a.center().template cast<R>();
-    const R apart = between.stableNorm();
+    const R apart = detail::stable_norm<R, N>(between);
     const R size = turning_a.big * turning_a.scale(t) + turning.big * turning.scale(t);
     bool far = apart > 2 * size;
     if (!touched && !far && apart > R(0) && std::min(turning_a.small, turning.small) > ldexp(R(1), -960)) {
@@ -173,10 +174,12 @@ T refined(T time, const Vec<T, N>& normal, const Ellipsoid<T, N>& a, const Rigid
     wb.angular_velocity = motion_b.angular_velocity.template cast<L>();
   }
   const L ga = L(motion_a.growth), gb = L(motion_b.growth);
+  const Turn<L, N> turn_a(wa.angular_velocity), turn_b(wb.angular_velocity);
   // Support radius along n at time t, its rate (1 + g t) (omega x s) . n + g rho_0 (s the
   // support offset, rho_0 the radius at the radii at 0) and the turn's part of it (`turned`).
-  auto support_at = [&](const Ellipsoid<T, N>& x, const RigidMotion<L, N>& m, L g, L t, L& rate, L& turned) {
-    const Mat<L, N> axes = rotation<L, N>(m.angular_velocity, t) * x.axes().template cast<L>();
+  auto support_at = [&](const Ellipsoid<T, N>& x, const RigidMotion<L, N>& m, const Turn<L, N>& turn, L g, L t, L& rate,
+                        L& turned) {
+    const Mat<L, N> axes = turn.at(t) * x.axes().template cast<L>();
     const Vec<L, N> radii = x.radii().template cast<L>();
     const Vec<L, N> w = radii.cwiseProduct(axes.transpose() * n);
     const L rho = w.norm(), scale = 1 + g * t;
@@ -206,8 +209,8 @@ T refined(T time, const Vec<T, N>& normal, const Ellipsoid<T, N>& a, const Rigid
     return out;
   };
   const Readings read_a = readings(a), read_b = readings(b);
-  auto spread = [&](const Ellipsoid<T, N>& x, const Readings& r, const RigidMotion<L, N>& m, L t) {
-    const Vec<L, N> e = rotation<L, N>(m.angular_velocity, t).transpose() * n;
+  auto spread = [&](const Ellipsoid<T, N>& x, const Readings& r, const Turn<L, N>& turn, L t) {
+    const Vec<L, N> e = turn.at(t).transpose() * n;
     const Vec<L, N> radii = x.radii().template cast<L>();
     const L stored = radii.cwiseProduct(r.stored.transpose() * e).norm();
     const L quadric = radii.cwiseProduct(r.inverse * e).norm();
@@ -230,9 +233,10 @@ T refined(T time, const Vec<T, N>& normal, const Ellipsoid<T, N>& a, const Rigid
   L t = time;
   for (int step = 0; step < 8; ++step) {
     L rate_a, rate_b, turned_a, turned_b;
-    const L rho_a = support_at(a, wa, ga, t, rate_a, turned_a), rho_b = support_at(b, wb, gb, t, rate_b, turned_b);
+    const L rho_a = support_at(a, wa, turn_a, ga, t, rate_a, turned_a),
+            rho_b = support_at(b, wb, turn_b, gb, t, rate_b, turned_b);
     const L sa = 1 + ga * t, sb = 1 + gb * t;
-    const L ambiguity = spread(a, read_a, wa, t) * sa + spread(b, read_b, wb, t) * sb;
+    const L ambiguity = spread(a, read_a, turn_a, t) * sa + spread(b, read_b, turn_b, t) * sb;
     const L rate_margin =
         32 * eps * (speed + L(ta.spin * ta.big + tb.spin * tb.big) * std::max(sa, sb) + L(ga * ta.big + gb * tb.big));
     const Vec<L, N> c = r0 + t * u;
