@@ -676,16 +676,29 @@ void def_queries(py::module_& m) {
   const std::string distance_returns = "Distance" + suffix +
                                        ": status (DistanceStatus), distance, point_a, point_b (witness points), "
                                        "normal (unit, from a towards b), iterations.";
-  m.def("distance", py::overload_cast<const E&, const E&, const Options&>(&distance<double, N>), py::arg("a"),
-        py::arg("b"), options_arg(),
-        docs::doc("Separation distance of two bodies, 0 when they meet (distance.hpp).", two, distance_returns,
-                  docs::no_overload)
-            .c_str());
-  m.def("signed_distance", py::overload_cast<const E&, const E&, const Options&>(&signed_distance<double, N>),
-        py::arg("a"), py::arg("b"), options_arg(),
-        docs::doc("Signed distance of two bodies: the separation, or minus the penetration depth (distance.hpp).", two,
-                  distance_returns, docs::no_overload)
-            .c_str());
+  // A hint (the normal of an earlier answer, from a towards b) starts the descent near the
+  // answer: the same answer and claims, only the cost changes (distance.hpp).
+  using Hint = std::optional<Row<N>>;
+  const std::string hinted = two + "\nhint: None, or a direction (N,) from a towards b, such as an earlier answer's "
+                                   "normal for the same pair: the descent starts there (only the cost changes).";
+  m.def(
+      "distance",
+      [](const E& a, const E& b, const Options& o, const Hint& hint) {
+        return hint ? distance(a, b, o, vec<N>(*hint)) : distance(a, b, o);
+      },
+      py::arg("a"), py::arg("b"), options_arg(), py::arg("hint") = py::none(),
+      docs::doc("Separation distance of two bodies, 0 when they meet (distance.hpp).", hinted, distance_returns,
+                docs::no_overload)
+          .c_str());
+  m.def(
+      "signed_distance",
+      [](const E& a, const E& b, const Options& o, const Hint& hint) {
+        return hint ? signed_distance(a, b, o, vec<N>(*hint)) : signed_distance(a, b, o);
+      },
+      py::arg("a"), py::arg("b"), options_arg(), py::arg("hint") = py::none(),
+      docs::doc("Signed distance of two bodies: the separation, or minus the penetration depth (distance.hpp).", hinted,
+                distance_returns, docs::no_overload)
+          .c_str());
   m.def("closest_point", [](const E& body, const Row<N>& x) { return closest_point(body, vec<N>(x)); },
         py::arg("body"), py::arg("x"),
         docs::doc("The point of the body's boundary closest to x (point.hpp).",
