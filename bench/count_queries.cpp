@@ -2,12 +2,16 @@
 // on a loaded machine where timings do not: each query family runs once over the same
 // seeded scenario mix as bench_queries (every category, 64 cases each), in its own
 // non-inlined function, so callgrind_annotate --inclusive=yes reports it apart from the
-// case generation. Usage in bench/RESULTS.md ("Instruction counts").
+// case generation; the rigid first contact over bench_rigid_contact's pairs of each kind
+// (64 each), and over the same bodies against a box and a capsule made from the other
+// body. Usage in bench/RESULTS.md ("Instruction counts").
 #include <ellipsect/ellipsect.hpp>
 
+#include "scenarios/rigid.hpp"
 #include "scenarios/scenarios.hpp"
 
 #include <cstdio>
+#include <limits>
 #include <vector>
 
 namespace {
@@ -100,6 +104,55 @@ template <int N>
   return sum;
 }
 
+// bench_rigid_contact's pairs of one kind, an infinite window made finite as there.
+template <scenarios::Spin Kind>
+std::vector<scenarios::Moving<3>> moving() {
+  std::vector<scenarios::Moving<3>> out;
+  for (int i = 0; i < cases_per_category; ++i) {
+    scenarios::Moving<3> m = scenarios::make_moving<3>(Kind, 900000 + i);
+    if (!(m.t_max < std::numeric_limits<double>::infinity()))
+      m.t_max = 4 * ((m.b.center() - m.a.center()).norm() + m.size) / m.speed;
+    out.push_back(m);
+  }
+  return out;
+}
+
+template <scenarios::Spin Kind>
+[[gnu::noinline]] double count_rigid(const std::vector<scenarios::Moving<3>>& cases) {
+  double sum = static_cast<int>(Kind);  // (each kind's function its own: no identical-code folding)
+  for (const auto& m : cases) sum += first_contact(m.a, m.ma, m.b, m.mb, m.t_max).iterations;
+  return sum;
+}
+
+// a turning against the box b.center + b.axes diag(b.radii) [-1, 1]^3, and against the
+// capsule along b's first axis with b's second radius, each moving at b's velocity.
+template <scenarios::Spin Kind>
+[[gnu::noinline]] double count_rigid_box(const std::vector<scenarios::Moving<3>>& cases) {
+  double sum = static_cast<int>(Kind);
+  for (const auto& m : cases)
+    sum += first_contact(m.a, m.ma, make_box<double, 3>(m.b.center(), m.b.axes(), m.b.radii()), m.mb.velocity, m.t_max)
+               .iterations;
+  return sum;
+}
+
+template <scenarios::Spin Kind>
+[[gnu::noinline]] double count_rigid_capsule(const std::vector<scenarios::Moving<3>>& cases) {
+  double sum = static_cast<int>(Kind);
+  for (const auto& m : cases) {
+    const Vec<double, 3> half = m.b.radii()[0] * m.b.axes().col(0);
+    sum += first_contact(m.a, m.ma, make_capsule<double, 3>(m.b.center() - half, m.b.center() + half, m.b.radii()[1]),
+                         m.mb.velocity, m.t_max)
+               .iterations;
+  }
+  return sum;
+}
+
+template <scenarios::Spin Kind>
+double run_rigid() {
+  const auto cases = moving<Kind>();
+  return count_rigid<Kind>(cases) + count_rigid_box<Kind>(cases) + count_rigid_capsule<Kind>(cases);
+}
+
 template <int N>
 double run() {
   const auto cases = mix<N>();
@@ -111,6 +164,9 @@ double run() {
 }  // namespace
 
 int main() {
-  std::printf("checksum %.17g %.17g\n", run<2>(), run<3>());
+  using scenarios::Spin;
+  const double rigid = run_rigid<Spin::random>() + run_rigid<Spin::slow>() + run_rigid<Spin::fast>() +
+                       run_rigid<Spin::needles>() + run_rigid<Spin::brief>() + run_rigid<Spin::grazing>();
+  std::printf("checksum %.17g %.17g %.17g\n", run<2>(), run<3>(), rigid);
   return 0;
 }
