@@ -189,11 +189,12 @@ struct Party {
 };
 
 // First contact of `a` in rigid motion with another party, by conservative advancement
-// (contact.hpp). Other provides, at a time t:
+// (contact.hpp) that keeps each distance's normal for the steps after it (docs/method.md,
+// section 9, "The kept axis"). Other provides, at a time t:
 //   bool at(R t)                          forms the party at t (false: beyond the type's range);
 //   Distance<T, N> near(body, bool touched, hint)  the distance at t (may be a far estimate:
 //                                         slab_step; never with touched, which asks for the
-//                                         distance itself), `hint` the last step's normal
+//                                         distance itself), `hint` the last distance's normal
 //                                         (NaN at the first) to start its descent from;
 //   Distance<T, N> exact(body)            the signed distance at t (for a hit found overlapping);
 //   Party side(n, body)                   as above;
