@@ -227,10 +227,9 @@ Contact<T, N> advance(const Ellipsoid<T, N>& a, const RigidMotion<T, N>& motion,
   touch.point_b.setConstant(nan);
   touch.normal.setConstant(nan);
   touch.distance = nan;
-  Vec<T, N> hint = Vec<T, N>::Constant(nan);  // the last distance's normal
-  Distance<T, N> d = touch;                   // the last distance: its normal is the steps' axis
-  R taken_advance = 0;                        // the advance of the step that took it
-  bool take = true;                           // the next step takes a distance
+  Distance<T, N> d = touch;  // the last distance: its normal is the steps' axis and the next one's hint
+  R taken_advance = 0;       // the advance of the step that took it
+  bool take = true;          // the next step takes a distance
   for (int step = 0; step < options.max_motion_steps; ++step) {
     out.iterations = step;
     const Ellipsoid<T, N> body = moved(a, motion, turn, T(t));
@@ -280,8 +279,7 @@ Contact<T, N> advance(const Ellipsoid<T, N>& a, const RigidMotion<T, N>& motion,
       take = !(8 * g.advance > taken_advance && t + g.advance > t);
     }
     if (take) {
-      d = other.near(body, touched, hint);
-      hint = d.normal;
+      d = other.near(body, touched, d.normal);
       if (step == 0 && d.status == DistanceStatus::overlapping) {
         out.status = ContactStatus::overlapping_at_start;
         out.time = T(0);
@@ -323,7 +321,7 @@ Contact<T, N> advance(const Ellipsoid<T, N>& a, const RigidMotion<T, N>& motion,
       // bodies' size over their speed, 4 ulps of t can exceed that slab's gap.)
       const bool resolved = g.margin <= (turning.small * turning.scale(t) + g.small) / 4;
       if (t > R(0) && resolved && g.gap <= g.margin + 4 * ulp * t * g.fastest)
-        return fill(ContactStatus::hit, t, d.point_a.allFinite() ? d : other.near(body, true, hint));
+        return fill(ContactStatus::hit, t, d.point_a.allFinite() ? d : other.near(body, true, d.normal));
       break;
     }
     t += advance;
