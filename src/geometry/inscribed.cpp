@@ -1,7 +1,8 @@
 // The maximum-volume ellipsoid inside a polytope of half-spaces (geometry.hpp): phase I on the
-// Chebyshev-ball linear program, a barrier method on (B, d) in long double, the dual point of
-// the last center corrected to feasibility, the body shrunk by ulps until the exact
-// classification finds it inside every half-space, its volume gap from the dual bound.
+// Chebyshev-ball linear program, a barrier method on (B, d) (in double along the path, in
+// long double at the centers that certify), the dual point of the last center corrected to
+// feasibility, the body shrunk by ulps until the exact classification finds it inside every
+// half-space, its volume gap from the dual bound.
 #include <ellipsect/classify.hpp>
 #include <ellipsect/geometry.hpp>
 #include <ellipsect/half_space.hpp>
@@ -15,6 +16,7 @@
 #include <Eigen/Eigenvalues>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <iterator>
 #include <limits>
@@ -34,8 +36,6 @@ namespace {
 using L = long double;
 template <int N> using LV = Eigen::Matrix<L, N, 1>;
 template <int N> using LM = Eigen::Matrix<L, N, N>;
-using LX = Eigen::Matrix<L, Eigen::Dynamic, 1>;
-using LXX = Eigen::Matrix<L, Eigen::Dynamic, Eigen::Dynamic>;
 
 const L eps_l = std::numeric_limits<L>::epsilon();
 
@@ -69,13 +69,15 @@ struct Planes {
 
 // A symmetric positive definite solve of the Newton system, Jacobi-scaled, with a ridge of
 // 1e-18 for directions the objective leaves flat (normals that do not span).
-LX newton_direction(const LXX& h, const LX& g) {
+template <class H, class G>
+G newton_direction(const H& h, const G& g) {
+  using S = typename G::Scalar;
   const Eigen::Index n = g.size();
-  LX d(n);
+  G d(n);
   for (Eigen::Index i = 0; i < n; ++i) d[i] = h(i, i) > 0 ? 1 / std::sqrt(h(i, i)) : 1;
-  LXX s = d.asDiagonal() * h * d.asDiagonal();
-  s.diagonal().array() += L(1e-18);
-  const LX x = Eigen::LDLT<LXX>(s).solve(-(d.asDiagonal() * g));
+  H s = d.asDiagonal() * h * d.asDiagonal();
+  s.diagonal().array() += S(1e-18);
+  const G x = Eigen::LDLT<H>(s).solve(-(d.asDiagonal() * g));
   return d.asDiagonal() * x;
 }
 
@@ -106,10 +108,12 @@ Phase1<T, N> phase_one(const Planes<T, N>& p) {
   }
   const std::size_t m = a.size();
   constexpr int n = N + 1;
+  using LX = Eigen::Matrix<L, n, 1>;
+  using LXX = Eigen::Matrix<L, n, n>;
   Phase1<T, N> out;
   L lowest = *std::min_element(beta.begin(), beta.end());
   out.r = lowest - 1;
-  LX v(n);
+  LX v;
   v << out.x, out.r;
   const auto slacks = [&](const LX& at, std::vector<L>& s) {
     s.resize(m);
@@ -135,21 +139,23 @@ Phase1<T, N> phase_one(const Planes<T, N>& p) {
         return out;
       }
       ++out.steps;
-      LX g = LX::Zero(n);
-      LXX h = LXX::Zero(n, n);
+      LX g = LX::Zero();
+      LXX h = LXX::Zero();
       g[N] = -t;
       for (std::size_t i = 0; i < m; ++i) {
-        LX c(n);
+        LX c;
         c << a[i], 1;
-        g += c / s[i];
-        h.noalias() += c * c.transpose() / (s[i] * s[i]);
+        const L inverse = 1 / s[i];
+        g += inverse * c;
+        h.template selfadjointView<Eigen::Lower>().rankUpdate(c, inverse * inverse);
       }
+      h = h.template selfadjointView<Eigen::Lower>();
       const LX dv = newton_direction(h, g);
       const L lambda2 = -g.dot(dv);
       if (!(lambda2 > L(1e-10))) break;
       L alpha = 1;
       for (std::size_t i = 0; i < m; ++i) {
-        LX c(n);
+        LX c;
         c << a[i], 1;
         const L rate = c.dot(dv);
         if (rate > 0) alpha = std::min(alpha, L(0.99) * s[i] / rate);
@@ -188,39 +194,71 @@ Phase1<T, N> phase_one(const Planes<T, N>& p) {
 
 // ---- The barrier method on (B, d) ----
 
+// B's coordinates in the symmetric basis E_a: e_k e_k^T, then e_k e_l^T + e_l e_k^T (k < l).
 template <int N>
-struct Iterate {
-  LM<N> b = LM<N>::Identity();
-  LV<N> d = LV<N>::Zero();
+constexpr int sym_size = N * (N + 1) / 2;
+
+// The half-spaces as the barrier sees them, in the scalar S of its centering: a_i, beta_i, and
+// the parts of the Hessian of -log(s_i^2 - |B a_i|^2) that do not change with (B, d):
+// U_i^T U_i (U_i's columns E_a a_i, the derivatives of B a_i) and a_i a_i^T.
+template <class S, int N>
+struct Faces {
+  static constexpr int q = sym_size<N>;
+  std::vector<Eigen::Matrix<S, N, 1>> a;
+  std::vector<S> beta;
+  std::vector<Eigen::Matrix<S, N, q>> u;
+  std::vector<Eigen::Matrix<S, q, q>> uu;
+  std::vector<Eigen::Matrix<S, N, N>> aa;
+
+  template <class T>
+  explicit Faces(const Planes<T, N>& p) {
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      const Eigen::Matrix<S, N, 1> ai = p.a[i].template cast<S>();
+      Eigen::Matrix<S, N, q> ui = Eigen::Matrix<S, N, q>::Zero();
+      int col = 0;
+      for (int k = 0; k < N; ++k) ui(k, col++) = ai[k];
+      for (int k = 0; k < N; ++k)
+        for (int l = k + 1; l < N; ++l, ++col) ui(k, col) = ai[l], ui(l, col) = ai[k];
+      a.push_back(ai);
+      beta.push_back(S(p.beta[i]));
+      u.push_back(ui);
+      uu.push_back(ui.transpose() * ui);
+      aa.push_back(ai * ai.transpose());
+    }
+  }
+  std::size_t size() const { return a.size(); }
 };
 
-// The symmetric basis E_p: e_k e_k^T, then e_k e_l^T + e_l e_k^T (k < l).
-template <int N>
-std::vector<LM<N>> symmetric_basis() {
-  std::vector<LM<N>> e;
-  for (int k = 0; k < N; ++k) e.push_back(LV<N>::Unit(k) * LV<N>::Unit(k).transpose());
-  for (int k = 0; k < N; ++k)
-    for (int l = k + 1; l < N; ++l)
-      e.push_back(LV<N>::Unit(k) * LV<N>::Unit(l).transpose() + LV<N>::Unit(l) * LV<N>::Unit(k).transpose());
-  return e;
-}
+template <class S, int N>
+struct Iterate {
+  Eigen::Matrix<S, N, N> b = Eigen::Matrix<S, N, N>::Identity();
+  Eigen::Matrix<S, N, 1> d = Eigen::Matrix<S, N, 1>::Zero();
+
+  template <class R>
+  Iterate<R, N> cast() const {
+    Iterate<R, N> y;
+    y.b = b.template cast<R>();
+    y.d = d.template cast<R>();
+    return y;
+  }
+};
 
 // The barrier's value at (B, d), or infinity outside its domain.
-template <class T, int N>
-L barrier(const Planes<T, N>& p, const Iterate<N>& x, L t) {
-  const Eigen::LLT<LM<N>> llt(x.b);
-  if (llt.info() != Eigen::Success) return std::numeric_limits<L>::infinity();
-  L logdet = 0;
+template <class S, int N>
+S barrier(const Faces<S, N>& p, const Iterate<S, N>& x, S t) {
+  const Eigen::LLT<Eigen::Matrix<S, N, N>> llt(x.b);
+  if (llt.info() != Eigen::Success) return std::numeric_limits<S>::infinity();
+  S logdet = 0;
   for (int k = 0; k < N; ++k) {
-    const L dk = llt.matrixL()(k, k);
-    if (!(dk > 0)) return std::numeric_limits<L>::infinity();
+    const S dk = llt.matrixL()(k, k);
+    if (!(dk > 0)) return std::numeric_limits<S>::infinity();
     logdet += 2 * std::log(dk);
   }
-  L f = -t * logdet;
+  S f = -t * logdet;
   for (std::size_t i = 0; i < p.size(); ++i) {
-    const L s = p.beta[i] - p.a[i].dot(x.d);
-    const L w = (x.b * p.a[i]).norm();
-    if (!(s > w)) return std::numeric_limits<L>::infinity();
+    const S s = p.beta[i] - p.a[i].dot(x.d);
+    const S w = (x.b * p.a[i]).norm();
+    if (!(s > w)) return std::numeric_limits<S>::infinity();
     f -= std::log((s - w) * (s + w));
   }
   return f;
@@ -235,8 +273,8 @@ struct Dual {
   std::vector<double> weights;
 };
 
-template <class T, int N>
-Dual dual_point(const Planes<T, N>& p, const Iterate<N>& x, L t) {
+template <int N>
+Dual dual_point(const Faces<L, N>& p, const Iterate<L, N>& x, L t) {
   const std::size_t m = p.size();
   Dual out;
   std::vector<L> mu(m), s(m);
@@ -252,7 +290,7 @@ Dual dual_point(const Planes<T, N>& p, const Iterate<N>& x, L t) {
     mu[i] = 2 * s[i] / (t * g);
     z[i] = -2 * w / (t * g);
     r += mu[i] * p.a[i];
-    normal.noalias() += mu[i] * p.a[i] * p.a[i].transpose();
+    normal.noalias() += mu[i] * p.aa[i];
   }
   const Eigen::LDLT<LM<N>> ldlt(normal);
   if (ldlt.info() != Eigen::Success) return out;
@@ -298,46 +336,94 @@ Dual dual_point(const Planes<T, N>& p, const Iterate<N>& x, L t) {
 }
 
 // The Newton step of the barrier at (B, d), t: direction (B part, d part) and decrement^2.
-template <class T, int N>
-std::pair<Iterate<N>, L> newton_step(const Planes<T, N>& p, const Iterate<N>& x, L t, const std::vector<LM<N>>& basis) {
-  constexpr int q = N * (N + 1) / 2;
+// In the coordinates v = (B's in E_a, d), with s_i = beta_i - a_i . d, w_i = B a_i,
+// g_i = s_i^2 - |w_i|^2 and r_i = (U_i^T w_i, s_i a_i): the term -log g_i has gradient
+// 2 r_i / g_i and Hessian 4 r_i r_i^T / g_i^2 + (2 / g_i) diag(U_i^T U_i, -a_i a_i^T);
+// -t log det B has gradient -t tr(B^-1 E_a) and Hessian t tr(B^-1 E_a B^-1 E_b).
+template <class S, int N>
+std::pair<Iterate<S, N>, S> newton_step(const Faces<S, N>& p, const Iterate<S, N>& x, S t) {
+  constexpr int q = sym_size<N>;
   constexpr int nv = q + N;
-  LX g = LX::Zero(nv);
-  LXX h = LXX::Zero(nv, nv);
-  const LM<N> inverse = x.b.inverse();
+  using V = Eigen::Matrix<S, nv, 1>;
+  using H = Eigen::Matrix<S, nv, nv>;
+  using M = Eigen::Matrix<S, N, N>;
+  V g = V::Zero();
+  H h = H::Zero();
+  const M inverse = x.b.inverse();
+  std::array<M, q> ia;  // B^-1 E_a: the columns of B^-1 and their sums, by E_a's pattern
+  int col = 0;
+  for (int k = 0; k < N; ++k) ia[std::size_t(col++)] = inverse.col(k) * M::Identity().row(k);
+  for (int k = 0; k < N; ++k)
+    for (int l = k + 1; l < N; ++l, ++col)
+      ia[std::size_t(col)] = inverse.col(k) * M::Identity().row(l) + inverse.col(l) * M::Identity().row(k);
   for (int a = 0; a < q; ++a) {
-    const LM<N> ia = inverse * basis[std::size_t(a)];
-    g[a] = -t * ia.trace();
-    for (int b = 0; b <= a; ++b) {
-      const L v = t * (ia * inverse * basis[std::size_t(b)]).trace();
-      h(a, b) = v;
-      h(b, a) = v;
-    }
+    g[a] = -t * ia[std::size_t(a)].trace();
+    for (int b = 0; b <= a; ++b)  // tr(X Y) = sum of X .* Y^T
+      h(a, b) = t * ia[std::size_t(a)].cwiseProduct(ia[std::size_t(b)].transpose()).sum();
   }
-  Eigen::Matrix<L, N + 1, nv> jac;
   for (std::size_t i = 0; i < p.size(); ++i) {
-    const L s = p.beta[i] - p.a[i].dot(x.d);
-    const LV<N> w = x.b * p.a[i];
-    const L nw = w.norm();
-    const L gi = (s - nw) * (s + nw);
-    jac.setZero();
-    for (int a = 0; a < q; ++a) jac.template block<N, 1>(1, a) = basis[std::size_t(a)] * p.a[i];
-    for (int j = 0; j < N; ++j) jac(0, q + j) = -p.a[i][j];
-    Eigen::Matrix<L, N + 1, 1> grad, jy;
-    grad << -2 * s / gi, 2 * w / gi;
-    jy << s, -w;
-    Eigen::Matrix<L, N + 1, N + 1> hess = (4 / (gi * gi)) * jy * jy.transpose();
-    hess(0, 0) -= 2 / gi;
-    for (int k = 1; k <= N; ++k) hess(k, k) += 2 / gi;
-    g += jac.transpose() * grad;
-    h.noalias() += jac.transpose() * hess * jac;
+    const S s = p.beta[i] - p.a[i].dot(x.d);
+    const Eigen::Matrix<S, N, 1> w = x.b * p.a[i];
+    const S nw = w.norm();
+    const S gi = (s - nw) * (s + nw);
+    V r;
+    r.template head<q>() = p.u[i].transpose() * w;
+    r.template tail<N>() = s * p.a[i];
+    g += (2 / gi) * r;
+    h.template selfadjointView<Eigen::Lower>().rankUpdate(r, 4 / (gi * gi));
+    h.template topLeftCorner<q, q>() += (2 / gi) * p.uu[i];
+    h.template bottomRightCorner<N, N>() -= (2 / gi) * p.aa[i];
   }
-  const LX dv = newton_direction(h, g);
-  Iterate<N> step;
+  h = h.template selfadjointView<Eigen::Lower>();
+  const V dv = newton_direction(h, g);
+  Iterate<S, N> step;
   step.b.setZero();
-  for (int a = 0; a < q; ++a) step.b += dv[a] * basis[std::size_t(a)];
+  col = 0;
+  for (int k = 0; k < N; ++k) step.b(k, k) = dv[col++];
+  for (int k = 0; k < N; ++k)
+    for (int l = k + 1; l < N; ++l, ++col) step.b(k, l) = step.b(l, k) = dv[col];
   step.d = dv.template tail<N>();
   return {step, -g.dot(dv)};
+}
+
+// Newton's method on the barrier at t from x, damped (Armijo on a quarter of the decrement),
+// until the decrement reaches its floor, the steps run out (capped) or the body's trace passes
+// too_large (unbounded).
+enum class Centering { centered, capped, unbounded };
+
+template <class S, int N>
+Centering center_at(const Faces<S, N>& p, Iterate<S, N>& x, S t, S too_large, int& left, int& iterations) {
+  S previous = std::numeric_limits<S>::infinity();
+  for (int inner = 0; inner < 80; ++inner) {
+    if (left <= 0) return Centering::capped;
+    --left;
+    ++iterations;
+    const auto [dx, lambda2] = newton_step<S, N>(p, x, t);
+    if (!(lambda2 >= 0) || lambda2 < S(1e-22)) break;
+    const S f0 = barrier<S, N>(p, x, t);
+    S alpha = 1;
+    bool moved = false;
+    for (int halving = 0; halving < 80; ++halving, alpha /= 2) {
+      Iterate<S, N> trial;
+      trial.b = x.b + alpha * dx.b;
+      trial.d = x.d + alpha * dx.d;
+      const S f = barrier<S, N>(p, trial, t);
+      if (!std::isfinite(double(f))) continue;
+      if (lambda2 < S(1e-3) || f <= f0 - S(0.25) * alpha * lambda2) {
+        x = trial;
+        moved = true;
+        break;
+      }
+    }
+    if (!moved) break;
+    if (x.b.trace() > too_large) return Centering::unbounded;
+    // Near the center Newton's decrement squares at each step: where it does not fall
+    // fourfold it has reached its rounding's floor (which grows with t: the slacks of the
+    // touching half-spaces are about 1/t of their distances, so rounded to eps t).
+    if (lambda2 < S(1e-6) && lambda2 > previous / 4) break;
+    previous = lambda2;
+  }
+  return Centering::centered;
 }
 
 InputError unrepresentable() {
@@ -415,8 +501,9 @@ InscribedEllipsoid<T, N> inscribed_ellipsoid(std::span<const HalfSpace<T, N>> ha
   // Radii beyond 1e12 of the larger of the points' extent and the inradius: unbounded.
   const L too_large = L(1e12) * std::max(scale1, inradius) / scale;
 
-  const auto basis = symmetric_basis<N>();
-  Iterate<N> x;
+  const Faces<L, N> faces(p);
+  const Faces<double, N> faces_double(p);
+  Iterate<L, N> x;
   x.b = LM<N>::Identity() * (lowest / 2);
   x.d.setZero();
   const double requested = options.volume_gap;
@@ -424,43 +511,25 @@ InscribedEllipsoid<T, N> inscribed_ellipsoid(std::span<const HalfSpace<T, N>> ha
   int left = options.max_inscribed_iterations;
   bool capped = false, stalled = false, have_dual = false;
   Dual best;
-  Iterate<N> at_best = x;
+  Iterate<L, N> at_best = x;
   L t_best = 1;
+  // The path is followed in double while the touching half-spaces' slacks (about 1/t of their
+  // distances) keep 20 bits there and no certificate is due (m / t above the target: the
+  // central gap is 2m / t); the centers that certify, in long double, from there on.
+  const L t_double = std::ldexp(L(1), -20) / L(std::numeric_limits<double>::epsilon());
   for (L t = L(m);; t *= 8) {
-    L previous = std::numeric_limits<L>::infinity();
-    for (int inner = 0; inner < 80; ++inner) {
-      if (left <= 0) {
-        capped = true;
-        break;
-      }
-      --left;
-      ++out.iterations;
-      const auto [dx, lambda2] = newton_step<T, N>(p, x, t, basis);
-      if (!(lambda2 >= 0) || lambda2 < L(1e-22)) break;
-      const L f0 = barrier<T, N>(p, x, t);
-      L alpha = 1;
-      bool moved = false;
-      for (int halving = 0; halving < 80; ++halving, alpha /= 2) {
-        Iterate<N> trial;
-        trial.b = x.b + alpha * dx.b;
-        trial.d = x.d + alpha * dx.d;
-        const L f = barrier<T, N>(p, trial, t);
-        if (!std::isfinite(double(f))) continue;
-        if (lambda2 < L(1e-3) || f <= f0 - L(0.25) * alpha * lambda2) {
-          x = trial;
-          moved = true;
-          break;
-        }
-      }
-      if (!moved) break;
-      if (x.b.trace() > too_large) return give_up(InscribedStatus::unbounded);
-      // Near the center Newton's decrement squares at each step: where it does not fall
-      // fourfold it has reached its rounding's floor (which grows with t: the slacks of the
-      // touching half-spaces are about 1/t of their distances, so rounded to eps t).
-      if (lambda2 < L(1e-6) && lambda2 > previous / 4) break;
-      previous = lambda2;
+    const bool certifying = L(m) / t <= target;
+    Centering c;
+    if (t <= t_double && !certifying) {
+      Iterate<double, N> y = x.template cast<double>();
+      c = center_at<double, N>(faces_double, y, double(t), double(too_large), left, out.iterations);
+      x = y.template cast<L>();
+    } else {
+      c = center_at<L, N>(faces, x, t, too_large, left, out.iterations);
     }
-    const Dual dual = dual_point<T, N>(p, x, t);
+    if (c == Centering::unbounded) return give_up(InscribedStatus::unbounded);
+    capped = c == Centering::capped;
+    const Dual dual = capped || certifying ? dual_point<N>(faces, x, t) : Dual{};
     if (dual.ok) {
       L logdet = 0;
       const Eigen::LLT<LM<N>> llt(x.b);

@@ -26,8 +26,9 @@ mkdirSync(out, {recursive: true});
 const TOLERANCE = 1e-9;
 // The page must answer a drag within this (mean query time per frame, ms); the mesh slide
 // makes n (n + 1) / 2 + n rounds for a slide of n (it replays them: web/src/answers.cpp);
-// the geometry demo's inscribed ellipse is a barrier method in long double, which the wasm
-// build computes in 128-bit software floating point.
+// the geometry demo's inscribed ellipse certifies its last centers in long double, which the
+// wasm build computes in 128-bit software floating point, and its enclosing ellipse in
+// rationals (Boost's, without GMP).
 // motion3d: a rigid first contact and ten sampled overlaps.
 // mesh_slide3d: the same replay over its 26 triangles.
 const FRAME_BUDGET_MS = {mesh_slide: 3, geometry: 10, motion3d: 5, mesh_slide3d: 10};
