@@ -8,6 +8,8 @@
 //                point on the optimum's boundary, the hardest case for the weights
 //   flat         uniform in a box 1e-3 thin along its last axis, turned
 //   near_circle  on the unit circle (sphere) with radial noise of 1e-6
+//   needle       uniform in a box 1e-4 thin along every axis but the first, turned (aspect
+//                ratio 1e4; the inscribed ellipsoid's rows only)
 // Timed:
 //   enclosing/ellipsect/<cloud>/<m>/<eps>  enclosing_ellipsoid with volume_gap eps (1e-3, 1e-6, 1e-9)
 //   enclosing/cgal_approx/<cloud>/<m>/<eps> CGAL::Approximate_min_ellipsoid_d, eps 1e-3 (and
@@ -16,6 +18,9 @@
 //                                          guarantee: volume <= (1 + eps) the minimum), the
 //                                          Cartesian_d<double> kernel, MP_Float exact type
 //   enclosing/cgal_exact/<cloud>/<m>       CGAL::Min_ellipse_2 (2D), exact rationals (Gmpq)
+//   inscribed/ellipsect/<cloud>/<m>        inscribed_ellipsoid of the cloud's hull_half_spaces
+//                                          (the hull formed once, outside the timing), volume
+//                                          gap 1e-9; no peer in Debian computes it
 // The peers get the cloud less its first point (exact here), so that their double output
 // keeps its digits far from the origin; their answers are moved back in long double.
 // Counters: outside (points the returned ellipsoid leaves out, its form above 1 in long
@@ -24,7 +29,9 @@
 // gap (ellipsect's certified volume_gap; CGAL's achieved_epsilon), excess (the volume over
 // that of ellipsect's answer at eps 1e-9 on the same cloud, less 1: within 1e-9 of the
 // optimum, so a negative excess below -1e-9 would be a body smaller than the optimum),
-// iterations (ellipsect's weight updates).
+// iterations (ellipsect's weight updates). The inscribed rows: gap (the certified volume_gap),
+// faces (the hull's half-spaces), iterations (phase I's and the barrier's Newton steps),
+// optimal.
 #include <ellipsect/geometry.hpp>
 
 #include "scenarios/scenarios.hpp"
@@ -78,6 +85,10 @@ Cloud<N> make_cloud(const std::string& kind, int m) {
     }
     if (kind == "flat") {
       p[N - 1] *= 1e-3;
+      p = r * p;
+    }
+    if (kind == "needle") {
+      p.template tail<N - 1>() *= 1e-4;
       p = r * p;
     }
     out.push_back(p);
@@ -155,6 +166,20 @@ void ellipsect_case(benchmark::State& state, std::string kind, int m, double eps
   state.counters["optimal"] = e.status == EnclosingStatus::optimal;
 }
 
+template <int N>
+void inscribed_case(benchmark::State& state, std::string kind, int m) {
+  const std::vector<HalfSpace<double, N>> faces = hull_half_spaces<double, N>(cloud_of<N>(kind, m));
+  InscribedEllipsoid<double, N> e;
+  for (auto _ : state) {
+    e = inscribed_ellipsoid<double, N>(faces, {.volume_gap = 1e-9});
+    benchmark::DoNotOptimize(e.volume_gap);
+  }
+  state.counters["gap"] = e.volume_gap;
+  state.counters["faces"] = double(faces.size());
+  state.counters["iterations"] = double(e.iterations);
+  state.counters["optimal"] = e.status == InscribedStatus::optimal;
+}
+
 #ifdef ELLIPSECT_HAVE_CGAL
 template <int N>
 void cgal_approx_case(benchmark::State& state, std::string kind, int m, double eps) {
@@ -219,6 +244,11 @@ void cgal_exact_case(benchmark::State& state, std::string kind, int m) {
 template <int N>
 void register_dimension() {
   const std::string d = std::to_string(N) + "d";
+  for (const std::string kind : {"box", "gaussian", "sphere_far", "flat", "near_circle", "needle"})
+    for (const int m : {10, 1000})
+      benchmark::RegisterBenchmark(("inscribed/ellipsect/" + d + "/" + kind + "/" + std::to_string(m)).c_str(),
+                                   inscribed_case<N>, kind, m)
+          ->Unit(benchmark::kMillisecond);
   for (const std::string kind : {"box", "gaussian", "sphere_far", "flat", "near_circle"})
     for (const int m : {10, 1000, 100000, 1000000}) {
       const std::string tail = d + "/" + kind + "/" + std::to_string(m);

@@ -15,6 +15,8 @@
 #endif
 
 #include <array>
+#include <bit>
+#include <cmath>
 #include <utility>
 
 namespace ellipsect::detail::rational {
@@ -28,6 +30,47 @@ using Q = boost::multiprecision::cpp_rational;
 #endif
 
 using Z = decltype(numerator(Q()));
+
+// A dyadic rational m 2^e (m an integer): every double is one, and sums, differences and
+// products of them stay one, exact without the common divisor a rational reduces by after
+// each step. What a decision that needs no division computes with.
+struct Dyadic {
+  Z m = 0;
+  int e = 0;
+
+  Dyadic() = default;
+  Dyadic(Z mantissa, int exponent) : m(std::move(mantissa)), e(exponent) {}
+  // x exactly (finite), its mantissa stripped of trailing zero bits.
+  explicit Dyadic(double x) {
+    int ex = 0;
+    long long i = static_cast<long long>(std::ldexp(std::frexp(x, &ex), 53));  // x = i 2^(ex - 53)
+    if (i == 0) return;
+    const int zeros = std::countr_zero(static_cast<unsigned long long>(i));
+    i >>= zeros;  // arithmetic: i is a multiple of 2^zeros
+    m = Z(i);
+    e = ex - 53 + zeros;
+  }
+};
+
+inline Dyadic operator*(const Dyadic& a, const Dyadic& b) { return {a.m * b.m, a.e + b.e}; }
+inline Dyadic operator+(const Dyadic& a, const Dyadic& b) {
+  if (a.m == 0) return b;
+  if (b.m == 0) return a;
+  if (a.e >= b.e) return {(a.m << unsigned(a.e - b.e)) + b.m, b.e};
+  return {a.m + (b.m << unsigned(b.e - a.e)), a.e};
+}
+inline Dyadic operator-(const Dyadic& a) { return {-a.m, a.e}; }
+inline Dyadic operator-(const Dyadic& a, const Dyadic& b) { return a + -b; }
+inline Dyadic& operator+=(Dyadic& a, const Dyadic& b) { return a = a + b; }
+inline int sign(const Dyadic& a) { return a.m > 0 ? 1 : a.m < 0 ? -1 : 0; }
+inline bool operator<(const Dyadic& a, const Dyadic& b) { return sign(a - b) < 0; }
+
+// a / b (b nonzero) rounded to the nearest double.
+inline double quotient(const Dyadic& a, const Dyadic& b) {
+  const int shift = a.e - b.e;
+  const Q q = shift >= 0 ? Q(a.m << unsigned(shift), b.m) : Q(a.m, b.m << unsigned(-shift));
+  return static_cast<double>(q);
+}
 
 template <int N> using QVec = std::array<Q, N>;
 template <int N> using QMat = std::array<QVec<N>, N>;

@@ -322,16 +322,47 @@ struct Form {
   }
 };
 
-// (p - c)^T M (p - c) of the stored body, in rationals: exactly 0 where it is <= 1 (the
-// body holds p), else the value rounded up.
+// The stored body's form (p - c)^T M (p - c) = sum_k y_k^2 / r_k^2, y = A^T (p - c) (A the
+// axes every query computes with, detail/axes.hpp), in dyadic rationals: excess(p) exactly 0
+// where it is <= 1 (the body holds p), else the form rounded up.
 template <int N>
-double excess_form(const detail::rational::Body<N>& b, const Vec<double, N>& p) {
-  using namespace detail::rational;
-  QVec<N> d;
-  for (int i = 0; i < N; ++i) d[i] = Q(p[i]) - b.center[i];
-  const Q q = dot<N>(d, times<N>(b.quadric, d));
-  return q <= 1 ? 0 : static_cast<double>(q) * (1 + 2 * std::numeric_limits<double>::epsilon());
-}
+struct ExactForm {
+  using D = detail::rational::Dyadic;
+  std::array<D, N> center;
+  std::array<std::array<D, N>, N> axes;  // axes[i][k]: row i of A
+  std::array<D, N> r2;                    // r_k^2
+  D volume2;                              // prod_k r_k^2
+
+  template <class T>
+  explicit ExactForm(const Ellipsoid<T, N>& e) : volume2(1.0) {
+    const Mat<double, N> a = detail::work_axes<double>(e);
+    for (int i = 0; i < N; ++i) {
+      center[std::size_t(i)] = D(double(e.center()[i]));
+      for (int k = 0; k < N; ++k) axes[std::size_t(i)][std::size_t(k)] = D(a(i, k));
+    }
+    for (int k = 0; k < N; ++k) {
+      const D r(double(e.radii()[k]));
+      r2[std::size_t(k)] = r * r;
+      volume2 = volume2 * r2[std::size_t(k)];
+    }
+  }
+
+  double excess(const Vec<double, N>& p) const {
+    std::array<D, N> d;
+    for (int i = 0; i < N; ++i) d[std::size_t(i)] = D(p[i]) - center[std::size_t(i)];
+    D num;  // sum_k y_k^2 prod_{j != k} r_j^2: the form times prod r^2
+    for (int k = 0; k < N; ++k) {
+      D y;
+      for (int i = 0; i < N; ++i) y += axes[std::size_t(i)][std::size_t(k)] * d[std::size_t(i)];
+      D term = y * y;
+      for (int j = 0; j < N; ++j)
+        if (j != k) term = term * r2[std::size_t(j)];
+      num += term;
+    }
+    if (!(volume2 < num)) return 0;
+    return detail::rational::quotient(num, volume2) * (1 + 2 * std::numeric_limits<double>::epsilon());
+  }
+};
 
 // The body grown by the least factor (up to a few ulps) that makes it hold every point: each
 // round grows it by the largest excess and a margin of ulps that doubles, so that a few
@@ -348,9 +379,8 @@ Ellipsoid<T, N> grown_to_hold(Ellipsoid<T, N> body, std::span<const Vec<T, N>> p
       else if (q + err > 1) unsure.push_back(i);
     }
     if (worst == 0) {
-      const auto exact = detail::rational::exact_body(body);
-      for (std::size_t i : unsure)
-        worst = std::max(worst, excess_form<N>(exact, points[i].template cast<double>()));
+      const ExactForm<N> exact(body);
+      for (std::size_t i : unsure) worst = std::max(worst, exact.excess(points[i].template cast<double>()));
       if (worst == 0) return body;
     }
     // Grow by sqrt(worst) and a margin of ulps of T that doubles each round.
@@ -364,31 +394,54 @@ Ellipsoid<T, N> grown_to_hold(Ellipsoid<T, N> body, std::span<const Vec<T, N>> p
   throw unrepresentable(name);
 }
 
-// vol(body) / (the weights' lower bound) - 1, in rationals, rounded up (geometry.hpp):
-// ratio^2 = 1 / (det M_body det(N S_u)) with the weights normalized exactly.
+// det m for N = 2, 3, exact.
+template <int N>
+detail::rational::Dyadic determinant(const std::array<std::array<detail::rational::Dyadic, N>, N>& m) {
+  if constexpr (N == 2) {
+    return m[0][0] * m[1][1] - m[0][1] * m[1][0];
+  } else {
+    static_assert(N == 3);
+    return m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
+           m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
+  }
+}
+
+// vol(body) / (the weights' lower bound) - 1, exact to the last rounding, rounded up
+// (geometry.hpp): ratio^2 = 1 / (det M_body det(N S_u)). With T = sum u_i, P = sum u_i p_i and
+// D_i = T p_i - P (so p_i - P / T = D_i / T), N S_u = (N / T^3) sum u_i D_i D_i^T and
+// det M_body = det(A)^2 / prod r_k^2: ratio^2 = T^(3N) prod r_k^2 / (N^N det(sum u_i D_i D_i^T)
+// det(A)^2), every factor a dyadic rational, one division.
 template <class T, int N>
 double certified_gap(const Ellipsoid<T, N>& body, std::span<const Vec<T, N>> points, const std::vector<std::size_t>& support,
                      const std::vector<double>& weights) {
-  using namespace detail::rational;
-  Q total = 0;
-  for (double u : weights) total += Q(u);
-  QVec<N> c{};
+  using D = detail::rational::Dyadic;
+  using DMat = std::array<std::array<D, N>, N>;
+  D total;
+  for (double u : weights) total += D(u);
+  if (!(sign(total) > 0)) return std::numeric_limits<double>::infinity();
+  std::array<D, N> sum;
   for (std::size_t i = 0; i < support.size(); ++i)
-    for (int j = 0; j < N; ++j) c[j] += Q(weights[i]) * Q(double(points[support[i]][j]));
-  for (int j = 0; j < N; ++j) c[j] /= total;
-  QMat<N> s{};
+    for (int j = 0; j < N; ++j) sum[std::size_t(j)] += D(weights[i]) * D(double(points[support[i]][j]));
+  DMat s{};
   for (std::size_t i = 0; i < support.size(); ++i) {
-    QVec<N> d;
-    for (int j = 0; j < N; ++j) d[j] = Q(double(points[support[i]][j])) - c[j];
-    const Q w = Q(weights[i]) * N / total;
-    for (int a = 0; a < N; ++a)
-      for (int b = 0; b < N; ++b) s[a][b] += w * d[a] * d[b];
+    std::array<D, N> d;
+    for (int j = 0; j < N; ++j) d[std::size_t(j)] = total * D(double(points[support[i]][j])) - sum[std::size_t(j)];
+    const D u(weights[i]);
+    for (int a = 0; a < N; ++a) {
+      const D ud = u * d[std::size_t(a)];
+      for (int b = a; b < N; ++b) s[std::size_t(a)][std::size_t(b)] += ud * d[std::size_t(b)];
+    }
   }
-  const QVec<N> zero{};
-  const Q det_s = det_and_form<N>(s, zero, zero).first;
-  const Q det_body = det_and_form<N>(exact_body(body).quadric, zero, zero).first;
-  if (!(det_s > 0)) return std::numeric_limits<double>::infinity();
-  const double r2 = static_cast<double>(Q(1) / (det_s * det_body));
+  for (int a = 0; a < N; ++a)
+    for (int b = 0; b < a; ++b) s[std::size_t(a)][std::size_t(b)] = s[std::size_t(b)][std::size_t(a)];
+  const D det_s = determinant<N>(s);
+  if (!(sign(det_s) > 0)) return std::numeric_limits<double>::infinity();
+  const ExactForm<N> form(body);
+  const D det_a = determinant<N>(form.axes);
+  D numerator = form.volume2, denominator = det_s * det_a * det_a;
+  for (int k = 0; k < 3 * N; ++k) numerator = numerator * total;
+  for (int k = 0; k < N; ++k) denominator = denominator * D(double(N));
+  const double r2 = detail::rational::quotient(numerator, denominator);
   const double r = std::sqrt(r2);
   return std::nextafter(r - 1 + 3 * std::numeric_limits<double>::epsilon() * r, std::numeric_limits<double>::infinity());
 }
@@ -521,7 +574,7 @@ Vec<T, N> inside_point(const Ellipsoid<T, N>& b, const V<N>& v) {
   for (int k = std::min(std::numeric_limits<T>::digits, 43); k >= 1; k -= 4) {
     const Vec<T, N> x = (c + arm * (1 - std::ldexp(1.0L, -k))).template cast<T>();
     const auto [q, err] = form(x);
-    if (q + err <= 1 || (q - err <= 1 && excess_form<N>(detail::rational::exact_body(b), x.template cast<double>()) == 0))
+    if (q + err <= 1 || (q - err <= 1 && ExactForm<N>(b).excess(x.template cast<double>()) == 0))
       return x;
   }
   return b.center();

@@ -21,11 +21,10 @@
 namespace ellipsect {
 namespace {
 
+using D = detail::rational::Dyadic;
 using detail::rational::Q;
 using P2 = Eigen::Vector2d;
 using P3 = Eigen::Vector3d;
-
-int sign(const Q& q) { return q > 0 ? 1 : q < 0 ? -1 : 0; }
 
 // Shewchuk's filters fail where the products leave double's normal range: decide exactly.
 bool filter_holds(double det, double bound) {
@@ -37,7 +36,7 @@ int orient2(const P2& a, const P2& b, const P2& c) {
   const double l = (a.x() - c.x()) * (b.y() - c.y()), r = (a.y() - c.y()) * (b.x() - c.x());
   const double det = l - r;
   if (filter_holds(det, 3.3306690738754716e-16 * (std::abs(l) + std::abs(r)))) return det > 0 ? 1 : -1;
-  return sign((Q(a.x()) - Q(c.x())) * (Q(b.y()) - Q(c.y())) - (Q(a.y()) - Q(c.y())) * (Q(b.x()) - Q(c.x())));
+  return sign((D(a.x()) - D(c.x())) * (D(b.y()) - D(c.y())) - (D(a.y()) - D(c.y())) * (D(b.x()) - D(c.x())));
 }
 
 // Sign of ((b - a) x (c - a)) . (d - a): positive where d lies on the side of the plane abc
@@ -53,8 +52,8 @@ int orient3(const P3& a, const P3& b, const P3& c, const P3& d) {
   // det above is -(the orientation of a, b, c, d as defined): the determinant of the rows
   // a - d, b - d, c - d equals -(b - a) x (c - a) . (d - a).
   if (filter_holds(det, bound)) return det > 0 ? -1 : 1;
-  std::array<std::array<Q, 3>, 3> m;
-  for (int k = 0; k < 3; ++k) m[0][k] = Q(b[k]) - Q(a[k]), m[1][k] = Q(c[k]) - Q(a[k]), m[2][k] = Q(d[k]) - Q(a[k]);
+  std::array<std::array<D, 3>, 3> m;
+  for (int k = 0; k < 3; ++k) m[0][k] = D(b[k]) - D(a[k]), m[1][k] = D(c[k]) - D(a[k]), m[2][k] = D(d[k]) - D(a[k]);
   return sign(m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
               m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]));
 }
@@ -69,8 +68,8 @@ HalfSpace<T, N> face_half_space(const Eigen::Matrix<long double, N, 1>& n, std::
   const Vec<T, N> unit = (n / n.cwiseAbs().maxCoeff()).template cast<T>();
   const Vec<T, N> normal = HalfSpace<T, N>::from_point_normal(vertices[0], unit).normal();
   const auto exact = [&](std::size_t i) {
-    Q s = 0;
-    for (int k = 0; k < N; ++k) s += Q(double(normal[k])) * Q(double(vertices[i][k]));
+    D s;
+    for (int k = 0; k < N; ++k) s += D(double(normal[k])) * D(double(vertices[i][k]));
     return s;
   };
   // n . v in double, each within its bound; the exact comparison among the candidates the
@@ -84,10 +83,10 @@ HalfSpace<T, N> face_half_space(const Eigen::Matrix<long double, N, 1>& n, std::
     if (value[i] < value[deepest]) deepest = i;
   }
   const double cut = value[deepest] + bound[deepest];
-  Q lowest = exact(deepest);
+  D lowest = exact(deepest);
   for (std::size_t i = 0; i < vertices.size(); ++i)
     if (i != deepest && value[i] - bound[i] <= cut)
-      if (Q s = exact(i); s < lowest) lowest = s, deepest = i;
+      if (D s = exact(i); s < lowest) lowest = s, deepest = i;
   return HalfSpace<T, N>::from_point_normal(vertices[deepest], normal);
 }
 
