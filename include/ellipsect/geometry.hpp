@@ -306,9 +306,9 @@ EllipsoidFit<T, N> fit_ellipsoid(std::span<const Vec<T, N>> points, const FitOpt
 // origin, at scales 1e-6 and 1e6, with far redundant half-spaces, aspect ratios to 1e4; the
 // dual bound recomputed in 50 digits from active and weights, and every support
 // |B n_i| + n_i . (c - p_i) <= 0 from the stored numbers in 50 digits.
-// Cost: O(m N^4) per Newton step, 100 to 170 steps (aspect ratios 1 to 1e4), all but the
-// last ten or so in double: 0.2-0.4 ms in 2D, 1.0-1.5 ms in 3D for 6 to 45 points' hulls
-// (bench/RESULTS.md, "The inscribed ellipsoid's path in double").
+// Cost: O(m N^4) per Newton step, 100 to 320 steps (turned needles the most), all but the
+// last ten or so in double: 0.2-0.8 ms in 2D, 0.5-2.2 ms in 3D for the hulls of 10 points
+// (bench/RESULTS.md, "The inscribed ellipsoid").
 //
 // Input: at least N + 1 half-spaces; fewer (none included) throw InputError("half_spaces").
 // A polytope whose inscribed ellipsoid has an aspect ratio above 1e8 (Ellipsoid::
