@@ -21,6 +21,15 @@
 
 namespace ellipsect::detail::rational {
 
+// Every name below in an inline namespace of its backend: a file built with GMP and one built
+// without (a test, the page's tools) then link without one inline function standing in for
+// the other's.
+#if ELLIPSECT_EXACT_GMP
+inline namespace gmp {
+#else
+inline namespace boost_int {
+#endif
+
 // GMP's rationals where the build has GMP (CMakeLists.txt), Boost's own otherwise (the
 // WebAssembly page): the same results, GMP about ten times sooner.
 #if ELLIPSECT_EXACT_GMP
@@ -147,4 +156,5 @@ Body<N> exact_body(const Ellipsoid<T, N>& e) {
   return b;
 }
 
+}  // inline namespace
 }  // namespace ellipsect::detail::rational

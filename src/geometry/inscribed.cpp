@@ -21,6 +21,7 @@
 #include <iterator>
 #include <limits>
 #include <string>
+#include <utility>
 
 namespace ellipsect {
 
@@ -194,9 +195,20 @@ Phase1<T, N> phase_one(const Planes<T, N>& p) {
 
 // ---- The barrier method on (B, d) ----
 
-// B's coordinates in the symmetric basis E_a: e_k e_k^T, then e_k e_l^T + e_l e_k^T (k < l).
+// B's coordinates in the symmetric basis E_a = e_k e_l^T + e_l e_k^T (halved where k = l): the
+// pairs (k, k), then (k, l) for k < l.
 template <int N>
 constexpr int sym_size = N * (N + 1) / 2;
+
+template <int N>
+constexpr std::array<std::pair<int, int>, sym_size<N>> symmetric_basis = [] {
+  std::array<std::pair<int, int>, sym_size<N>> e{};
+  std::size_t a = 0;
+  for (int k = 0; k < N; ++k) e[a++] = {k, k};
+  for (int k = 0; k < N; ++k)
+    for (int l = k + 1; l < N; ++l) e[a++] = {k, l};
+  return e;
+}();
 
 // The half-spaces as the barrier sees them, in the scalar S of its centering: a_i, beta_i, and
 // the parts of the Hessian of -log(s_i^2 - |B a_i|^2) that do not change with (B, d):
@@ -214,11 +226,12 @@ struct Faces {
   explicit Faces(const Planes<T, N>& p) {
     for (std::size_t i = 0; i < p.size(); ++i) {
       const Eigen::Matrix<S, N, 1> ai = p.a[i].template cast<S>();
-      Eigen::Matrix<S, N, q> ui = Eigen::Matrix<S, N, q>::Zero();
-      int col = 0;
-      for (int k = 0; k < N; ++k) ui(k, col++) = ai[k];
-      for (int k = 0; k < N; ++k)
-        for (int l = k + 1; l < N; ++l, ++col) ui(k, col) = ai[l], ui(l, col) = ai[k];
+      Eigen::Matrix<S, N, q> ui = Eigen::Matrix<S, N, q>::Zero();  // E_a a_i = e_k a_il + e_l a_ik
+      for (int c = 0; c < q; ++c) {
+        const auto [k, l] = symmetric_basis<N>[std::size_t(c)];
+        ui(k, c) = ai[l];
+        ui(l, c) = ai[k];
+      }
       a.push_back(ai);
       beta.push_back(S(p.beta[i]));
       u.push_back(ui);
@@ -350,12 +363,12 @@ std::pair<Iterate<S, N>, S> newton_step(const Faces<S, N>& p, const Iterate<S, N
   V g = V::Zero();
   H h = H::Zero();
   const M inverse = x.b.inverse();
-  std::array<M, q> ia;  // B^-1 E_a: the columns of B^-1 and their sums, by E_a's pattern
-  int col = 0;
-  for (int k = 0; k < N; ++k) ia[std::size_t(col++)] = inverse.col(k) * M::Identity().row(k);
-  for (int k = 0; k < N; ++k)
-    for (int l = k + 1; l < N; ++l, ++col)
-      ia[std::size_t(col)] = inverse.col(k) * M::Identity().row(l) + inverse.col(l) * M::Identity().row(k);
+  std::array<M, q> ia;  // B^-1 E_a = (B^-1 e_k) e_l^T + (B^-1 e_l) e_k^T (halved where k = l)
+  for (int c = 0; c < q; ++c) {
+    const auto [k, l] = symmetric_basis<N>[std::size_t(c)];
+    ia[std::size_t(c)] = inverse.col(k) * M::Identity().row(l);
+    if (k != l) ia[std::size_t(c)] += inverse.col(l) * M::Identity().row(k);
+  }
   for (int a = 0; a < q; ++a) {
     g[a] = -t * ia[std::size_t(a)].trace();
     for (int b = 0; b <= a; ++b)  // tr(X Y) = sum of X .* Y^T
@@ -377,11 +390,10 @@ std::pair<Iterate<S, N>, S> newton_step(const Faces<S, N>& p, const Iterate<S, N
   h = h.template selfadjointView<Eigen::Lower>();
   const V dv = newton_direction(h, g);
   Iterate<S, N> step;
-  step.b.setZero();
-  col = 0;
-  for (int k = 0; k < N; ++k) step.b(k, k) = dv[col++];
-  for (int k = 0; k < N; ++k)
-    for (int l = k + 1; l < N; ++l, ++col) step.b(k, l) = step.b(l, k) = dv[col];
+  for (int c = 0; c < q; ++c) {
+    const auto [k, l] = symmetric_basis<N>[std::size_t(c)];
+    step.b(k, l) = step.b(l, k) = dv[c];
+  }
   step.d = dv.template tail<N>();
   return {step, -g.dot(dv)};
 }
